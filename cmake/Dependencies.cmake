@@ -1,0 +1,10 @@
+# Every external dependency, all from Debian 12 packages (cmake/install-deps.sh installs them).
+find_package(Threads REQUIRED)
+find_package(Vulkan REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(glm REQUIRED)
+find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+if(SCANSURF_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()

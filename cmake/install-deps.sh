@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package scansurf needs to build, run and test.
+# Used by README's commands and by .ci/run; safe to run again (apt skips what is there).
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
+  libglm-dev nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev
+  libdraco-dev libeigen3-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "scansurf: all build dependencies present"
+  exit 0
+fi
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+echo "scansurf: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,52 @@
+#include "core/parallel.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace scansurf {
+
+int defaultThreadCount() {
+  if (const char* env = std::getenv("SCANSURF_THREADS")) {
+    const int n = std::atoi(env);
+    if (n > 0) return n;
+  }
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+int chunkCount(std::size_t count, int threads) {
+  if (threads <= 0) threads = defaultThreadCount();
+  return static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(count, static_cast<std::size_t>(threads))));
+}
+
+void parallelChunks(std::size_t count, int threads,
+                    const std::function<void(int, std::size_t, std::size_t)>& body) {
+  const int chunks = chunkCount(count, threads);
+  auto bounds = [&](int c) { return count * static_cast<std::size_t>(c) / static_cast<std::size_t>(chunks); };
+  if (chunks == 1) {
+    body(0, 0, count);
+    return;
+  }
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  auto run = [&](int c) {
+    try {
+      body(c, bounds(c), bounds(c + 1));
+    } catch (...) {
+      std::lock_guard lock(failureMutex);
+      if (!failure) failure = std::current_exception();
+    }
+  };
+  std::vector<std::thread> workers;
+  workers.reserve(static_cast<std::size_t>(chunks - 1));
+  for (int c = 1; c < chunks; ++c) workers.emplace_back(run, c);
+  run(0);
+  for (std::thread& t : workers) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace scansurf

@@ -1,0 +1,57 @@
+// scansurf: the voxel grid a contour set is scan converted into.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "scansurf/contours.h"
+#include "scansurf/result.h"
+
+namespace scansurf {
+
+// How the user chooses the in-plane grid. Set voxelSize, or nx and ny, or neither.
+struct GridOptions {
+  // In-plane pixel size (input units); square pixels. 0 = not set.
+  double voxelSize = 0;
+  // Pixels along x and y including the one-pixel background border; the contours' bounding
+  // box maps exactly onto the centres of pixels 1 and n-2 (paper §3.3). 0 = not set.
+  int nx = 0;
+  int ny = 0;
+  // When neither is set: square pixels, kDefaultPixels along the longer side.
+  static constexpr int kDefaultPixels = 256;
+  // Slice z values closer than this (input units) are one plane.
+  double sliceTolerance = kDefaultSliceTolerance;
+};
+
+// A regular in-plane grid stacked over the slice planes.
+// Voxel (i, j, k) is centred at (originX + i*spacingX, originY + j*spacingY, layerZ[k]).
+// Layers 0 and nz-1, columns 0 and nx-1 and rows 0 and ny-1 are background padding, so
+// every surface closes.
+struct Grid {
+  int nx = 0;
+  int ny = 0;
+  int nz = 0;
+  double originX = 0;
+  double originY = 0;
+  double spacingX = 1;
+  double spacingY = 1;
+  std::vector<double> layerZ;  // size nz, strictly increasing
+
+  std::size_t voxelCount() const {
+    return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+  }
+  std::size_t index(int i, int j, int k) const {
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
+  }
+};
+
+// Builds the grid for a validated contour set: the slice planes (merged within
+// options.sliceTolerance) become layers 1..nz-2, padded by one layer on each side at the
+// neighbouring slice spacing. Errors: options out of range, or a degenerate extent.
+Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options);
+
+// The layer whose plane is within tolerance of z, or -1.
+int layerOfZ(const Grid& grid, double z, double tolerance);
+
+}  // namespace scansurf

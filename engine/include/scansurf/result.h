@@ -1,0 +1,93 @@
+// scansurf: Result<T>, the error type returned at every module edge.
+// Shaped like std::expected<T, Error> so it can become one when the toolchain has it.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <variant>
+
+namespace scansurf {
+
+// Error categories; the CLI maps each to a documented exit code.
+enum class Errc {
+  InvalidArgument = 1,  // an option or parameter out of range
+  InvalidInput = 2,     // the input file is malformed or inconsistent
+  Io = 3,               // a file could not be read or written
+  NoDevice = 4,         // no usable Vulkan device
+  Vulkan = 5,           // a Vulkan call failed
+  Internal = 6,         // a broken invariant: a bug in scansurf
+};
+
+struct Error {
+  Errc code = Errc::Internal;
+  std::string message;
+};
+
+// The error half of a Result, convertible to any Result<T>.
+struct Unexpected {
+  Error error;
+};
+
+inline Unexpected makeError(Errc code, std::string message) {
+  return Unexpected{Error{code, std::move(message)}};
+}
+
+template <typename T>
+class [[nodiscard]] Result {
+ public:
+  Result(T value) : state_(std::move(value)) {}
+  Result(Unexpected e) : state_(std::move(e.error)) {}
+
+  bool hasValue() const { return state_.index() == 0; }
+  explicit operator bool() const { return hasValue(); }
+
+  T& value() & { return std::get<0>(state_); }
+  const T& value() const& { return std::get<0>(state_); }
+  T&& value() && { return std::get<0>(std::move(state_)); }
+  T* operator->() { return &value(); }
+  const T* operator->() const { return &value(); }
+  T& operator*() & { return value(); }
+  const T& operator*() const& { return value(); }
+
+  const Error& error() const { return std::get<1>(state_); }
+  Unexpected takeError() && { return Unexpected{std::get<1>(std::move(state_))}; }
+
+ private:
+  std::variant<T, Error> state_;
+};
+
+template <>
+class [[nodiscard]] Result<void> {
+ public:
+  Result() = default;
+  Result(Unexpected e) : error_(std::move(e.error)), failed_(true) {}
+
+  bool hasValue() const { return !failed_; }
+  explicit operator bool() const { return !failed_; }
+  const Error& error() const { return error_; }
+  Unexpected takeError() && { return Unexpected{std::move(error_)}; }
+
+ private:
+  Error error_;
+  bool failed_ = false;
+};
+
+}  // namespace scansurf
+
+#define SCANSURF_CONCAT_INNER(a, b) a##b
+#define SCANSURF_CONCAT(a, b) SCANSURF_CONCAT_INNER(a, b)
+
+// Evaluates a Result-returning expression; on error returns the error from the caller.
+#define SCANSURF_TRY(expr)                                        \
+  do {                                                            \
+    auto scansurfTryResult_ = (expr);                             \
+    if (!scansurfTryResult_) return std::move(scansurfTryResult_).takeError(); \
+  } while (false)
+
+// `SCANSURF_ASSIGN_OR_RETURN(auto x, f());` declares x from f()'s value or returns its error.
+#define SCANSURF_ASSIGN_OR_RETURN(lhs, expr) \
+  SCANSURF_ASSIGN_OR_RETURN_IMPL(SCANSURF_CONCAT(scansurfResult_, __LINE__), lhs, expr)
+#define SCANSURF_ASSIGN_OR_RETURN_IMPL(tmp, lhs, expr) \
+  auto tmp = (expr);                                   \
+  if (!tmp) return std::move(tmp).takeError();         \
+  lhs = std::move(tmp).value()

@@ -1,0 +1,64 @@
+// scansurf: separating surfaces (Nielson & Franke, "Computing the separating surface for
+// segmented data", IEEE Visualization 1997) extracted from a label volume.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scansurf/label_volume.h"
+
+namespace scansurf {
+
+// One mesh holding every separating surface, vertices shared between all of them.
+struct MultiLabelMesh {
+  std::vector<float> positions;        // x, y, z per vertex, input units
+  std::vector<std::uint32_t> triangles;  // 3 vertex indices per triangle
+  // 2 labels per triangle, {a, b} with a < b; the triangle's normal (counter-clockwise
+  // winding, right-hand rule) points out of a's region into b's.
+  std::vector<Label> labels;
+
+  std::size_t vertexCount() const { return positions.size() / 3; }
+  std::size_t triangleCount() const { return triangles.size() / 3; }
+};
+
+enum class SurfaceConvention {
+  // The surface around everything the feature's contours enclose, nested features included.
+  Enclosing,
+  // The boundary of the region the feature owns after priority.
+  Partition,
+};
+
+// A feature's closed surface as triangles of the shared mesh, oriented outward.
+struct FeatureSurface {
+  int feature = -1;
+  std::vector<std::uint32_t> triangles;  // 3 indices into MultiLabelMesh::positions each
+
+  std::size_t triangleCount() const { return triangles.size() / 3; }
+};
+
+struct Surfaces {
+  MultiLabelMesh mesh;
+  SurfaceConvention convention = SurfaceConvention::Enclosing;
+  std::vector<FeatureSurface> features;  // one per input feature, in input order
+};
+
+// Topological and metric properties of a triangle mesh.
+struct MeshStats {
+  std::size_t triangles = 0;
+  std::size_t vertices = 0;  // vertices referenced by the triangles
+  double area = 0;           // input units squared
+  double volume = 0;         // signed enclosed volume, input units cubed (positive when outward)
+  int components = 0;        // edge-connected components
+  int genus = 0;             // sum over components of (2 - χ) / 2; valid when closed
+  bool closed = false;       // every edge has exactly two triangles
+  bool manifold = false;     // closed and every vertex's triangles form one fan
+  bool oriented = false;     // every edge is used once in each direction
+};
+
+// Computes the statistics of the triangles (3 indices each) over positions (xyz each).
+MeshStats computeMeshStats(std::span<const float> positions, std::span<const std::uint32_t> triangles);
+
+}  // namespace scansurf

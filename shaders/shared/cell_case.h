@@ -1,0 +1,37 @@
+// Shared by GLSL (classify.comp) and C++ (engine/geometry/cell_cases.h): the compact
+// per-cell case record the tetrahedral classification emits for every cell that holds a
+// separating surface.
+//
+// A cell is the cube between eight neighbouring voxel centres; cell (i, j, k) has corner c
+// (bit 0 = +x, bit 1 = +y, bit 2 = +z) at voxel (i + (c&1), j + ((c>>1)&1), k + (c>>2)).
+// It splits into six tetrahedra (Freudenthal/Kuhn), tetrahedron t walking from corner 0 to
+// corner 7 along the axes in the order of permutation t, so neighbouring cells agree on
+// every shared face.
+//
+// tetCodes holds 5 bits per tetrahedron (t at bit 5*t): the partition of its four corner
+// labels as a restricted growth string r1 | r2 << 1 | r3 << 3 (r0 = 0; r_i is the index of
+// the first corner with the same label). 0 means one label: no surface.
+#ifndef SCANSURF_SHARED_CELL_CASE_H
+#define SCANSURF_SHARED_CELL_CASE_H
+
+#define SCANSURF_TETS_PER_CELL 6
+#define SCANSURF_TET_CODE_BITS 5
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace scansurf::shared {
+using uint = std::uint32_t;
+#endif
+
+struct CellCase {
+  uint cell;         // i + (nx-1) * (j + (ny-1) * k), over the whole volume
+  uint tetCodes;     // 6 x 5 bits
+  uint labels[4];    // the 8 corner labels, 16 bits each, corner c in labels[c/2] bits 16*(c%2)
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(CellCase) == 24, "CellCase layout must match the GLSL std430 struct");
+}  // namespace scansurf::shared
+#endif
+
+#endif
