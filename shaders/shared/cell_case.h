@@ -1,6 +1,6 @@
-// Shared by GLSL (classify.comp) and C++ (engine/geometry/cell_cases.h): the compact
-// per-cell case record the tetrahedral classification emits for every cell that holds a
-// separating surface.
+// Shared by GLSL (classify.comp) and C++ (engine.h, engine/geometry/cell_cases.h): the
+// compact per-cell case record the tetrahedral classification emits for every cell that
+// holds a separating surface.
 //
 // A cell is the cube between eight neighbouring voxel centres; cell (i, j, k) has corner c
 // (bit 0 = +x, bit 1 = +y, bit 2 = +z) at voxel (i + (c&1), j + ((c>>1)&1), k + (c>>2)).
@@ -19,19 +19,25 @@
 
 #ifdef __cplusplus
 #include <cstdint>
-namespace scansurf::shared {
-using uint = std::uint32_t;
+#define SCANSURF_UINT std::uint32_t
+namespace scansurf {
+#else
+#define SCANSURF_UINT uint
 #endif
 
 struct CellCase {
-  uint cell;         // i + (nx-1) * (j + (ny-1) * k), over the whole volume
-  uint tetCodes;     // 6 x 5 bits
-  uint labels[4];    // the 8 corner labels, 16 bits each, corner c in labels[c/2] bits 16*(c%2)
+  SCANSURF_UINT cell;       // i + (nx-1) * (j + (ny-1) * k), over the whole volume
+  SCANSURF_UINT tetCodes;   // 6 x 5 bits
+  SCANSURF_UINT labels[4];  // the 8 corner labels, 16 bits each: corner c in labels[c/2] bits 16*(c%2)
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(CellCase) == 24, "CellCase layout must match the GLSL std430 struct");
-}  // namespace scansurf::shared
+namespace shared {
+using CellCase = ::scansurf::CellCase;
+}
+}  // namespace scansurf
 #endif
+#undef SCANSURF_UINT
 
 #endif
