@@ -1,1 +1,271 @@
-// placeholder: being written
+#include "gpu/context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "gpu/check.h"
+
+namespace scansurf::gpu {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool envFlag(const char* name) {
+  const char* v = std::getenv(name);
+  return v != nullptr && std::strcmp(v, "") != 0 && std::strcmp(v, "0") != 0;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+const char* typeName(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    default: return "other";
+  }
+}
+
+int typeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+  }
+}
+
+// The queue family with graphics and compute, or -1.
+int graphicsComputeFamily(VkPhysicalDevice device) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  for (std::uint32_t i = 0; i < count; ++i)
+    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT))
+      return static_cast<int>(i);
+  return -1;
+}
+
+// Why a device cannot run scansurf, or empty when it can.
+std::string rejection(VkPhysicalDevice device) {
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(device, &props);
+  if (props.apiVersion < VK_API_VERSION_1_3) return "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." + std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ", needs 1.3";
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+  vkGetPhysicalDeviceFeatures2(device, &f2);
+  if (!f13.dynamicRendering) return "no dynamicRendering";
+  if (!f13.synchronization2) return "no synchronization2";
+  if (graphicsComputeFamily(device) < 0) return "no queue family with graphics and compute";
+  return {};
+}
+
+bool hasLayer(const char* name) {
+  std::uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+}  // namespace
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                      VkDebugUtilsMessageTypeFlagsEXT,
+                                                      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  auto* self = static_cast<Context*>(user);
+  self->validationMessages_.fetch_add(1);
+  std::string message = std::string(severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "validation error: " : "validation warning: ") +
+                        (data && data->pMessage ? data->pMessage : "(no message)");
+  if (self->onValidationMessage_)
+    self->onValidationMessage_(message);
+  else
+    std::fprintf(stderr, "scansurf: %s\n", message.c_str());
+  return VK_FALSE;
+}
+
+Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
+  std::unique_ptr<Context> ctx(new Context());
+  ctx->onValidationMessage_ = options.onValidationMessage;
+  const bool validation = options.validation || envFlag("SCANSURF_VALIDATION");
+  if (validation && !hasLayer(kValidationLayer))
+    return makeError(Errc::NoDevice, std::string("validation requested but ") + kValidationLayer +
+                                         " is not installed (Debian: vulkan-validationlayers)");
+
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "scansurf";
+  app.pEngineName = "scansurf";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messengerInfo.pfnUserCallback = &Context::debugCallback;
+  messengerInfo.pUserData = ctx.get();
+
+  std::vector<const char*> layers;
+  std::vector<const char*> extensions;
+  if (validation) {
+    layers.push_back(kValidationLayer);
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  instanceInfo.pApplicationInfo = &app;
+  instanceInfo.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
+  instanceInfo.ppEnabledLayerNames = layers.data();
+  instanceInfo.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+  instanceInfo.ppEnabledExtensionNames = extensions.data();
+  if (validation) instanceInfo.pNext = &messengerInfo;  // also reports on instance creation
+
+  VkInstance instance = VK_NULL_HANDLE;
+  const VkResult created = vkCreateInstance(&instanceInfo, nullptr, &instance);
+  if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
+    return makeError(Errc::NoDevice, "no Vulkan driver found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
+  SCANSURF_VK_TRY(created);
+  ctx->ownedInstance_ = Owned<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
+  ctx->instance_ = instance;
+
+  if (validation) {
+    auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    auto destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (!createMessenger || !destroyMessenger) return makeError(Errc::Vulkan, "VK_EXT_debug_utils is not available");
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    SCANSURF_VK_TRY(createMessenger(instance, &messengerInfo, nullptr, &messenger));
+    ctx->messenger_ = Owned<VkDebugUtilsMessengerEXT>(
+        messenger, [instance, destroyMessenger](VkDebugUtilsMessengerEXT m) { destroyMessenger(instance, m, nullptr); });
+  }
+
+  // Choose the device: the user's selector, else the best type that can run scansurf.
+  std::uint32_t count = 0;
+  SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+  if (count == 0)
+    return makeError(Errc::NoDevice, "no Vulkan device found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
+  std::vector<VkPhysicalDevice> devices(count);
+  SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+
+  std::string selector = options.device;
+  if (selector.empty())
+    if (const char* env = std::getenv("SCANSURF_DEVICE")) selector = env;
+
+  std::string report;
+  int chosen = -1;
+  int bestRank = -1;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(devices[i], &props);
+    const std::string why = rejection(devices[i]);
+    report += "\n  [" + std::to_string(i) + "] " + props.deviceName + " (" + typeName(props.deviceType) + ")" +
+              (why.empty() ? "" : ": unusable, " + why);
+    bool matches = true;
+    if (!selector.empty()) {
+      const bool isIndex = std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); });
+      matches = isIndex ? std::stoul(selector) == i : lower(props.deviceName).find(lower(selector)) != std::string::npos;
+    }
+    if (!matches || !why.empty()) continue;
+    if (typeRank(props.deviceType) > bestRank) {
+      bestRank = typeRank(props.deviceType);
+      chosen = static_cast<int>(i);
+    }
+  }
+  if (chosen < 0)
+    return makeError(Errc::NoDevice, (selector.empty() ? std::string("no usable Vulkan device")
+                                                       : "no usable Vulkan device matches \"" + selector + "\"") +
+                                         "; devices:" + report);
+  ctx->physicalDevice_ = devices[static_cast<std::size_t>(chosen)];
+  ctx->queueFamily_ = static_cast<std::uint32_t>(graphicsComputeFamily(ctx->physicalDevice_));
+
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = ctx->queueFamily_;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.dynamicRendering = VK_TRUE;
+  f13.synchronization2 = VK_TRUE;
+  VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  deviceInfo.pNext = &f13;
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  VkDevice device = VK_NULL_HANDLE;
+  SCANSURF_VK_TRY(vkCreateDevice(ctx->physicalDevice_, &deviceInfo, nullptr, &device));
+  ctx->ownedDevice_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+  ctx->device_ = device;
+  vkGetDeviceQueue(device, ctx->queueFamily_, 0, &ctx->queue_);
+  SCANSURF_TRY(ctx->finishSetup());
+  return ctx;
+}
+
+Result<std::unique_ptr<Context>> Context::adopt(const ExternalVulkan& vulkan, const EngineOptions& options) {
+  if (!vulkan.instance || !vulkan.physicalDevice || !vulkan.device || !vulkan.queue)
+    return makeError(Errc::InvalidArgument, "ExternalVulkan: instance, physicalDevice, device and queue are all required");
+  if (const std::string why = rejection(vulkan.physicalDevice); !why.empty())
+    return makeError(Errc::NoDevice, "the application's Vulkan device cannot run scansurf: " + why);
+  std::unique_ptr<Context> ctx(new Context());
+  ctx->onValidationMessage_ = options.onValidationMessage;
+  ctx->instance_ = vulkan.instance;
+  ctx->physicalDevice_ = vulkan.physicalDevice;
+  ctx->device_ = vulkan.device;
+  ctx->queue_ = vulkan.queue;
+  ctx->queueFamily_ = vulkan.queueFamilyIndex;
+  ctx->info_.borrowed = true;
+  SCANSURF_TRY(ctx->finishSetup());
+  return ctx;
+}
+
+Result<void> Context::finishSetup() {
+  vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memory_);
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver, {}};
+  vkGetPhysicalDeviceProperties2(physicalDevice_, &props2);
+  info_.name = properties_.deviceName;
+  info_.type = typeName(properties_.deviceType);
+  info_.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+  info_.apiVersion = properties_.apiVersion;
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = queueFamily_;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  SCANSURF_VK_TRY(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool));
+  commandPool_ = Owned<VkCommandPool>(pool, [d = device_](VkCommandPool p) { vkDestroyCommandPool(d, p, nullptr); });
+  return {};
+}
+
+Context::~Context() {
+  if (device_) vkDeviceWaitIdle(device_);
+  commandPool_.reset();
+  ownedDevice_.reset();
+  messenger_.reset();
+  ownedInstance_.reset();
+}
+
+Result<std::uint32_t> Context::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                                              VkMemoryPropertyFlags preferred) const {
+  int best = -1;
+  for (std::uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
+    const VkMemoryPropertyFlags flags = memory_.memoryTypes[i].propertyFlags;
+    if (!(typeBits & (1u << i)) || (flags & required) != required) continue;
+    if ((flags & preferred) == preferred) return i;
+    if (best < 0) best = static_cast<int>(i);
+  }
+  if (best < 0) return makeError(Errc::Vulkan, "no Vulkan memory type with the required properties");
+  return static_cast<std::uint32_t>(best);
+}
+
+VkMemoryPropertyFlags Context::memoryTypeFlags(std::uint32_t type) const { return memory_.memoryTypes[type].propertyFlags; }
+
+}  // namespace scansurf::gpu

@@ -1,1 +1,168 @@
-// placeholder: being written
+#include "passes/classification.h"
+
+#include <algorithm>
+#include <cstring>
+#include <span>
+#include <string>
+
+#include "classify_push.h"
+#include "gpu/check.h"
+#include "gpu/commands.h"
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+
+namespace scansurf::shaders {
+std::span<const std::uint32_t> spirv(std::string_view name);
+}
+
+namespace scansurf::passes {
+namespace {
+constexpr std::uint32_t kGroupX = 8;
+constexpr std::uint32_t kGroupY = 8;
+}  // namespace
+
+struct Classifier::State {
+  const gpu::Context* ctx = nullptr;
+  gpu::Owned<VkShaderModule> module;
+  gpu::Owned<VkDescriptorSetLayout> setLayout;
+  gpu::Owned<VkPipelineLayout> layout;
+  gpu::Owned<VkPipeline> pipeline;
+  gpu::Owned<VkDescriptorPool> pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  std::size_t slabBudget = std::size_t{64} << 20;
+  int lastSlabs = 0;
+};
+
+Classifier::Classifier(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Classifier::~Classifier() = default;
+void Classifier::setSlabBudget(std::size_t bytes) { state_->slabBudget = bytes; }
+int Classifier::lastSlabCount() const { return state_->lastSlabs; }
+
+Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) {
+  auto s = std::make_unique<State>();
+  s->ctx = &ctx;
+  SCANSURF_ASSIGN_OR_RETURN(s->module, gpu::createShaderModule(ctx, shaders::spirv("classify.comp")));
+  SCANSURF_ASSIGN_OR_RETURN(s->setLayout, gpu::createStorageBufferSetLayout(ctx, 3, VK_SHADER_STAGE_COMPUTE_BIT));
+  const VkDescriptorSetLayout setLayout = s->setLayout.get();
+  SCANSURF_ASSIGN_OR_RETURN(s->layout, gpu::createPipelineLayout(ctx, std::span(&setLayout, 1), sizeof(shared::ClassifyPush),
+                                                                  VK_SHADER_STAGE_COMPUTE_BIT));
+  const std::uint32_t spec[] = {kGroupX, kGroupY};
+  SCANSURF_ASSIGN_OR_RETURN(s->pipeline, gpu::createComputePipeline(ctx, s->layout.get(), s->module.get(), spec));
+
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  SCANSURF_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+  s->pool = gpu::Owned<VkDescriptorPool>(pool, [d = ctx.device()](VkDescriptorPool p) { vkDestroyDescriptorPool(d, p, nullptr); });
+  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  setInfo.descriptorPool = pool;
+  setInfo.descriptorSetCount = 1;
+  setInfo.pSetLayouts = &setLayout;
+  SCANSURF_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &setInfo, &s->set));
+  return std::unique_ptr<Classifier>(new Classifier(std::move(s)));
+}
+
+Result<std::vector<CellCase>> Classifier::run(const LabelVolume& volume) {
+  const gpu::Context& ctx = *state_->ctx;
+  const Grid& grid = volume.grid;
+  if (grid.nx < 2 || grid.ny < 2 || grid.nz < 2) return std::vector<CellCase>{};
+  if (cellCount(grid) > 0xFFFFFFFFull)
+    return makeError(Errc::InvalidArgument, "classification: more than 2^32 cells; use a coarser grid");
+
+  const std::size_t maxRange = ctx.limits().maxStorageBufferRange;
+  const std::size_t layerBytes = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * sizeof(Label);
+  const std::size_t labelBudget = std::min(state_->slabBudget, maxRange);
+  if (2 * layerBytes + 4 > labelBudget)
+    return makeError(Errc::InvalidArgument, "classification: two layers of " + std::to_string(grid.nx) + " x " +
+                                                std::to_string(grid.ny) + " labels exceed the storage buffer limit");
+  const int totalCellLayers = grid.nz - 1;
+  const int slabCellLayers = std::max(1, std::min(totalCellLayers, static_cast<int>((labelBudget - 4) / layerBytes) - 1));
+  const std::size_t maxRecords = maxRange / sizeof(CellCase);
+
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels,
+                            gpu::Buffer::create(ctx, (layerBytes * static_cast<std::size_t>(slabCellLayers + 1) + 3) / 4 * 4,
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer counter,
+                            gpu::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                gpu::MemoryDomain::Readback));
+  // Start with room for a surface through a few percent of the cells; grow on overflow.
+  const std::size_t slabCells = static_cast<std::size_t>(grid.nx - 1) * static_cast<std::size_t>(grid.ny - 1) *
+                                static_cast<std::size_t>(slabCellLayers);
+  std::size_t capacity = std::clamp<std::size_t>(slabCells / 16, 4096, maxRecords);
+  gpu::Buffer cases;
+  bool casesBound = false;
+
+  std::vector<CellCase> result;
+  state_->lastSlabs = 0;
+  int first = 0;
+  int layers = slabCellLayers;
+  while (first < totalCellLayers) {
+    layers = std::min(layers, totalCellLayers - first);
+    if (!casesBound) {
+      SCANSURF_ASSIGN_OR_RETURN(cases, gpu::Buffer::create(ctx, capacity * sizeof(CellCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                           gpu::MemoryDomain::Readback));
+      const VkDescriptorBufferInfo infos[3] = {{labels.handle(), 0, VK_WHOLE_SIZE},
+                                               {counter.handle(), 0, VK_WHOLE_SIZE},
+                                               {cases.handle(), 0, VK_WHOLE_SIZE}};
+      VkWriteDescriptorSet writes[3];
+      for (std::uint32_t b = 0; b < 3; ++b) {
+        writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[b].dstSet = state_->set;
+        writes[b].dstBinding = b;
+        writes[b].descriptorCount = 1;
+        writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[b].pBufferInfo = &infos[b];
+      }
+      vkUpdateDescriptorSets(ctx.device(), 3, writes, 0, nullptr);
+      casesBound = true;
+    }
+    std::memcpy(labels.mapped(), volume.labels.data() + grid.index(0, 0, first),
+                layerBytes * static_cast<std::size_t>(layers + 1));
+
+    SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
+    VkCommandBuffer cmd = commands.cmd();
+    vkCmdFillBuffer(cmd, counter.handle(), 0, 4, 0);
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
+    const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
+                                    static_cast<std::uint32_t>(layers), static_cast<std::uint32_t>(first),
+                                    static_cast<std::uint32_t>(capacity)};
+    vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
+                  (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    SCANSURF_TRY(commands.submitAndWait());
+    SCANSURF_TRY(counter.invalidate());
+    std::uint32_t count = 0;
+    std::memcpy(&count, counter.mapped(), sizeof(count));
+
+    if (count > capacity) {
+      // Too many records for the buffer: grow it, or halve the slab when at the limit.
+      if (capacity < maxRecords) {
+        capacity = std::min<std::size_t>(maxRecords, static_cast<std::size_t>(count) + count / 4);
+        casesBound = false;
+      } else if (layers > 1) {
+        layers /= 2;
+      } else {
+        return makeError(Errc::InvalidArgument, "classification: one layer holds more surface cells than a storage buffer can");
+      }
+      continue;
+    }
+    SCANSURF_TRY(cases.invalidate());
+    const auto* records = static_cast<const CellCase*>(cases.mapped());
+    result.insert(result.end(), records, records + count);
+    first += layers;
+    ++state_->lastSlabs;
+  }
+  // The atomic append leaves records in any order; sort for deterministic assembly.
+  std::sort(result.begin(), result.end(), [](const CellCase& a, const CellCase& b) { return a.cell < b.cell; });
+  return result;
+}
+
+}  // namespace scansurf::passes

@@ -9,8 +9,8 @@
 // every shared face.
 //
 // tetCodes holds 5 bits per tetrahedron (t at bit 5*t): the partition of its four corner
-// labels as a restricted growth string r1 | r2 << 1 | r3 << 3 (r0 = 0; r_i is the index of
-// the first corner with the same label). 0 means one label: no surface.
+// labels l0..l3 (in kCellTets order) as r1 | r2 << 1 | r3 << 3, where r_i is the smallest
+// j <= i with l_j == l_i (so r1 is 0..1, r2 0..2, r3 0..3). 0 means one label: no surface.
 #ifndef SCANSURF_SHARED_CELL_CASE_H
 #define SCANSURF_SHARED_CELL_CASE_H
 

@@ -10,7 +10,7 @@ namespace scansurf {
 
 // Handles of the application's Vulkan objects. scansurf borrows them (never destroys them)
 // and creates its own command pool, pipelines and buffers on the device.
-// Requirements: a Vulkan 1.3 device created with the dynamicRendering feature; `queue` from
+// Requirements: a Vulkan 1.3 device created with the dynamicRendering and synchronization2 features; `queue` from
 // `queueFamilyIndex`, which supports graphics and compute. scansurf submits to the queue and
 // waits inside each call, so the application must not use the queue from another thread
 // during a call (Vulkan's external synchronization rule for queues).

@@ -1,0 +1,46 @@
+// scansurf gpu: shader modules, layouts and pipelines.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "gpu/context.h"
+#include "gpu/handle.h"
+
+namespace scansurf::gpu {
+
+Result<Owned<VkShaderModule>> createShaderModule(const Context& ctx, std::span<const std::uint32_t> spirv);
+
+// A set layout of `count` storage buffers at bindings 0..count-1.
+Result<Owned<VkDescriptorSetLayout>> createStorageBufferSetLayout(const Context& ctx, std::uint32_t count,
+                                                                  VkShaderStageFlags stages);
+
+Result<Owned<VkPipelineLayout>> createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
+                                                     std::uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
+
+// Compute pipeline; specialization constant i (constant_id = i) gets specialization[i].
+Result<Owned<VkPipeline>> createComputePipeline(const Context& ctx, VkPipelineLayout layout, VkShaderModule module,
+                                                std::span<const std::uint32_t> specialization);
+
+// What the scan-conversion graphics pipelines vary in, named by intent.
+struct RasterPipelineDesc {
+  VkShaderModule vertex = VK_NULL_HANDLE;
+  VkShaderModule fragment = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkFormat colorFormat = VK_FORMAT_UNDEFINED;
+  VkFormat depthStencilFormat = VK_FORMAT_UNDEFINED;
+  VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN;
+  std::uint32_t vertexStride = 8;  // one vec2 per vertex
+  bool writeColor = false;
+  bool depthTest = false;  // LESS, with depth writes
+  VkStencilOpState stencil{};
+  bool stencilTest = false;
+};
+
+// Graphics pipeline for dynamic rendering with dynamic viewport and scissor; no culling.
+Result<Owned<VkPipeline>> createRasterPipeline(const Context& ctx, const RasterPipelineDesc& desc);
+
+}  // namespace scansurf::gpu

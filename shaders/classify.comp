@@ -1,0 +1,55 @@
+#version 450
+// Tetrahedral classification (Nielson & Franke 1997, as used by the scanline surfacing
+// paper §3.5): for every cell of the label volume, the partition code of each of its six
+// Freudenthal tetrahedra; cells holding a surface are appended to a compact record list.
+#extension GL_GOOGLE_include_directive : require
+#include "cell_case.h"
+#include "classify_push.h"
+
+layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
+
+layout(std430, binding = 0) readonly buffer Labels { uint words[]; } labels;  // 16-bit labels, two per word
+layout(std430, binding = 1) buffer Counter { uint count; } counter;
+layout(std430, binding = 2) writeonly buffer Cases { CellCase records[]; } cases;
+
+// Corners of the six tetrahedra; same order as kCellTets in engine/geometry/cell_cases.h.
+const uint kTets[24] = uint[24](0, 1, 3, 7,  0, 1, 5, 7,  0, 2, 3, 7,  0, 2, 6, 7,  0, 4, 5, 7,  0, 4, 6, 7);
+
+uint labelAt(uint i, uint j, uint k) {
+  const uint n = i + push.nx * (j + push.ny * k);
+  return (labels.words[n >> 1] >> ((n & 1u) * 16u)) & 0xFFFFu;
+}
+
+// r_i = smallest j <= i with l_j == l_i, packed r1 | r2 << 1 | r3 << 3.
+uint partitionCode(uint a, uint b, uint c, uint d) {
+  const uint r1 = b == a ? 0u : 1u;
+  const uint r2 = c == a ? 0u : (c == b ? 1u : 2u);
+  const uint r3 = d == a ? 0u : (d == b ? 1u : (d == c ? 2u : 3u));
+  return r1 | (r2 << 1) | (r3 << 3);
+}
+
+void main() {
+  const uvec3 g = gl_GlobalInvocationID;
+  if (g.x >= push.nx - 1u || g.y >= push.ny - 1u || g.z >= push.cellLayers) return;
+
+  uint l[8];
+  bool uniformCell = true;
+  for (uint c = 0u; c < 8u; ++c) {
+    l[c] = labelAt(g.x + (c & 1u), g.y + ((c >> 1) & 1u), g.z + (c >> 2));
+    uniformCell = uniformCell && l[c] == l[0];
+  }
+  if (uniformCell) return;
+
+  uint codes = 0u;
+  for (uint t = 0u; t < 6u; ++t)
+    codes |= partitionCode(l[kTets[4u * t]], l[kTets[4u * t + 1u]], l[kTets[4u * t + 2u]], l[kTets[4u * t + 3u]])
+             << (SCANSURF_TET_CODE_BITS * t);
+
+  const uint slot = atomicAdd(counter.count, 1u);
+  if (slot >= push.capacity) return;  // the host sees count > capacity and runs the slab again
+  CellCase record;
+  record.cell = g.x + (push.nx - 1u) * (g.y + (push.ny - 1u) * (push.firstCellLayer + g.z));
+  record.tetCodes = codes;
+  for (uint w = 0u; w < 4u; ++w) record.labels[w] = l[2u * w] | (l[2u * w + 1u] << 16);
+  cases.records[slot] = record;
+}

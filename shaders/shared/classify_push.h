@@ -1,0 +1,26 @@
+// Shared by GLSL (classify.comp) and C++ (passes/classification.cpp).
+#ifndef SCANSURF_SHARED_CLASSIFY_PUSH_H
+#define SCANSURF_SHARED_CLASSIFY_PUSH_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace scansurf::shared {
+struct ClassifyPush {
+  std::uint32_t nx, ny;          // voxels per row and column of the whole volume
+  std::uint32_t cellLayers;      // cell layers in this dispatch (label layers - 1)
+  std::uint32_t firstCellLayer;  // global index of the first cell layer of the slab
+  std::uint32_t capacity;        // records the output buffer holds
+};
+static_assert(sizeof(ClassifyPush) == 20, "ClassifyPush must match the GLSL push-constant block");
+}  // namespace scansurf::shared
+#else
+layout(push_constant) uniform ClassifyPush {
+  uint nx;
+  uint ny;
+  uint cellLayers;
+  uint firstCellLayer;
+  uint capacity;
+} push;
+#endif
+
+#endif
