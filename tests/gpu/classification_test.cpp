@@ -1,1 +1,84 @@
-// placeholder: being written
+// Tetrahedral classification on the GPU against the CPU reference: identical records.
+#include <random>
+
+#include "geometry/cell_cases.h"
+#include "gpu/gpu_test_env.h"
+#include "passes/classification.h"
+
+namespace scansurf::test {
+namespace {
+
+// Random blobs of labels: smooth enough to have large uniform regions, with every pattern
+// of 2, 3 and 4 labels per tetrahedron somewhere.
+LabelVolume randomVolume(unsigned seed, int nx, int ny, int nz, int labels) {
+  std::mt19937 rng(seed);
+  LabelVolume v;
+  v.grid.nx = nx;
+  v.grid.ny = ny;
+  v.grid.nz = nz;
+  for (int k = 0; k < nz; ++k) v.grid.layerZ.push_back(k);
+  v.labels.assign(v.grid.voxelCount(), 0);
+  std::uniform_int_distribution<int> label(0, labels);
+  std::uniform_real_distribution<double> unit(0, 1);
+  struct Seed { double x, y, z, r; Label l; };
+  std::vector<Seed> seeds;
+  for (int s = 0; s < 12; ++s)
+    seeds.push_back({unit(rng) * nx, unit(rng) * ny, unit(rng) * nz, 1 + unit(rng) * nx / 3, static_cast<Label>(label(rng))});
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        Label l = 0;
+        for (const Seed& s : seeds) {
+          const double dx = i - s.x, dy = j - s.y, dz = k - s.z;
+          if (dx * dx + dy * dy + dz * dz < s.r * s.r) l = s.l;
+        }
+        if (unit(rng) < 0.02) l = static_cast<Label>(label(rng));  // salt: isolated voxels
+        v.labels[v.grid.index(i, j, k)] = l;
+      }
+  return v;
+}
+
+void expectSameRecords(const std::vector<CellCase>& gpu, const std::vector<CellCase>& ref) {
+  ASSERT_EQ(gpu.size(), ref.size());
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < gpu.size(); ++i) {
+    const bool same = gpu[i].cell == ref[i].cell && gpu[i].tetCodes == ref[i].tetCodes &&
+                      gpu[i].labels[0] == ref[i].labels[0] && gpu[i].labels[1] == ref[i].labels[1] &&
+                      gpu[i].labels[2] == ref[i].labels[2] && gpu[i].labels[3] == ref[i].labels[3];
+    if (!same && bad++ < 5) ADD_FAILURE() << "record " << i << " differs (cell " << gpu[i].cell << " vs " << ref[i].cell << ")";
+  }
+  EXPECT_EQ(bad, 0u);
+}
+
+using ClassificationTest = GpuTest;
+
+TEST_F(ClassificationTest, RandomVolumesMatchReference) {
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(classifier) << classifier.error().message;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const LabelVolume v = randomVolume(seed, 17 + static_cast<int>(seed), 23, 11 + static_cast<int>(seed % 3), 2 + static_cast<int>(seed % 4));
+    auto gpu = (*classifier)->run(v);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    const std::vector<CellCase> ref = classifyCellsReference(v);
+    EXPECT_GT(ref.size(), 100u);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    expectSameRecords(*gpu, ref);
+  }
+}
+
+// Slabs and the growth of the record buffer (it starts with room for 4096 records).
+TEST_F(ClassificationTest, SlabsAndBufferGrowthGiveTheSameRecords) {
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(classifier);
+  const LabelVolume v = randomVolume(42, 40, 37, 30, 5);
+  const std::vector<CellCase> ref = classifyCellsReference(v);
+  ASSERT_GT(ref.size(), 4096u);
+  (*classifier)->setSlabBudget(static_cast<std::size_t>(40 * 37 * 2) * 4 + 4);
+  auto slabbed = (*classifier)->run(v);
+  ASSERT_TRUE(slabbed) << slabbed.error().message;
+  EXPECT_GE((*classifier)->lastSlabCount(), 10);
+  expectSameRecords(*slabbed, ref);
+}
+
+}  // namespace
+}  // namespace scansurf::test
