@@ -1,1 +1,256 @@
-// placeholder: being written
+// Separating-surface assembly (Nielson & Franke, "Computing the separating surface for
+// segmented data", IEEE Visualization 1997; as used by the scanline surfacing paper, §3.5).
+// Each tetrahedron is cut into the regions nearest its corners: with two labels, the flat
+// polygon through the midpoints of the edges joining them; with three or more, the boundary
+// curves on its faces coned to its centroid. Vertices live on an integer lattice of 1/12 cell,
+// so identity and orientation are exact.
+#include "geometry/assembly.h"
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <vector>
+
+#include "core/parallel.h"
+
+namespace scansurf {
+namespace {
+
+using Vec3i = std::array<int, 3>;
+
+// One triangle of the case table, in cell-local twelfths (0..12 per axis).
+struct LocalTriangle {
+  std::array<Vec3i, 3> v;
+  // Cell corners whose labels the triangle separates; wound so its normal points from
+  // `from`'s region into `to`'s.
+  std::uint8_t from = 0;
+  std::uint8_t to = 0;
+};
+
+constexpr int kCodes = 1 << SCANSURF_TET_CODE_BITS;
+
+struct CaseTable {
+  std::vector<LocalTriangle> triangles;
+  // [tet * kCodes + code] -> {first, count} into triangles; invalid codes are empty.
+  std::array<std::array<std::uint32_t, 2>, SCANSURF_TETS_PER_CELL * kCodes> range{};
+};
+
+Vec3i cornerPosition(int corner) {
+  return {12 * kCellCorners[corner][0], 12 * kCellCorners[corner][1], 12 * kCellCorners[corner][2]};
+}
+
+Vec3i average(std::initializer_list<int> corners) {
+  Vec3i sum{0, 0, 0};
+  for (int c : corners) {
+    const Vec3i p = cornerPosition(c);
+    for (int a = 0; a < 3; ++a) sum[a] += p[a];
+  }
+  const int n = static_cast<int>(corners.size());
+  return {sum[0] / n, sum[1] / n, sum[2] / n};  // exact: 12 is divisible by 2, 3 and 4
+}
+
+// Groups of the four tet-local corners encoded by a partition code; false if the code is not
+// a valid restricted-growth code (see shaders/shared/cell_case.h).
+bool decodePartition(std::uint32_t code, std::array<int, 4>& group, int& groups) {
+  const std::array<std::uint32_t, 4> r = {0u, code & 1u, (code >> 1) & 3u, (code >> 3) & 3u};
+  group = {0, 0, 0, 0};
+  groups = 1;
+  for (std::uint32_t i = 1; i < 4; ++i) {
+    if (r[i] > i) return false;
+    if (r[i] == i) {
+      group[i] = groups++;
+    } else {
+      if (r[r[i]] != r[i]) return false;  // must point at the first corner of its label
+      group[i] = group[r[i]];
+    }
+  }
+  return true;
+}
+
+void addOriented(std::vector<LocalTriangle>& out, Vec3i a, Vec3i b, Vec3i c, int from, int to) {
+  const Vec3i u = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const Vec3i v = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const Vec3i n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const Vec3i pf = cornerPosition(from);
+  const Vec3i pt = cornerPosition(to);
+  const long long side = static_cast<long long>(n[0]) * (pt[0] - pf[0]) +
+                         static_cast<long long>(n[1]) * (pt[1] - pf[1]) +
+                         static_cast<long long>(n[2]) * (pt[2] - pf[2]);
+  // The triangle's plane strictly separates the two corners, so side is never 0.
+  LocalTriangle t;
+  t.v = side > 0 ? std::array<Vec3i, 3>{a, b, c} : std::array<Vec3i, 3>{a, c, b};
+  t.from = static_cast<std::uint8_t>(from);
+  t.to = static_cast<std::uint8_t>(to);
+  out.push_back(t);
+}
+
+void addTetCase(std::vector<LocalTriangle>& out, const std::array<int, 4>& tet, const std::array<int, 4>& group,
+                int groups) {
+  if (groups == 2) {
+    std::array<int, 4> in{}, rest{};
+    int nIn = 0, nRest = 0;
+    for (int i = 0; i < 4; ++i) (group[i] == 0 ? in[nIn++] : rest[nRest++]) = tet[i];
+    if (nIn == 2) {
+      // 2+2: the planar quad of the four cross-edge midpoints, split along m(u0,v0)-m(u1,v1).
+      const Vec3i m00 = average({in[0], rest[0]}), m01 = average({in[0], rest[1]});
+      const Vec3i m11 = average({in[1], rest[1]}), m10 = average({in[1], rest[0]});
+      addOriented(out, m00, m01, m11, in[0], rest[0]);
+      addOriented(out, m00, m11, m10, in[0], rest[0]);
+      return;
+    }
+    // 3+1: one triangle cutting off the lone corner.
+    const bool loneIn = nIn == 1;
+    const int lone = loneIn ? in[0] : rest[0];
+    const std::array<int, 4>& others = loneIn ? rest : in;
+    addOriented(out, average({lone, others[0]}), average({lone, others[1]}), average({lone, others[2]}), lone,
+                others[0]);
+    return;
+  }
+  // Three or more labels: each face's boundary curve coned to the tet centroid.
+  const Vec3i centroid = average({tet[0], tet[1], tet[2], tet[3]});
+  for (int omit = 0; omit < 4; ++omit) {
+    std::array<int, 3> f{};  // tet-local corners of the face
+    int n = 0;
+    for (int i = 0; i < 4; ++i)
+      if (i != omit) f[n++] = i;
+    const int g0 = group[f[0]], g1 = group[f[1]], g2 = group[f[2]];
+    if (g0 == g1 && g1 == g2) continue;
+    if (g0 != g1 && g1 != g2 && g0 != g2) {
+      const Vec3i faceCentroid = average({tet[f[0]], tet[f[1]], tet[f[2]]});
+      for (int e = 0; e < 3; ++e) {
+        const int p = tet[f[e]], q = tet[f[(e + 1) % 3]];
+        addOriented(out, average({p, q}), faceCentroid, centroid, p, q);
+      }
+      continue;
+    }
+    // Two labels on the face: the lone corner's segment.
+    const int lone = g1 == g2 ? 0 : (g0 == g2 ? 1 : 2);
+    const int a = tet[f[lone]], b = tet[f[(lone + 1) % 3]], c = tet[f[(lone + 2) % 3]];
+    addOriented(out, average({a, b}), average({a, c}), centroid, a, b);
+  }
+}
+
+CaseTable buildCaseTable() {
+  CaseTable table;
+  for (int t = 0; t < SCANSURF_TETS_PER_CELL; ++t) {
+    for (int code = 0; code < kCodes; ++code) {
+      std::array<int, 4> group{};
+      int groups = 0;
+      const auto first = static_cast<std::uint32_t>(table.triangles.size());
+      if (decodePartition(static_cast<std::uint32_t>(code), group, groups) && groups > 1)
+        addTetCase(table.triangles, kCellTets[t], group, groups);
+      table.range[t * kCodes + code] = {first, static_cast<std::uint32_t>(table.triangles.size()) - first};
+    }
+  }
+  return table;
+}
+
+const CaseTable& caseTable() {
+  static const CaseTable table = buildCaseTable();
+  return table;
+}
+
+std::uint32_t triangleCountOf(const CaseTable& table, const CellCase& c) {
+  std::uint32_t n = 0;
+  for (int t = 0; t < SCANSURF_TETS_PER_CELL; ++t) n += table.range[t * kCodes + tetCode(c, t)][1];
+  return n;
+}
+
+}  // namespace
+
+MultiLabelMesh assembleMesh(const Grid& grid, std::span<const CellCase> cases, int threads) {
+  MultiLabelMesh mesh;
+  if (cases.empty() || grid.nx < 2 || grid.ny < 2) return mesh;
+  const CaseTable& table = caseTable();
+  const int chunks = chunkCount(cases.size(), threads);
+
+  // Pass 1: triangles per chunk, so pass 2 writes straight into flat arrays in cell order.
+  std::vector<std::size_t> offset(static_cast<std::size_t>(chunks) + 1, 0);
+  parallelChunks(cases.size(), chunks, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::size_t n = 0;
+    for (std::size_t i = begin; i < end; ++i) n += triangleCountOf(table, cases[i]);
+    offset[static_cast<std::size_t>(chunk) + 1] = n;
+  });
+  for (int c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
+  const std::size_t triangleCount = offset.back();
+
+  // Pass 2: vertex keys and labels of every triangle; each chunk also collects its sorted
+  // unique keys so the global vertex list is a merge rather than a sort of 3T keys.
+  std::vector<std::uint64_t> keys(3 * triangleCount);
+  mesh.labels.resize(2 * triangleCount);
+  std::vector<std::vector<std::uint64_t>> chunkKeys(static_cast<std::size_t>(chunks));
+  const auto cellsX = static_cast<std::uint64_t>(grid.nx - 1);
+  const auto cellsY = static_cast<std::uint64_t>(grid.ny - 1);
+  parallelChunks(cases.size(), chunks, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::size_t out = offset[static_cast<std::size_t>(chunk)];
+    const std::size_t first = out;
+    for (std::size_t i = begin; i < end; ++i) {
+      const CellCase& c = cases[i];
+      const std::uint64_t ci = c.cell % cellsX;
+      const std::uint64_t cj = (c.cell / cellsX) % cellsY;
+      const std::uint64_t ck = c.cell / cellsX / cellsY;
+      for (int t = 0; t < SCANSURF_TETS_PER_CELL; ++t) {
+        const auto& r = table.range[t * kCodes + tetCode(c, t)];
+        for (std::uint32_t n = 0; n < r[1]; ++n, ++out) {
+          const LocalTriangle& lt = table.triangles[r[0] + n];
+          std::array<std::uint64_t, 3> k{};
+          for (int v = 0; v < 3; ++v)
+            k[v] = packVertexKey(12 * ci + static_cast<std::uint64_t>(lt.v[v][0]),
+                                 12 * cj + static_cast<std::uint64_t>(lt.v[v][1]),
+                                 12 * ck + static_cast<std::uint64_t>(lt.v[v][2]));
+          const Label la = cellCornerLabel(c, lt.from);
+          const Label lb = cellCornerLabel(c, lt.to);
+          const bool keep = la < lb;  // else reverse the winding so it points from min to max
+          keys[3 * out] = k[0];
+          keys[3 * out + 1] = keep ? k[1] : k[2];
+          keys[3 * out + 2] = keep ? k[2] : k[1];
+          mesh.labels[2 * out] = keep ? la : lb;
+          mesh.labels[2 * out + 1] = keep ? lb : la;
+        }
+      }
+    }
+    std::vector<std::uint64_t>& mine = chunkKeys[static_cast<std::size_t>(chunk)];
+    mine.assign(keys.begin() + static_cast<std::ptrdiff_t>(3 * first), keys.begin() + static_cast<std::ptrdiff_t>(3 * out));
+    std::sort(mine.begin(), mine.end());
+    mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    mine.shrink_to_fit();
+  });
+
+  // Vertex ids in key order: merge the chunks' unique keys.
+  std::vector<std::uint64_t> unique = std::move(chunkKeys[0]);
+  for (std::size_t c = 1; c < chunkKeys.size(); ++c) {
+    std::vector<std::uint64_t> merged;
+    merged.reserve(unique.size() + chunkKeys[c].size());
+    std::set_union(unique.begin(), unique.end(), chunkKeys[c].begin(), chunkKeys[c].end(), std::back_inserter(merged));
+    unique.swap(merged);
+    std::vector<std::uint64_t>().swap(chunkKeys[c]);
+  }
+
+  mesh.triangles.resize(3 * triangleCount);
+  parallelChunks(keys.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      mesh.triangles[i] = static_cast<std::uint32_t>(std::lower_bound(unique.begin(), unique.end(), keys[i]) - unique.begin());
+  });
+  std::vector<std::uint64_t>().swap(keys);
+
+  // Positions: affine in x and y; z interpolates between the (possibly uneven) layers.
+  mesh.positions.resize(3 * unique.size());
+  parallelChunks(unique.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const std::uint64_t key = unique[v];
+      const double x = static_cast<double>(key & kKeyMask);
+      const double y = static_cast<double>((key >> kKeyBits) & kKeyMask);
+      const std::uint64_t z = (key >> (2 * kKeyBits)) & kKeyMask;
+      const std::size_t layer = static_cast<std::size_t>(z / 12);
+      const std::uint64_t frac = z % 12;
+      double pz = grid.layerZ[layer];
+      if (frac != 0) pz += (grid.layerZ[layer + 1] - grid.layerZ[layer]) * static_cast<double>(frac) / 12.0;
+      mesh.positions[3 * v] = static_cast<float>(grid.originX + grid.spacingX * x / 12.0);
+      mesh.positions[3 * v + 1] = static_cast<float>(grid.originY + grid.spacingY * y / 12.0);
+      mesh.positions[3 * v + 2] = static_cast<float>(pz);
+    }
+  });
+  return mesh;
+}
+
+}  // namespace scansurf
