@@ -1,0 +1,49 @@
+// scansurf: files that appear complete or not at all.
+#pragma once
+
+#include <cstddef>
+#include <cstdio>
+#include <filesystem>
+
+#include "scansurf/result.h"
+
+namespace scansurf {
+
+// Writes to `<target>.tmp-<pid>-<n>` beside the target and renames it over the target on
+// commit(), so readers never see a partial file and a failed write leaves the old one intact.
+// Destroyed without a successful commit, the temporary file is removed. Move-only.
+class AtomicFile {
+ public:
+  // Opens the temporary file for binary writing. Errors (Errc::Io) name the path and the
+  // system error, e.g. when the directory is missing or not writable.
+  static Result<AtomicFile> create(const std::filesystem::path& target);
+
+  AtomicFile(AtomicFile&& other) noexcept;
+  AtomicFile& operator=(AtomicFile&& other) noexcept;
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+
+  // Appends size bytes. Errors: the file is closed or the write failed (disk full, ...).
+  Result<void> write(const void* data, std::size_t size);
+  // Flushes, syncs and closes the temporary file, then renames it over the target.
+  // After an error the temporary file is removed and the target is untouched.
+  Result<void> commit();
+
+  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& temporaryPath() const { return temp_; }
+
+ private:
+  AtomicFile(std::filesystem::path target, std::filesystem::path temp, std::FILE* file);
+  void discard();
+
+  std::filesystem::path target_;
+  std::filesystem::path temp_;
+  std::FILE* file_ = nullptr;
+};
+
+// Creates `directory` (and its parents) if missing and checks that files can be created in
+// it, so a run fails before its work rather than after. Errors (Errc::Io) name the path.
+Result<void> ensureWritableDirectory(const std::filesystem::path& directory);
+
+}  // namespace scansurf
