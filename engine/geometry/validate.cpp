@@ -1,1 +1,129 @@
-// placeholder: being written
+// scansurf: validation and normalization of the contour model (paper §3.2's input: features,
+// their slices, closed contours of (x, y) points).
+#include "geometry/validate.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+
+#include "scansurf/label_volume.h"
+
+namespace scansurf {
+
+std::string formatNumber(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+namespace {
+
+std::string sourceName(const ContourSet& contours) {
+  return contours.source.empty() ? std::string("<contours>") : contours.source;
+}
+
+std::string describeContour(const ContourSet& contours, int feature, int slice, double z, int contour) {
+  return describeSlice(contours, feature, slice, z) + ", contour " + std::to_string(contour);
+}
+
+Unexpected invalid(std::string message) { return makeError(Errc::InvalidInput, std::move(message)); }
+
+bool samePoint(Point2 a, Point2 b) { return a.x == b.x && a.y == b.y; }
+
+// Drops consecutive duplicates and trailing copies of the first point.
+void dropRepeatedPoints(Contour& contour) {
+  auto& pts = contour.points;
+  pts.erase(std::unique(pts.begin(), pts.end(), samePoint), pts.end());
+  while (pts.size() > 1 && samePoint(pts.front(), pts.back())) pts.pop_back();
+}
+
+std::size_t countDistinct(const Contour& contour) {
+  std::vector<Point2> pts = contour.points;
+  auto less = [](Point2 a, Point2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; };
+  std::sort(pts.begin(), pts.end(), less);
+  return static_cast<std::size_t>(std::unique(pts.begin(), pts.end(), samePoint) - pts.begin());
+}
+
+}  // namespace
+
+std::string describeFeature(const ContourSet& contours, int feature) {
+  return sourceName(contours) + ": feature \"" + contours.features[feature].name + "\" (#" +
+         std::to_string(feature) + ")";
+}
+
+std::string describeSlice(const ContourSet& contours, int feature, int slice, double z) {
+  return describeFeature(contours, feature) + ", slice z=" + formatNumber(z) + " (#" +
+         std::to_string(slice) + ")";
+}
+
+Result<void> validateAndNormalize(ContourSet& contours) {
+  const std::string source = sourceName(contours);
+  const int featureCount = static_cast<int>(contours.features.size());
+  if (featureCount == 0) return invalid(source + ": no features");
+  if (featureCount > kMaxFeatures)
+    return invalid(source + ": " + std::to_string(featureCount) + " features, more than the " +
+                   std::to_string(kMaxFeatures) + " supported");
+
+  std::map<std::string, int> firstIndexOfName;
+  for (int f = 0; f < featureCount; ++f) {
+    const std::string& name = contours.features[f].name;
+    if (name.empty()) return invalid(source + ": feature #" + std::to_string(f) + " has an empty name");
+    const auto [it, inserted] = firstIndexOfName.emplace(name, f);
+    if (!inserted)
+      return invalid(describeFeature(contours, f) + ": duplicate name, also feature #" +
+                     std::to_string(it->second));
+  }
+
+  for (int f = 0; f < featureCount; ++f) {
+    Feature& feature = contours.features[f];
+    for (int s = 0; s < static_cast<int>(feature.slices.size()); ++s) {
+      FeatureSlice& slice = feature.slices[s];
+      if (!std::isfinite(slice.z))
+        return invalid(describeFeature(contours, f) + ", slice #" + std::to_string(s) + ": non-finite z");
+      if (slice.contours.empty()) return invalid(describeSlice(contours, f, s, slice.z) + ": no contours");
+      for (int c = 0; c < static_cast<int>(slice.contours.size()); ++c) {
+        Contour& contour = slice.contours[c];
+        for (std::size_t p = 0; p < contour.points.size(); ++p) {
+          if (!std::isfinite(contour.points[p].x) || !std::isfinite(contour.points[p].y))
+            return invalid(describeContour(contours, f, s, slice.z, c) + ", point " + std::to_string(p) +
+                           ": non-finite coordinate");
+        }
+        dropRepeatedPoints(contour);
+        if (contour.points.size() < 3 || countDistinct(contour) < 3)
+          return invalid(describeContour(contours, f, s, slice.z, c) + ": fewer than 3 distinct points");
+      }
+    }
+    // Merge slices of one plane: sort by z (stable, so contours keep their input order).
+    std::stable_sort(feature.slices.begin(), feature.slices.end(),
+                     [](const FeatureSlice& a, const FeatureSlice& b) { return a.z < b.z; });
+    std::vector<FeatureSlice> merged;
+    for (FeatureSlice& slice : feature.slices) {
+      if (!merged.empty() && slice.z - merged.back().z <= kDefaultSliceTolerance) {
+        auto& into = merged.back().contours;
+        into.insert(into.end(), std::make_move_iterator(slice.contours.begin()),
+                    std::make_move_iterator(slice.contours.end()));
+      } else {
+        merged.push_back(std::move(slice));
+      }
+    }
+    feature.slices = std::move(merged);
+  }
+
+  if (!contours.order.empty()) {
+    std::vector<int> seen(featureCount, 0);
+    for (std::size_t i = 0; i < contours.order.size(); ++i) {
+      const int f = contours.order[i];
+      if (f < 0 || f >= featureCount)
+        return invalid(source + ": order entry " + std::to_string(i) + " (" + std::to_string(f) +
+                       ") is not a feature index");
+      if (seen[f]++)
+        return invalid(describeFeature(contours, f) + ": named more than once in order");
+    }
+    for (int f = 0; f < featureCount; ++f)
+      if (!seen[f]) return invalid(describeFeature(contours, f) + ": missing from order");
+  }
+  return {};
+}
+
+}  // namespace scansurf

@@ -1,0 +1,28 @@
+// scansurf: model-level checks shared by every reader (JSON, later DICOM RTSTRUCT).
+#pragma once
+
+#include <string>
+
+#include "scansurf/contours.h"
+#include "scansurf/result.h"
+
+namespace scansurf {
+
+// Checks a freshly read contour set and normalizes it in place:
+// - drops consecutive duplicate points and a repeated closing point;
+// - sorts each feature's slices by z and merges slices whose z lie within
+//   kDefaultSliceTolerance of the first of their group (their contours combine).
+// Errors (Errc::InvalidInput), each naming contours.source and the feature, slice and contour
+// at fault: no features; more than kMaxFeatures; an empty or duplicate feature name; a
+// non-finite z or coordinate; a contour of fewer than 3 distinct points; a slice without
+// contours; an `order` that does not name every feature exactly once.
+Result<void> validateAndNormalize(ContourSet& contours);
+
+// Message prefixes in the shared format, e.g. `phantom.json: feature "rectum" (#3)`.
+std::string describeFeature(const ContourSet& contours, int feature);
+std::string describeSlice(const ContourSet& contours, int feature, int slice, double z);
+
+// Shortest text that reads back as the same double (12.5, not 12.500000).
+std::string formatNumber(double value);
+
+}  // namespace scansurf
