@@ -1,1 +1,135 @@
-// placeholder: being written
+// scansurf: the voxel grid of the classified volume (paper §3.2–3.3): one layer per slice
+// plane plus a padding layer on each side (nz = slices + 2), and an in-plane grid whose pixel
+// centres 1 and n-2 frame the contours' bounding box, with a background pixel on each side.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geometry/polygon.h"
+#include "geometry/validate.h"
+#include "scansurf/grid.h"
+
+namespace scansurf {
+
+namespace {
+
+constexpr int kMaxPixelsPerSide = 16384;
+
+Unexpected badOption(std::string message) { return makeError(Errc::InvalidArgument, std::move(message)); }
+
+struct Axis {
+  int n = 0;
+  double origin = 0;
+  double spacing = 1;
+};
+
+// Square-pixel axis: ceil(extent/s)+1 interior centres centred on [lo, hi], plus a
+// background pixel each side.
+Result<Axis> axisFromSpacing(double lo, double hi, double s, const char* name) {
+  const double extent = hi - lo;
+  // The small allowance keeps an extent that is a whole number of pixels from gaining one.
+  const double steps = std::max(0.0, std::ceil(extent / s - 1e-9));
+  if (!(steps + 3 <= kMaxPixelsPerSide))
+    return badOption(std::string("a voxel size of ") + formatNumber(s) + " gives more than " +
+                     std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
+  Axis axis;
+  axis.n = static_cast<int>(steps) + 3;
+  axis.spacing = s;
+  axis.origin = 0.5 * (lo + hi) - 0.5 * steps * s - s;
+  return axis;
+}
+
+Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
+  if (n < 4) return badOption(std::string("n") + name + " = " + std::to_string(n) + ": need at least 4 pixels");
+  if (n > kMaxPixelsPerSide)
+    return badOption(std::string("n") + name + " = " + std::to_string(n) + ": more than " +
+                     std::to_string(kMaxPixelsPerSide) + " pixels");
+  const double extent = hi - lo;
+  if (!(extent > 0))
+    return makeError(Errc::InvalidInput, std::string("the contours have no extent along ") + name +
+                                             ", so n" + name + " cannot set the pixel size; use a voxel size");
+  Axis axis;
+  axis.n = n;
+  axis.spacing = extent / (n - 3);
+  axis.origin = lo - axis.spacing;
+  return axis;
+}
+
+}  // namespace
+
+Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
+  const double tol = options.sliceTolerance;
+  if (!std::isfinite(tol) || tol < 0) return badOption("slice tolerance must be finite and not negative");
+  if (!std::isfinite(options.voxelSize) || options.voxelSize < 0)
+    return badOption("voxel size must be positive and finite, got " + formatNumber(options.voxelSize));
+  if (options.nx < 0 || options.ny < 0) return badOption("nx and ny must not be negative");
+  const bool haveSize = options.voxelSize > 0;
+  const bool haveCounts = options.nx > 0 || options.ny > 0;
+  if (haveSize && haveCounts) return badOption("set either a voxel size or nx and ny, not both");
+  if (haveCounts && (options.nx == 0 || options.ny == 0)) return badOption("set both nx and ny");
+
+  std::vector<double> zs;
+  for (const Feature& f : contours.features)
+    for (const FeatureSlice& s : f.slices) zs.push_back(s.z);
+  if (zs.empty()) return makeError(Errc::InvalidInput, contours.source + ": no slices to build a grid from");
+  std::sort(zs.begin(), zs.end());
+  std::vector<double> planes;
+  // Each plane is the lowest z of its group; later z within tol of it join it.
+  for (double z : zs)
+    if (planes.empty() || z - planes.back() > tol) planes.push_back(z);
+
+  const Box2 box = boundingBox(contours);
+  if (box.empty()) return makeError(Errc::InvalidInput, contours.source + ": no contour points");
+
+  Axis ax, ay;
+  if (haveCounts) {
+    SCANSURF_ASSIGN_OR_RETURN(ax, axisFromCount(box.minX, box.maxX, options.nx, "x"));
+    SCANSURF_ASSIGN_OR_RETURN(ay, axisFromCount(box.minY, box.maxY, options.ny, "y"));
+  } else {
+    double s = options.voxelSize;
+    if (!haveSize) {
+      const double longer = std::max(box.width(), box.height());
+      if (!(longer > 0))
+        return makeError(Errc::InvalidInput, contours.source + ": the contours have no extent; set a voxel size");
+      s = longer / (GridOptions::kDefaultPixels - 3);
+    }
+    SCANSURF_ASSIGN_OR_RETURN(ax, axisFromSpacing(box.minX, box.maxX, s, "x"));
+    SCANSURF_ASSIGN_OR_RETURN(ay, axisFromSpacing(box.minY, box.maxY, s, "y"));
+  }
+
+  Grid grid;
+  grid.nx = ax.n;
+  grid.ny = ay.n;
+  grid.originX = ax.origin;
+  grid.originY = ay.origin;
+  grid.spacingX = ax.spacing;
+  grid.spacingY = ay.spacing;
+  const std::size_t m = planes.size();
+  const double below = m > 1 ? planes[1] - planes[0] : std::max(ax.spacing, ay.spacing);
+  const double above = m > 1 ? planes[m - 1] - planes[m - 2] : std::max(ax.spacing, ay.spacing);
+  grid.layerZ.reserve(m + 2);
+  grid.layerZ.push_back(planes.front() - below);
+  grid.layerZ.insert(grid.layerZ.end(), planes.begin(), planes.end());
+  grid.layerZ.push_back(planes.back() + above);
+  grid.nz = static_cast<int>(grid.layerZ.size());
+  return grid;
+}
+
+int layerOfZ(const Grid& grid, double z, double tolerance) {
+  const auto& layers = grid.layerZ;
+  const auto it = std::lower_bound(layers.begin(), layers.end(), z);
+  int best = -1;
+  double bestDistance = tolerance;
+  // The nearest layer is the one at or just above z, or the one below.
+  for (auto candidate : {it, it == layers.begin() ? layers.end() : it - 1}) {
+    if (candidate == layers.end()) continue;
+    const double d = std::abs(*candidate - z);
+    if (d <= bestDistance && (best < 0 || d < bestDistance)) {
+      best = static_cast<int>(candidate - layers.begin());
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+
+}  // namespace scansurf
