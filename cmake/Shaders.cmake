@@ -14,7 +14,7 @@ function(scansurf_add_shaders)
     set(out "${outDir}/${fileName}.h")
     add_custom_command(
       OUTPUT "${out}"
-      COMMAND "${GLSLANG_VALIDATOR}" --quiet --target-env vulkan1.3 -I${CMAKE_CURRENT_SOURCE_DIR}/shared
+      COMMAND "${GLSLANG_VALIDATOR}" --quiet --target-env vulkan1.2 -I${CMAKE_CURRENT_SOURCE_DIR}/shared
               --vn "kSpirv_${ident}" --depfile "${out}.d" -o "${out}" "${CMAKE_CURRENT_SOURCE_DIR}/${src}"
       DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${src}"
       DEPFILE "${out}.d"

@@ -146,7 +146,8 @@ TEST_F(ScanConversionTest, LatticeAlignedEdgesAndAbuttingFeaturesMatchReference)
 }
 
 TEST_F(ScanConversionTest, NestedFeatureWinsAndHoleStaysEmpty) {
-  const Grid grid = smallGrid(24, 24, 1, 1.0);
+  Grid grid = smallGrid(24, 24, 1, 1.0);
+  grid.spacingY = 1.0;
   auto square = [&](double x0, double y0, double x1, double y1) {
     return Contour{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
   };
