@@ -9,13 +9,11 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <set>
 #include <string>
-#include <unistd.h>
 
 #include "io/atomic_file.h"
 #include "io/contours_json.h"
-#include "io/ply_writer.h"
+#include "outputs.h"
 #include "scansurf/engine.h"
 
 namespace fs = std::filesystem;
@@ -28,51 +26,6 @@ int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 int fail(const Error& error) {
   std::fprintf(stderr, "scansurf: error: %s\n", error.message.c_str());
   return exitCode(error.code);
-}
-
-// A file name from a feature name: letters, digits, '.', '-' and '_' kept, the rest '_'.
-std::string fileStem(const std::string& name, std::set<std::string>& used) {
-  std::string stem;
-  for (unsigned char c : name) stem += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
-  if (stem.empty() || stem.front() == '.') stem = "feature" + stem;
-  std::string unique = stem;
-  for (int n = 2; !used.insert(unique).second; ++n) unique = stem + "_" + std::to_string(n);
-  return unique;
-}
-
-// Writes every output into a staging folder inside OUTDIR, then moves them into place, so a
-// failure leaves no partial output and replaces no existing file.
-Result<std::vector<fs::path>> writeOutputs(const fs::path& outDir, const ContourSet& contours, const Surfaces& surfaces) {
-  const fs::path staging = outDir / (".scansurf-staging-" + std::to_string(::getpid()));
-  std::error_code ec;
-  fs::remove_all(staging, ec);
-  if (!fs::create_directory(staging, ec))
-    return makeError(Errc::Io, "cannot create " + staging.string() + ": " + ec.message());
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code ignored;
-      fs::remove_all(dir, ignored);
-    }
-  } cleanup{staging};
-
-  std::vector<std::string> names;
-  std::set<std::string> used{"multilabel"};
-  for (std::size_t f = 0; f < contours.features.size(); ++f) {
-    const std::string name = fileStem(contours.features[f].name, used) + ".ply";
-    SCANSURF_TRY(writeSurfacePly(staging / name, surfaces.mesh, surfaces.features[f]));
-    names.push_back(name);
-  }
-  SCANSURF_TRY(writeMultiLabelPly(staging / "multilabel.ply", surfaces.mesh));
-  names.push_back("multilabel.ply");
-
-  std::vector<fs::path> written;
-  for (const std::string& name : names) {
-    fs::rename(staging / name, outDir / name, ec);
-    if (ec) return makeError(Errc::Io, "cannot move " + name + " into " + outDir.string() + ": " + ec.message());
-    written.push_back(outDir / name);
-  }
-  return written;
 }
 
 const char* conventionName(SurfaceConvention c) { return c == SurfaceConvention::Enclosing ? "enclosing" : "partition"; }
@@ -152,7 +105,7 @@ int main(int argc, char** argv) {
   timings.insert(timings.end(), built->timings.begin(), built->timings.end());
   t0 = Clock::now();
 
-  auto written = writeOutputs(outDir, *contours, built->surfaces);
+  auto written = cli::writeOutputs(outDir, *contours, built->surfaces);
   if (!written) return fail(written.error());
   lap("write");
 
