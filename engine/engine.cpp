@@ -57,12 +57,16 @@ const DeviceInfo& Engine::device() const { return impl_->context->info(); }
 std::uint64_t Engine::validationMessageCount() const { return impl_->context->validationMessageCount(); }
 
 Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order) {
-  if (!impl_->scanConverter) SCANSURF_ASSIGN_OR_RETURN(impl_->scanConverter, passes::ScanConverter::create(*impl_->context));
+  if (!impl_->scanConverter) {
+    SCANSURF_ASSIGN_OR_RETURN(impl_->scanConverter, passes::ScanConverter::create(*impl_->context));
+  }
   return impl_->scanConverter->run(contours, grid, order);
 }
 
 Result<ClassifiedCells> Engine::classify(const LabelVolume& volume) {
-  if (!impl_->classifier) SCANSURF_ASSIGN_OR_RETURN(impl_->classifier, passes::Classifier::create(*impl_->context));
+  if (!impl_->classifier) {
+    SCANSURF_ASSIGN_OR_RETURN(impl_->classifier, passes::Classifier::create(*impl_->context));
+  }
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> records, impl_->classifier->run(volume));
   return ClassifiedCells{std::move(records)};
 }
