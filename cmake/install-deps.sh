@@ -7,6 +7,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
   libglm-dev nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev
   libdraco-dev libeigen3-dev
+  libdcmtk-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -55,6 +55,60 @@ Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
   return axis;
 }
 
+// The reference lattice extended by whole pixels so that one background pixel lies beyond
+// both the reference and the contours on each side; layers are the reference slices plus one
+// below and above at the neighbouring spacing.
+Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& ref, double tol) {
+  if (!(ref.spacingX > 0) || !(ref.spacingY > 0) || !std::isfinite(ref.spacingX) || !std::isfinite(ref.spacingY) ||
+      !std::isfinite(ref.originX) || !std::isfinite(ref.originY))
+    return badOption("reference grid: spacing must be positive and origin finite");
+  if (ref.nx < 1 || ref.ny < 1 || ref.sliceZ.empty()) return badOption("reference grid: no pixels or no slices");
+  for (std::size_t k = 0; k < ref.sliceZ.size(); ++k)
+    if (!std::isfinite(ref.sliceZ[k]) || (k > 0 && !(ref.sliceZ[k] > ref.sliceZ[k - 1])))
+      return badOption("reference grid: slice positions must be finite and strictly increasing");
+  for (const Feature& f : contours.features)
+    for (const FeatureSlice& s : f.slices) {
+      Grid probe;
+      probe.layerZ = ref.sliceZ;
+      if (layerOfZ(probe, s.z, tol) < 0)
+        return makeError(Errc::InvalidInput, contours.source + ": feature \"" + f.name + "\", slice z=" +
+                                                 formatNumber(s.z) + " is not on a slice of the reference grid");
+    }
+  const Box2 box = boundingBox(contours);
+  if (box.empty()) return makeError(Errc::InvalidInput, contours.source + ": no contour points");
+  auto extend = [&](double lo, double hi, double origin, double spacing, int n, const char* name) -> Result<Axis> {
+    // First and last pixel index, relative to the reference, strictly outside [lo, hi].
+    const double first = std::min(-1.0, std::floor((lo - origin) / spacing) - 1);
+    const double last = std::max(static_cast<double>(n), std::ceil((hi - origin) / spacing) + 1);
+    if (!(last - first + 1 <= kMaxPixelsPerSide))
+      return badOption(std::string("the contours lie too far outside the reference grid along ") + name + " (more than " +
+                       std::to_string(kMaxPixelsPerSide) + " pixels)");
+    Axis axis;
+    axis.n = static_cast<int>(last - first) + 1;
+    axis.spacing = spacing;
+    axis.origin = origin + first * spacing;
+    return axis;
+  };
+  SCANSURF_ASSIGN_OR_RETURN(const Axis ax, extend(box.minX, box.maxX, ref.originX, ref.spacingX, ref.nx, "x"));
+  SCANSURF_ASSIGN_OR_RETURN(const Axis ay, extend(box.minY, box.maxY, ref.originY, ref.spacingY, ref.ny, "y"));
+  Grid grid;
+  grid.nx = ax.n;
+  grid.ny = ay.n;
+  grid.originX = ax.origin;
+  grid.originY = ay.origin;
+  grid.spacingX = ax.spacing;
+  grid.spacingY = ay.spacing;
+  const auto& z = ref.sliceZ;
+  const std::size_t m = z.size();
+  const double below = m > 1 ? z[1] - z[0] : std::max(ax.spacing, ay.spacing);
+  const double above = m > 1 ? z[m - 1] - z[m - 2] : std::max(ax.spacing, ay.spacing);
+  grid.layerZ.push_back(z.front() - below);
+  grid.layerZ.insert(grid.layerZ.end(), z.begin(), z.end());
+  grid.layerZ.push_back(z.back() + above);
+  grid.nz = static_cast<int>(grid.layerZ.size());
+  return grid;
+}
+
 }  // namespace
 
 Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
@@ -67,6 +121,10 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
   const bool haveCounts = options.nx > 0 || options.ny > 0;
   if (haveSize && haveCounts) return badOption("set either a voxel size or nx and ny, not both");
   if (haveCounts && (options.nx == 0 || options.ny == 0)) return badOption("set both nx and ny");
+  if (options.reference) {
+    if (haveSize || haveCounts) return badOption("set either a reference grid or a voxel size / nx and ny, not both");
+    return gridOnReference(contours, *options.reference, tol);
+  }
 
   std::vector<double> zs;
   for (const Feature& f : contours.features)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "scansurf/contours.h"
@@ -9,7 +10,20 @@
 
 namespace scansurf {
 
-// How the user chooses the in-plane grid. Set voxelSize, or nx and ny, or neither.
+// An explicit voxel lattice to lie on, e.g. a CT series' (engine/io/ct_series.h): pixel
+// (i, j) of slice k is centred at (originX + i*spacingX, originY + j*spacingY, sliceZ[k]).
+struct GridReference {
+  double originX = 0;
+  double originY = 0;
+  double spacingX = 1;
+  double spacingY = 1;
+  int nx = 0;
+  int ny = 0;
+  std::vector<double> sliceZ;  // strictly increasing
+};
+
+// How the user chooses the in-plane grid. Set voxelSize, or nx and ny, or neither, or a
+// reference.
 struct GridOptions {
   // In-plane pixel size (input units); square pixels. 0 = not set.
   double voxelSize = 0;
@@ -21,6 +35,11 @@ struct GridOptions {
   static constexpr int kDefaultPixels = 256;
   // Slice z values closer than this (input units) are one plane.
   double sliceTolerance = kDefaultSliceTolerance;
+  // When set (and voxelSize, nx, ny are not), the grid is the reference lattice extended by
+  // whole pixels and layers at its own spacing: one background pixel beyond the reference and
+  // the contours on each side in x and y, one layer below and above its slices. Every
+  // contour slice must lie on a reference slice (within sliceTolerance).
+  std::optional<GridReference> reference;
 };
 
 // A regular in-plane grid stacked over the slice planes.

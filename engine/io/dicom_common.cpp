@@ -1,0 +1,43 @@
+// scansurf: loading DICOM files with DCMTK.
+#include "io/dicom_common.h"
+
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcdict.h>
+#include <dcmtk/oflog/oflog.h>
+
+#include <fstream>
+#include <mutex>
+#include <string>
+
+#include "io/rtstruct_reader.h"
+
+namespace scansurf {
+
+Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPixelData) {
+  static std::once_flag quietLogs;
+  // DCMTK logs parser warnings to stderr by default; a library reports through its Results.
+  std::call_once(quietLogs, [] { OFLog::configure(OFLogger::OFF_LOG_LEVEL); });
+  const std::string file = path.string();
+  if (!std::ifstream(path, std::ios::binary).is_open())
+    return makeError(Errc::Io, file + ": cannot open the file");
+  if (std::filesystem::is_directory(path)) return makeError(Errc::Io, file + ": is a directory, not a file");
+  if (!dcmDataDict.isDictionaryLoaded())
+    return makeError(Errc::Internal, "DCMTK's DICOM data dictionary is not loaded (is libdcmtk installed? see DCMDICTPATH)");
+
+  const bool preamble = hasDicomPreamble(path);
+  DicomFile dicom;
+  const OFCondition status =
+      dicom.file().loadFileUntilTag(file.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect,
+                                    stopAtPixelData ? DcmTagKey(DCM_PixelData) : DcmTagKey(DCM_UndefinedTagKey));
+  if (status.bad()) {
+    if (!preamble) return makeError(Errc::InvalidInput, file + ": not a DICOM file");
+    return makeError(Errc::InvalidInput, file + ": corrupt DICOM file (" + std::string(status.text()) + ")");
+  }
+  // Without the preamble DCMTK parses any bytes as a data set; a real one names its kind.
+  if (!dicom.dataset().tagExistsWithValue(DCM_SOPClassUID) && !dicom.dataset().tagExistsWithValue(DCM_Modality))
+    return makeError(Errc::InvalidInput, file + (preamble ? ": DICOM file without SOP Class UID (0008,0016) or Modality (0008,0060)"
+                                                          : ": not a DICOM file"));
+  return dicom;
+}
+
+}  // namespace scansurf

@@ -1,0 +1,28 @@
+// scansurf: loading DICOM files with DCMTK (shared by the RTSTRUCT and CT series readers).
+// Internal: DCMTK types stay inside engine/io.
+#pragma once
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "scansurf/result.h"
+
+namespace scansurf {
+
+struct DicomFile {
+  std::unique_ptr<DcmFileFormat> fileFormat = std::make_unique<DcmFileFormat>();
+  DcmFileFormat& file() { return *fileFormat; }
+  DcmDataset& dataset() { return *fileFormat->getDataset(); }
+};
+
+// Loads a DICOM file with or without its Part 10 file header; with stopAtPixelData only the
+// attributes before Pixel Data are parsed. DCMTK's own log output is switched off (errors come
+// back as Results). Errors: Errc::Io when the file cannot be opened; Errc::InvalidInput when it
+// is not DICOM (no "DICM" preamble and no readable data set with a SOP Class UID or Modality)
+// or its DICOM structure is corrupt; Errc::Internal when DCMTK's data dictionary is missing.
+Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPixelData = false);
+
+}  // namespace scansurf

@@ -1,0 +1,384 @@
+// scansurf: DICOM RT Structure Set input (DICOM PS3.3 C.8.8.5 Structure Set, C.8.8.6 ROI
+// Contour, C.8.8.8 RT ROI Observations), read with DCMTK: dcmdata parses the file, dcmrt's
+// DRTStructureSetIOD gives typed access to the sequences.
+#include "io/rtstruct_reader.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcdict.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmrt/drtstrct.h>
+#include <fnmatch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+
+#include "geometry/validate.h"
+#include "io/dicom_common.h"
+
+namespace scansurf {
+
+namespace {
+
+Unexpected invalid(std::string message) { return makeError(Errc::InvalidInput, std::move(message)); }
+
+std::string str(const OFString& s) { return std::string(s.c_str()); }
+
+// One CLOSED_PLANAR contour as read: its plane and its in-plane points.
+struct RawContour {
+  double z = 0;
+  std::vector<Point2> points;
+};
+
+struct RawRoi {
+  RoiInfo info;
+  std::vector<RawContour> closed;
+  bool hasContourItem = false;
+};
+
+std::string describeRoi(const std::string& file, const RoiInfo& roi) {
+  return file + ": ROI \"" + roi.name + "\" (#" + std::to_string(roi.number) + ")";
+}
+
+// Newell's method: the normal of the best-fit plane of a closed polygon (not normalized).
+std::array<double, 3> newellNormal(const std::vector<double>& xyz) {
+  std::array<double, 3> n{0, 0, 0};
+  const std::size_t count = xyz.size() / 3;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double* a = &xyz[3 * i];
+    const double* b = &xyz[3 * ((i + 1) % count)];
+    n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+    n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+    n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+  }
+  return n;
+}
+
+// Explains why a contour whose points span more than the tolerance in z is rejected.
+std::string notAxialReason(const std::vector<double>& xyz, double zMin, double zMax, double tol) {
+  std::string why = "its points span z " + formatNumber(zMin) + " .. " + formatNumber(zMax) + " mm (more than the " +
+                    formatNumber(tol) + " mm tolerance)";
+  auto n = newellNormal(xyz);
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  bool planar = len > 0;
+  if (planar) {
+    for (double& c : n) c /= len;
+    const double d = n[0] * xyz[0] + n[1] * xyz[1] + n[2] * xyz[2];
+    for (std::size_t i = 0; i < xyz.size(); i += 3)
+      if (std::abs(n[0] * xyz[i] + n[1] * xyz[i + 1] + n[2] * xyz[i + 2] - d) > tol) planar = false;
+  }
+  if (!planar) return "it is not planar: " + why;
+  auto round3 = [](double v) { return formatNumber(std::round(v * 1000) / 1000 + 0.0); };
+  return "it is not axial: it lies in the plane with normal (" + round3(n[0]) + ", " + round3(n[1]) + ", " +
+         round3(n[2]) + "), " + why + "; only axial contours (constant z) are supported";
+}
+
+std::size_t distinctPoints(std::vector<Point2> pts) {
+  auto less = [](Point2 a, Point2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; };
+  std::sort(pts.begin(), pts.end(), less);
+  return static_cast<std::size_t>(
+      std::unique(pts.begin(), pts.end(), [](Point2 a, Point2 b) { return a.x == b.x && a.y == b.y; }) - pts.begin());
+}
+
+// Reads the ROI Contour Sequence item of one ROI into `roi`.
+Result<void> readRoiContours(const std::string& file, DRTROIContourSequence::Item& item, RawRoi& roi,
+                             const RtStructOptions& options) {
+  roi.hasContourItem = true;
+  Sint32 rgb[3];
+  if (item.getROIDisplayColor(rgb[0], 0).good() && item.getROIDisplayColor(rgb[1], 1).good() &&
+      item.getROIDisplayColor(rgb[2], 2).good()) {
+    Rgb color;
+    bool ok = true;
+    for (int c = 0; c < 3; ++c) {
+      ok = ok && rgb[c] >= 0 && rgb[c] <= 255;
+      color[c] = static_cast<std::uint8_t>(std::clamp<Sint32>(rgb[c], 0, 255));
+    }
+    if (ok) roi.info.color = color;
+  }
+  DRTContourSequence& contours = item.getContourSequence();
+  bool anyPoint = false;
+  std::size_t index = 0;
+  for (std::size_t cIndex = 0; cIndex < contours.getNumberOfItems(); ++cIndex) {
+    ++index;
+    DRTContourSequence::Item& contour = contours.getItem(cIndex);
+    const std::string where = describeRoi(file, roi.info) + ", contour item " + std::to_string(index);
+    OFString typeText;
+    if (contour.getContourGeometricType(typeText).bad() || typeText.empty())
+      return invalid(where + ": missing Contour Geometric Type (3006,0042)");
+    const std::string type = str(typeText);
+    ++roi.info.contoursByType[type];
+    // dcmrt models an absent element as an empty one: both are "missing".
+    OFString text;
+    if (contour.getContourData(text, -1).bad() || text.empty()) return invalid(where + ": missing Contour Data (3006,0050)");
+    OFVector<Float64> data;
+    if (!contour.getContourData(data).good() || data.empty())
+      return invalid(where + ": Contour Data (3006,0050) is not a list of numbers");
+    if (data.size() % 3 != 0)
+      return invalid(where + ": Contour Data (3006,0050) holds " + std::to_string(data.size()) +
+                     " values, not a multiple of 3 (x, y, z triplets)");
+    for (std::size_t v = 0; v < data.size(); ++v)
+      if (!std::isfinite(data[v]))
+        return invalid(where + ", point " + std::to_string(v / 3) + ": non-finite coordinate in Contour Data (3006,0050)");
+    double zMin = data[2], zMax = data[2];
+    for (std::size_t v = 2; v < data.size(); v += 3) zMin = std::min(zMin, data[v]), zMax = std::max(zMax, data[v]);
+    if (!anyPoint) roi.info.zMin = zMin, roi.info.zMax = zMax;
+    roi.info.zMin = std::min(roi.info.zMin, zMin);
+    roi.info.zMax = std::max(roi.info.zMax, zMax);
+    anyPoint = true;
+    if (type != "CLOSED_PLANAR") continue;
+    std::vector<double> xyz(data.begin(), data.end());
+    if (zMax - zMin > options.sliceTolerance)
+      return invalid(where + ": " + notAxialReason(xyz, zMin, zMax, options.sliceTolerance));
+    RawContour raw;
+    raw.z = data[2];
+    raw.points.reserve(data.size() / 3);
+    for (std::size_t v = 0; v < data.size(); v += 3) raw.points.push_back({data[v], data[v + 1]});
+    roi.closed.push_back(std::move(raw));
+  }
+  return {};
+}
+
+}  // namespace
+
+bool hasDicomPreamble(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char buffer[132];
+  if (!in.read(buffer, sizeof buffer)) return false;
+  return std::string_view(buffer + 128, 4) == "DICM";
+}
+
+bool roiNameMatches(const std::string& pattern, const std::string& name) {
+  return fnmatch(pattern.c_str(), name.c_str(), FNM_CASEFOLD) == 0;
+}
+
+std::vector<double> groupSlicePlanes(const std::vector<double>& z, double tolerance) {
+  std::vector<std::size_t> order(z.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return z[a] < z[b]; });
+  std::vector<double> plane(z.size());
+  std::size_t begin = 0;
+  while (begin < order.size()) {
+    std::size_t end = begin + 1;
+    while (end < order.size() && z[order[end]] - z[order[begin]] <= tolerance) ++end;
+    // The most frequent value of the group (sorted, so equal values are adjacent); among
+    // equally frequent ones the shortest in decimal (12.5 over 12.4999), then the lowest.
+    double best = z[order[begin]];
+    std::size_t bestCount = 0;
+    for (std::size_t i = begin; i < end;) {
+      std::size_t j = i;
+      while (j < end && z[order[j]] == z[order[i]]) ++j;
+      const double v = z[order[i]];
+      if (j - i > bestCount || (j - i == bestCount && formatNumber(v).size() < formatNumber(best).size()))
+        best = v, bestCount = j - i;
+      i = j;
+    }
+    for (std::size_t i = begin; i < end; ++i) plane[order[i]] = best;
+    begin = end;
+  }
+  return plane;
+}
+
+Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStructOptions& options) {
+  const std::string file = path.string();
+  if (!(options.sliceTolerance >= 0) || !std::isfinite(options.sliceTolerance))
+    return makeError(Errc::InvalidArgument, "slice tolerance must be finite and not negative");
+  SCANSURF_ASSIGN_OR_RETURN(DicomFile dicom, loadDicomFile(path));
+  DcmDataset& dataset = dicom.dataset();
+
+  OFString sopClass, modality;
+  dataset.findAndGetOFString(DCM_SOPClassUID, sopClass);
+  dataset.findAndGetOFString(DCM_Modality, modality);
+  if (sopClass != UID_RTStructureSetStorage && modality != "RTSTRUCT") {
+    std::string what = modality.empty() ? std::string("a DICOM object") : "a DICOM " + str(modality) + " object";
+    if (!sopClass.empty()) {
+      const char* name = dcmFindNameOfUID(sopClass.c_str());
+      what += " (SOP class " + (name ? std::string(name) : str(sopClass)) + ")";
+    }
+    return invalid(file + ": " + what + ", not an RT Structure Set (RTSTRUCT)");
+  }
+  for (const auto& [tag, name] : {std::pair{DCM_StructureSetROISequence, "Structure Set ROI Sequence (3006,0020)"},
+                                  std::pair{DCM_ROIContourSequence, "ROI Contour Sequence (3006,0039)"}}) {
+    if (!dataset.tagExists(tag)) return invalid(file + ": missing required " + std::string(name));
+  }
+
+  DRTStructureSetIOD iod;
+  // dcmrt reads leniently (missing attributes are logged, not fatal); the checks below and
+  // in readRoiContours decide what is required for surfacing.
+  if (OFCondition c = iod.read(dataset); c.bad())
+    return invalid(file + ": cannot read the RT Structure Set: " + std::string(c.text()));
+
+  RtStructure out;
+  out.contours.source = file;
+  out.contours.units = "mm";
+  OFString label;
+  iod.getStructureSetLabel(label);
+  out.label = str(label);
+  {
+    DRTReferencedFrameOfReferenceSequence& frames = iod.getReferencedFrameOfReferenceSequence();
+    for (std::size_t cIndex = 0; cIndex < frames.getNumberOfItems(); ++cIndex) {
+      auto& frame = frames.getItem(cIndex);
+      OFString uid;
+      if (out.frameOfReferenceUid.empty() && frame.getFrameOfReferenceUID(uid).good()) out.frameOfReferenceUid = str(uid);
+      auto& studies = frame.getRTReferencedStudySequence();
+      for (std::size_t sIndex = 0; sIndex < studies.getNumberOfItems(); ++sIndex) {
+        auto& series = studies.getItem(sIndex).getRTReferencedSeriesSequence();
+        for (std::size_t rIndex = 0; rIndex < series.getNumberOfItems(); ++rIndex) {
+          OFString seriesUid;
+          if (series.getItem(rIndex).getSeriesInstanceUID(seriesUid).good() && !seriesUid.empty())
+            out.referencedSeriesUids.push_back(str(seriesUid));
+        }
+      }
+    }
+  }
+
+  // Structure Set ROI Sequence: numbers and names.
+  std::vector<RawRoi> rois;
+  {
+    DRTStructureSetROISequence& seq = iod.getStructureSetROISequence();
+    std::size_t index = 0;
+    for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+      ++index;
+      auto& item = seq.getItem(cIndex);
+      RawRoi roi;
+      Sint32 number = 0;
+      if (item.getROINumber(number).bad())
+        return invalid(file + ": Structure Set ROI Sequence item " + std::to_string(index) + ": missing ROI Number (3006,0022)");
+      roi.info.number = number;
+      OFString name;
+      item.getROIName(name);
+      roi.info.name = str(name);
+      if (roi.info.name.empty()) roi.info.name = "ROI-" + std::to_string(number);
+      for (const RawRoi& other : rois)
+        if (other.info.number == number)
+          return invalid(file + ": ROI Number " + std::to_string(number) + " is used twice (\"" + other.info.name +
+                         "\" and \"" + roi.info.name + "\")");
+      rois.push_back(std::move(roi));
+    }
+  }
+  auto findRoi = [&](Sint32 number) -> RawRoi* {
+    for (RawRoi& r : rois)
+      if (r.info.number == number) return &r;
+    return nullptr;
+  };
+  {
+    DRTRTROIObservationsSequence& seq = iod.getRTROIObservationsSequence();
+    for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+      auto& item = seq.getItem(cIndex);
+      Sint32 number = 0;
+      OFString type;
+      if (item.getReferencedROINumber(number).good() && item.getRTROIInterpretedType(type).good())
+        if (RawRoi* roi = findRoi(number)) roi->info.interpretedType = str(type);
+    }
+  }
+
+  // Selection.
+  for (const std::string& pattern : options.roiPatterns) {
+    bool any = false;
+    for (const RawRoi& r : rois) any = any || roiNameMatches(pattern, r.info.name);
+    if (!any) {
+      std::string names;
+      for (const RawRoi& r : rois) names += (names.empty() ? "" : ", ") + ("\"" + r.info.name + "\"");
+      return makeError(Errc::InvalidArgument, file + ": --roi \"" + pattern + "\" matches no ROI; the file holds " +
+                                                  (names.empty() ? std::string("none") : names));
+    }
+  }
+  for (RawRoi& r : rois) {
+    if (options.roiPatterns.empty()) continue;
+    r.info.selected = std::any_of(options.roiPatterns.begin(), options.roiPatterns.end(),
+                                  [&](const std::string& p) { return roiNameMatches(p, r.info.name); });
+  }
+
+  // ROI Contour Sequence: the contours of each ROI.
+  {
+    DRTROIContourSequence& seq = iod.getROIContourSequence();
+    std::size_t index = 0;
+    for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+      ++index;
+      auto& item = seq.getItem(cIndex);
+      Sint32 number = 0;
+      if (item.getReferencedROINumber(number).bad())
+        return invalid(file + ": ROI Contour Sequence item " + std::to_string(index) +
+                       ": missing Referenced ROI Number (3006,0084)");
+      RawRoi* roi = findRoi(number);
+      if (!roi) {
+        out.warnings.push_back(file + ": ROI Contour Sequence item " + std::to_string(index) + " refers to ROI number " +
+                               std::to_string(number) + ", which the Structure Set ROI Sequence does not define; skipped");
+        continue;
+      }
+      SCANSURF_TRY(readRoiContours(file, item, *roi, options));
+    }
+  }
+
+  // Slice planes shared by every selected ROI, so abutting structures meet on one plane.
+  std::vector<double> allZ;
+  for (const RawRoi& r : rois)
+    if (r.info.selected)
+      for (const RawContour& c : r.closed) allZ.push_back(c.z);
+  const std::vector<double> planeOf = groupSlicePlanes(allZ, options.sliceTolerance);
+
+  std::size_t zIndex = 0;
+  std::set<std::string> usedNames;
+  for (RawRoi& r : rois) {
+    if (!r.info.selected) {
+      // Unselected ROIs still report their slice count for listing.
+      std::vector<double> zs;
+      for (const RawContour& c : r.closed) zs.push_back(c.z);
+      const auto planes = groupSlicePlanes(zs, options.sliceTolerance);
+      r.info.slices = static_cast<int>(std::set<double>(planes.begin(), planes.end()).size());
+      continue;
+    }
+    const std::string who = describeRoi(file, r.info);
+    int skippedOther = 0;
+    std::string otherTypes;
+    for (const auto& [type, count] : r.info.contoursByType)
+      if (type != "CLOSED_PLANAR") skippedOther += count, otherTypes += (otherTypes.empty() ? "" : ", ") + type;
+    if (skippedOther > 0)
+      out.warnings.push_back(who + ": skipped " + std::to_string(skippedOther) + " " + otherTypes +
+                             " contour(s); only CLOSED_PLANAR contours are surfaced");
+    if (!r.hasContourItem || r.info.contoursByType.empty()) {
+      out.warnings.push_back(who + ": no contours (empty ROI)");
+      continue;
+    }
+    Feature feature;
+    feature.name = r.info.name;
+    if (!usedNames.insert(feature.name).second) {
+      feature.name += " #" + std::to_string(r.info.number);
+      out.warnings.push_back(who + ": name used by another ROI; the feature is called \"" + feature.name + "\"");
+      usedNames.insert(feature.name);
+    }
+    feature.color = r.info.color;
+    int degenerate = 0;
+    std::map<double, std::size_t> sliceOfPlane;
+    for (RawContour& c : r.closed) {
+      const double z = planeOf[zIndex++];
+      if (distinctPoints(c.points) < 3) {
+        ++degenerate;
+        continue;
+      }
+      auto [it, inserted] = sliceOfPlane.emplace(z, feature.slices.size());
+      if (inserted) feature.slices.push_back(FeatureSlice{z, {}});
+      feature.slices[it->second].contours.push_back(Contour{std::move(c.points)});
+    }
+    if (degenerate > 0)
+      out.warnings.push_back(who + ": skipped " + std::to_string(degenerate) +
+                             " CLOSED_PLANAR contour(s) with fewer than 3 distinct points");
+    r.info.slices = static_cast<int>(feature.slices.size());
+    if (feature.slices.empty()) continue;
+    r.info.feature = static_cast<int>(out.contours.features.size());
+    out.contours.features.push_back(std::move(feature));
+  }
+  for (RawRoi& r : rois) out.rois.push_back(std::move(r.info));
+
+  if (out.contours.features.empty()) {
+    if (!options.requireFeatures) return out;
+    return invalid(file + (options.roiPatterns.empty() ? ": no ROI has CLOSED_PLANAR contours"
+                                                       : ": no selected ROI has CLOSED_PLANAR contours"));
+  }
+  SCANSURF_TRY(validateAndNormalize(out.contours));
+  return out;
+}
+
+}  // namespace scansurf

@@ -1,0 +1,637 @@
+// DICOM input: RT Structure Sets and CT series written with DCMTK in the test (nested,
+// abutting, holes, keyholes, islands, uneven slices, POINT and empty ROIs, every bad input),
+// surfaced with the CPU pipeline; and the public samples in ../shared/data/rtstruct.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <unistd.h>
+
+#include "geometry/assembly.h"
+#include "geometry/cell_cases.h"
+#include "geometry/feature_surfaces.h"
+#include "io/ct_series.h"
+#include "io/rtstruct_reader.h"
+#include "scansurf/grid.h"
+#include "scansurf/nesting.h"
+#include "support/reference_rasterizer.h"
+#include "support/rtstruct_builder.h"
+#include "support/shapes.h"
+
+namespace scansurf {
+namespace {
+
+namespace fs = std::filesystem;
+using test::closedContour;
+using test::TestContour;
+using test::TestRoi;
+using test::TestRtStruct;
+
+std::vector<Point2> square(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+class Dicom : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("scansurf_dicom_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const TestRtStruct& rt, const std::string& name = "rt.dcm") {
+    const fs::path p = dir_ / name;
+    test::writeTestRtStruct(rt, p);
+    return p;
+  }
+  Result<RtStructure> readBack(const TestRtStruct& rt, RtStructOptions options = {}) {
+    return readRtStruct(write(rt), options);
+  }
+  // The error message of reading rt, which must fail with `code`.
+  std::string errorOf(const TestRtStruct& rt, Errc code = Errc::InvalidInput) {
+    auto r = readBack(rt);
+    EXPECT_FALSE(r);
+    if (r) return {};
+    EXPECT_EQ(r.error().code, code) << r.error().message;
+    return r.error().message;
+  }
+  fs::path dir_;
+};
+
+// The whole method on the CPU (reference rasterizer, reference classification, assembly).
+struct Built {
+  Nesting nesting;
+  LabelVolume volume;
+  MultiLabelMesh mesh;
+  std::vector<FeatureSurface> features;
+  MeshStats stats(int f) const { return computeMeshStats(mesh.positions, features[static_cast<std::size_t>(f)].triangles); }
+};
+
+Built buildCpu(const ContourSet& set, const GridOptions& options) {
+  Built b;
+  b.nesting = computeNesting(set);
+  auto grid = makeGrid(set, options);
+  EXPECT_TRUE(grid) << grid.error().message;
+  if (!grid) return b;
+  b.volume = test::referenceScanConvert(set, *grid, b.nesting.order, 8);
+  const auto cells = classifyCellsReference(b.volume);
+  b.mesh = assembleMesh(*grid, cells);
+  b.features = extractFeatureSurfaces(b.mesh, static_cast<int>(set.features.size()), b.nesting, SurfaceConvention::Enclosing);
+  return b;
+}
+
+GridOptions voxels(double size) {
+  GridOptions o;
+  o.voxelSize = size;
+  return o;
+}
+
+void expectClosed(const Built& b, const ContourSet& set) {
+  for (std::size_t f = 0; f < set.features.size(); ++f) {
+    const MeshStats s = b.stats(static_cast<int>(f));
+    EXPECT_GT(s.triangles, 0u) << set.features[f].name;
+    EXPECT_TRUE(s.closed && s.manifold && s.oriented) << set.features[f].name;
+    EXPECT_GT(s.volume, 0) << set.features[f].name;
+  }
+}
+
+// The voxel nearest to (x, y) on the layer at z.
+Label labelAt(const LabelVolume& v, double x, double y, double z) {
+  const Grid& g = v.grid;
+  const int i = static_cast<int>(std::lround((x - g.originX) / g.spacingX));
+  const int j = static_cast<int>(std::lround((y - g.originY) / g.spacingY));
+  const int k = layerOfZ(g, z, 1e-6);
+  EXPECT_GE(k, 0) << "no layer at z=" << z;
+  return k < 0 ? Label(0xffff) : v.at(i, j, k);
+}
+
+// ---------------------------------------------------------------------------------------
+// Reading
+
+TEST_F(Dicom, NestedRoisWithSliceJitterShareTheirPlanes) {
+  TestRtStruct rt;
+  TestRoi body{1, "BODY", "EXTERNAL", Rgb{10, 20, 30}, {}};
+  TestRoi organ{2, "organ", "ORGAN", Rgb{255, 0, 0}, {}};
+  const std::vector<double> zs = {0, 2.5, 5, 7.5, 10, 12.5};
+  for (double z : zs) {
+    body.contours.push_back(closedContour(square(-20, -20, 20, 20), z));
+    // The organ's planes carry the rounding real files have (12.4999 beside 12.5).
+    organ.contours.push_back(closedContour(square(-5, -5, 5, 5), z == 12.5 ? 12.4999 : z == 5 ? 5.00004 : z));
+  }
+  rt.rois = {organ, body};  // organ first: the nesting order must still put BODY outermost
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features.size(), 2u);
+  EXPECT_EQ(r->contours.features[0].name, "organ");
+  EXPECT_EQ(r->contours.features[1].name, "BODY");
+  EXPECT_EQ(r->contours.features[1].color, (Rgb{10, 20, 30}));
+  EXPECT_EQ(r->contours.units, "mm");
+  ASSERT_EQ(r->rois.size(), 2u);
+  EXPECT_EQ(r->rois[1].interpretedType, "EXTERNAL");
+  EXPECT_EQ(r->rois[1].number, 1);
+  EXPECT_EQ(r->rois[0].slices, 6);
+  EXPECT_EQ(r->referencedSeriesUids, (std::vector<std::string>{"1.2.826.0.1.3680043.2.1125.9.2"}));
+  // Each plane is the most frequent z of its group: both ROIs land on exactly 12.5 and 5.
+  for (std::size_t s = 0; s < zs.size(); ++s) {
+    EXPECT_EQ(r->contours.features[0].slices[s].z, zs[s]);
+    EXPECT_EQ(r->contours.features[1].slices[s].z, zs[s]);
+  }
+  const Built b = buildCpu(r->contours, voxels(1));
+  EXPECT_EQ(b.nesting.order, (std::vector<int>{0, 1}));
+  EXPECT_EQ(b.volume.grid.nz, 8);
+  EXPECT_EQ(labelAt(b.volume, 0, 0, 5), labelOfFeature(0));
+  EXPECT_EQ(labelAt(b.volume, 15, 0, 5), labelOfFeature(1));
+  expectClosed(b, r->contours);
+  // BODY encloses the organ (enclosing convention): 40 x 40 x 15 mm (slab of 6 slices, 2.5 mm apart).
+  EXPECT_NEAR(b.stats(1).volume, 40.0 * 40.0 * 15.0, 0.08 * 40 * 40 * 15);
+  EXPECT_NEAR(b.stats(0).volume, 10.0 * 10.0 * 15.0, 0.25 * 10 * 10 * 15);
+}
+
+TEST_F(Dicom, AbuttingRoisShareOneInterface) {
+  TestRtStruct rt;
+  TestRoi left{1, "left", "ORGAN", std::nullopt, {}};
+  TestRoi right{2, "right", "ORGAN", std::nullopt, {}};
+  for (double z : {0.0, 3.0, 6.0}) {
+    left.contours.push_back(closedContour(square(-10.3, -8.3, 0.2, 8.3), z));
+    right.contours.push_back(closedContour(square(0.2, -8.3, 10.3, 8.3), z));
+  }
+  rt.rois = {left, right};
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_FALSE(r->contours.features[0].color.has_value());
+  const Built b = buildCpu(r->contours, voxels(1));
+  expectClosed(b, r->contours);
+  EXPECT_EQ(labelAt(b.volume, -0.2, 0, 3), labelOfFeature(0));
+  EXPECT_EQ(labelAt(b.volume, 0.8, 0, 3), labelOfFeature(1));
+  // Triangles between the two labels exist: they abut, no background gap.
+  std::size_t shared = 0;
+  for (std::size_t t = 0; t < b.mesh.labels.size(); t += 2)
+    shared += b.mesh.labels[t] == labelOfFeature(0) && b.mesh.labels[t + 1] == labelOfFeature(1);
+  EXPECT_GT(shared, 0u);
+}
+
+TEST_F(Dicom, HoleAndKeyholeGiveTheSameLabels) {
+  // One ROI with an outer and an inner contour on each slice (even-odd: a hole), and the same
+  // shape as one keyhole contour: outer ring, a zero-width channel at y = 0.37 to the hole,
+  // the hole traced the other way round, back along the channel.
+  auto holes = TestRoi{1, "ring", "ORGAN", std::nullopt, {}};
+  auto keyhole = TestRoi{1, "ring", "ORGAN", std::nullopt, {}};
+  for (double z : {0.0, 2.0, 4.0, 6.0}) {
+    holes.contours.push_back(closedContour(square(-12, -12, 12, 12), z));
+    holes.contours.push_back(closedContour(square(-5.5, -5.5, 5.5, 5.5), z));
+    keyhole.contours.push_back(closedContour({{-12, -12}, {12, -12}, {12, 0.37}, {5.5, 0.37}, {5.5, -5.5}, {-5.5, -5.5},
+                                              {-5.5, 5.5}, {5.5, 5.5}, {5.5, 0.37}, {12, 0.37}, {12, 12}, {-12, 12}},
+                                             z));
+  }
+  TestRtStruct a, b;
+  a.rois = {holes};
+  b.rois = {keyhole};
+  auto ra = readRtStruct(write(a, "holes.dcm"));
+  auto rb = readRtStruct(write(b, "keyhole.dcm"));
+  ASSERT_TRUE(ra) << ra.error().message;
+  ASSERT_TRUE(rb) << rb.error().message;
+  const Built ba = buildCpu(ra->contours, voxels(1));
+  const Built bb = buildCpu(rb->contours, voxels(1));
+  ASSERT_EQ(ba.volume.grid.nx, bb.volume.grid.nx);
+  EXPECT_EQ(ba.volume.labels, bb.volume.labels);
+  EXPECT_EQ(labelAt(ba.volume, 0, 0, 2), kBackground);
+  EXPECT_EQ(labelAt(ba.volume, 9, 0, 2), labelOfFeature(0));
+  EXPECT_EQ(labelAt(bb.volume, 0, 0, 2), kBackground);
+  EXPECT_EQ(labelAt(bb.volume, 9, 0.37, 2), labelOfFeature(0));
+  expectClosed(ba, ra->contours);
+  const MeshStats s = bb.stats(0);
+  EXPECT_TRUE(s.closed);
+  EXPECT_EQ(s.genus, 1);  // a tube: the hole goes through every slice
+  EXPECT_EQ(s.components, 1);
+}
+
+TEST_F(Dicom, IslandsAreSeparateComponents) {
+  TestRoi roi{1, "nodes", "ORGAN", std::nullopt, {}};
+  for (double z : {0.0, 2.0, 4.0}) {
+    roi.contours.push_back(closedContour(square(-10, -3, -4, 3), z));
+    roi.contours.push_back(closedContour(square(4, -3, 10, 3), z));
+  }
+  TestRtStruct rt;
+  rt.rois = {roi};
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features[0].slices.size(), 3u);
+  EXPECT_EQ(r->contours.features[0].slices[0].contours.size(), 2u);
+  const Built b = buildCpu(r->contours, voxels(1));
+  const MeshStats s = b.stats(0);
+  EXPECT_TRUE(s.closed);
+  EXPECT_EQ(s.components, 2);
+  EXPECT_EQ(labelAt(b.volume, 0, 0, 2), kBackground);
+}
+
+TEST_F(Dicom, UnevenSlicesBecomeUnevenLayers) {
+  TestRoi roi{1, "cone", "ORGAN", std::nullopt, {}};
+  const std::vector<double> zs = {-3, -2, 0.5, 4.5, 5};
+  for (double z : zs) roi.contours.push_back(closedContour(square(-6 + z * 0.5, -6, 6, 6), z));
+  TestRtStruct rt;
+  rt.rois = {roi};
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  const Built b = buildCpu(r->contours, voxels(1));
+  EXPECT_EQ(b.volume.grid.layerZ, (std::vector<double>{-4, -3, -2, 0.5, 4.5, 5, 5.5}));
+  expectClosed(b, r->contours);
+}
+
+TEST_F(Dicom, PointOpenAndEmptyRoisAreSkippedWithOneWarningEach) {
+  TestRoi organ{1, "organ", "ORGAN", std::nullopt, {}};
+  organ.contours.push_back(closedContour(square(0, 0, 4, 4), 0));
+  organ.contours.push_back(closedContour(square(0, 0, 4, 4), 1));
+  TestRoi iso{2, "iso", "ISOCENTER", std::nullopt, {}};
+  iso.contours.push_back(TestContour{"POINT", {{1, 2, 0}}, std::nullopt});
+  iso.contours.push_back(TestContour{"POINT", {{1, 2, 1}}, std::nullopt});
+  TestRoi line{3, "marker", "MARKER", std::nullopt, {}};
+  line.contours.push_back(TestContour{"OPEN_PLANAR", {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, std::nullopt});
+  line.contours.push_back(TestContour{"OPEN_NONPLANAR", {{0, 0, 0}, {1, 0, 1}}, std::nullopt});
+  TestRoi empty{4, "empty", "ORGAN", std::nullopt, {}};
+  TestRoi noItem{5, "no contour item", "ORGAN", std::nullopt, {}};
+  noItem.contourItem = false;
+  TestRtStruct rt;
+  rt.rois = {organ, iso, line, empty, noItem};
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features.size(), 1u);
+  ASSERT_EQ(r->rois.size(), 5u);
+  EXPECT_EQ(r->rois[1].contoursByType.at("POINT"), 2);
+  EXPECT_EQ(r->rois[1].feature, -1);
+  EXPECT_EQ(r->rois[0].feature, 0);
+  ASSERT_EQ(r->warnings.size(), 4u);
+  EXPECT_NE(r->warnings[0].find("ROI \"iso\" (#2): skipped 2 POINT contour(s)"), std::string::npos) << r->warnings[0];
+  EXPECT_NE(r->warnings[1].find("skipped 2 OPEN_NONPLANAR, OPEN_PLANAR contour(s)"), std::string::npos) << r->warnings[1];
+  EXPECT_NE(r->warnings[2].find("\"empty\" (#4): no contours"), std::string::npos) << r->warnings[2];
+  EXPECT_NE(r->warnings[3].find("\"no contour item\" (#5): no contours"), std::string::npos) << r->warnings[3];
+
+  // Only POINT ROIs: nothing to surface is an error, but listing still works.
+  TestRtStruct points;
+  points.rois = {iso};
+  EXPECT_NE(errorOf(points).find("no ROI has CLOSED_PLANAR contours"), std::string::npos);
+  RtStructOptions listing;
+  listing.requireFeatures = false;
+  auto listed = readBack(points, listing);
+  ASSERT_TRUE(listed) << listed.error().message;
+  EXPECT_EQ(listed->rois.size(), 1u);
+  EXPECT_DOUBLE_EQ(listed->rois[0].zMax, 1);
+}
+
+TEST_F(Dicom, RoiSelectionByGlob) {
+  TestRtStruct rt;
+  for (int n = 1; n <= 3; ++n) {
+    TestRoi roi{n, n == 1 ? "Lung_L" : n == 2 ? "Lung_R" : "Heart", "ORGAN", std::nullopt, {}};
+    roi.contours.push_back(closedContour(square(n * 10, 0, n * 10 + 5, 5), 0));
+    rt.rois.push_back(roi);
+  }
+  RtStructOptions o;
+  o.roiPatterns = {"lung_*"};
+  auto r = readBack(rt, o);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features.size(), 2u);
+  EXPECT_EQ(r->contours.features[1].name, "Lung_R");
+  EXPECT_FALSE(r->rois[2].selected);
+  o.roiPatterns = {"Heart", "Lung_?"};
+  r = readBack(rt, o);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->contours.features.size(), 3u);
+  o.roiPatterns = {"Liver"};
+  r = readBack(rt, o);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::InvalidArgument);
+  EXPECT_NE(r.error().message.find("--roi \"Liver\" matches no ROI; the file holds \"Lung_L\", \"Lung_R\", \"Heart\""),
+            std::string::npos)
+      << r.error().message;
+  EXPECT_TRUE(roiNameMatches("[bB]ody*", "BODY_ext"));
+  EXPECT_FALSE(roiNameMatches("bod", "BODY"));
+}
+
+TEST_F(Dicom, FileWithoutPart10HeaderReads) {
+  TestRtStruct rt;
+  rt.fileHeader = false;
+  TestRoi roi{7, "box", "ORGAN", std::nullopt, {}};
+  roi.contours.push_back(closedContour(square(0, 0, 3, 3), 1));
+  rt.rois = {roi};
+  const fs::path p = write(rt);
+  EXPECT_FALSE(hasDicomPreamble(p));
+  auto r = readRtStruct(p);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->rois[0].number, 7);
+}
+
+TEST(SlicePlanes, GroupByToleranceAndMostFrequentValue) {
+  EXPECT_EQ(groupSlicePlanes({12.5, 12.4999, 12.5, 10, 10.004}, 0.01),
+            (std::vector<double>{12.5, 12.5, 12.5, 10, 10}));
+  // Values further apart than the tolerance stay apart.
+  EXPECT_EQ(groupSlicePlanes({1, 1.02}, 0.01), (std::vector<double>{1, 1.02}));
+  EXPECT_EQ(groupSlicePlanes({7.4999, 7.5}, 0.01), (std::vector<double>{7.5, 7.5}));
+  EXPECT_EQ(groupSlicePlanes({7.4999, 7.5, 7.4999}, 0.01), (std::vector<double>{7.4999, 7.4999, 7.4999}));
+  EXPECT_TRUE(groupSlicePlanes({}, 0.01).empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: each a clear error naming the file (and ROI and contour), never a crash.
+
+TestRtStruct oneRoi(TestContour contour) {
+  TestRtStruct rt;
+  TestRoi roi{3, "PTV", "PTV", std::nullopt, {}};
+  roi.contours.push_back(closedContour(square(0, 0, 4, 4), 0));
+  roi.contours.push_back(std::move(contour));
+  rt.rois = {roi};
+  return rt;
+}
+
+TEST_F(Dicom, NotDicom) {
+  const fs::path p = dir_ / "notes.dcm";
+  std::ofstream(p) << "{\"this\": \"is JSON, not DICOM\"}\n";
+  auto r = readRtStruct(p);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::InvalidInput);
+  EXPECT_EQ(r.error().message, p.string() + ": not a DICOM file");
+  // Binary noise with a DICM preamble but nothing valid after it.
+  const fs::path q = dir_ / "noise.dcm";
+  {
+    std::ofstream out(q, std::ios::binary);
+    std::string bytes(128, '\0');
+    bytes += "DICM";
+    for (int i = 0; i < 64; ++i) bytes += static_cast<char>((i * 37) & 0xff);
+    out << bytes;
+  }
+  r = readRtStruct(q);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::InvalidInput);
+  EXPECT_EQ(r.error().message.rfind(q.string() + ": ", 0), 0u) << r.error().message;
+  // Missing file: an I/O error.
+  r = readRtStruct(dir_ / "missing.dcm");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::Io);
+}
+
+TEST_F(Dicom, DicomButNotRtStruct) {
+  test::TestCt ct;
+  ct.sliceZ = {0};
+  test::writeTestCtSeries(ct, dir_ / "ct");
+  auto r = readRtStruct(dir_ / "ct" / "ct_0.dcm");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("ct_0.dcm: a DICOM CT object (SOP class CTImageStorage), not an RT Structure Set"),
+            std::string::npos)
+      << r.error().message;
+}
+
+TEST_F(Dicom, MissingRequiredAttributes) {
+  TestRtStruct rt = oneRoi(closedContour(square(0, 0, 4, 4), 1));
+  rt.structureSetRoiSequence = false;
+  EXPECT_NE(errorOf(rt).find("rt.dcm: missing required Structure Set ROI Sequence (3006,0020)"), std::string::npos);
+  rt = oneRoi(closedContour(square(0, 0, 4, 4), 1));
+  rt.roiContourSequence = false;
+  EXPECT_NE(errorOf(rt).find("missing required ROI Contour Sequence (3006,0039)"), std::string::npos);
+  rt = oneRoi(closedContour(square(0, 0, 4, 4), 1));
+  rt.rois[0].writeNumber = false;
+  EXPECT_NE(errorOf(rt).find("Structure Set ROI Sequence item 1: missing ROI Number (3006,0022)"), std::string::npos);
+  rt = oneRoi(TestContour{"CLOSED_PLANAR", {}, std::string()});
+  EXPECT_NE(errorOf(rt).find("ROI \"PTV\" (#3), contour item 2: missing Contour Data (3006,0050)"), std::string::npos);
+  rt = oneRoi(TestContour{"CLOSED_PLANAR", {}, std::nullopt});
+  const std::string noData = errorOf(rt);
+  EXPECT_NE(noData.find("ROI \"PTV\" (#3), contour item 2: missing Contour Data (3006,0050)"), std::string::npos) << noData;
+  rt = oneRoi(TestContour{"", {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}}, std::nullopt});
+  EXPECT_NE(errorOf(rt).find("contour item 2: missing Contour Geometric Type (3006,0042)"), std::string::npos);
+}
+
+TEST_F(Dicom, ContourDataNotTriplets) {
+  const auto rt = oneRoi(TestContour{"CLOSED_PLANAR", {}, std::string("0\\0\\1\\4\\0\\1\\4\\4")});
+  EXPECT_NE(errorOf(rt).find("rt.dcm: ROI \"PTV\" (#3), contour item 2: Contour Data (3006,0050) holds 8 values, not a multiple of 3"),
+            std::string::npos);
+}
+
+TEST_F(Dicom, NonFiniteAndNonNumericValues) {
+  auto message = errorOf(oneRoi(TestContour{"CLOSED_PLANAR", {}, std::string("0\\0\\1\\4\\NaN\\1\\4\\4\\1")}));
+  EXPECT_NE(message.find("ROI \"PTV\" (#3), contour item 2"), std::string::npos) << message;
+  EXPECT_TRUE(message.find("point 1: non-finite coordinate") != std::string::npos ||
+              message.find("is not a list of numbers") != std::string::npos)
+      << message;
+  message = errorOf(oneRoi(TestContour{"CLOSED_PLANAR", {}, std::string("0\\0\\1\\4\\0\\1\\inf\\4\\1")}));
+  EXPECT_NE(message.find("contour item 2"), std::string::npos) << message;
+  message = errorOf(oneRoi(TestContour{"CLOSED_PLANAR", {}, std::string("0\\0\\1\\4\\zero\\1\\4\\4\\1")}));
+  EXPECT_NE(message.find("contour item 2: Contour Data (3006,0050) is not a list of numbers"), std::string::npos) << message;
+}
+
+TEST_F(Dicom, NonAxialAndNonPlanarContoursNamed) {
+  // A sagittal contour (x constant).
+  auto message = errorOf(oneRoi(TestContour{"CLOSED_PLANAR", {{2, 0, 0}, {2, 4, 0}, {2, 4, 4}, {2, 0, 4}}, std::nullopt}));
+  EXPECT_NE(message.find("ROI \"PTV\" (#3), contour item 2: it is not axial: it lies in the plane with normal (1, 0, 0)"),
+            std::string::npos)
+      << message;
+  // A twisted quadrilateral.
+  message = errorOf(oneRoi(TestContour{"CLOSED_PLANAR", {{0, 0, 0}, {4, 0, 1}, {4, 4, 0}, {0, 4, 1}}, std::nullopt}));
+  EXPECT_NE(message.find("contour item 2: it is not planar: its points span z 0 .. 1 mm"), std::string::npos) << message;
+}
+
+TEST_F(Dicom, NeverCrashesOnTruncatedFiles) {
+  TestRtStruct rt = oneRoi(closedContour(square(0, 0, 4, 4), 1));
+  const fs::path p = write(rt);
+  std::string bytes;
+  {
+    std::ifstream in(p, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  int failures = 0;
+  for (std::size_t cut = 0; cut < bytes.size(); cut += 17) {
+    const fs::path t = dir_ / "cut.dcm";
+    std::ofstream(t, std::ios::binary | std::ios::trunc) << bytes.substr(0, cut);
+    auto r = readRtStruct(t);
+    if (!r) {
+      ++failures;
+      EXPECT_EQ(r.error().message.rfind(t.string() + ": ", 0), 0u) << r.error().message;
+    }
+  }
+  EXPECT_GT(failures, 0);
+}
+
+// ---------------------------------------------------------------------------------------
+// Reference CT
+
+TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
+  test::TestCt ct;
+  ct.columns = 40;
+  ct.rows = 30;
+  ct.spacingX = 0.8;
+  ct.spacingY = 0.9;
+  ct.originX = -15.2;
+  ct.originY = -12.6;
+  ct.sliceZ = {-5, -2.5, 0, 2.5, 5, 7.5};
+  test::writeTestCtSeries(ct, dir_ / "ct");
+  TestRtStruct rtFile;
+  TestRoi roi{1, "organ", "ORGAN", std::nullopt, {}};
+  for (double z : {-2.5, 0.0, 2.50004, 5.0}) roi.contours.push_back(closedContour(square(-6, -5, 7, 6), z));
+  rtFile.rois = {roi};
+  write(rtFile, "ct/rt.dcm");  // an RTSTRUCT beside the images is ignored by the series reader
+
+  auto series = readCtSeries(dir_ / "ct");
+  ASSERT_TRUE(series) << series.error().message;
+  EXPECT_EQ(series->columns, 40);
+  EXPECT_EQ(series->rows, 30);
+  EXPECT_DOUBLE_EQ(series->spacingX, 0.8);
+  EXPECT_DOUBLE_EQ(series->spacingY, 0.9);
+  EXPECT_EQ(series->sliceZ, ct.sliceZ);
+  EXPECT_EQ(series->files.size(), 6u);
+
+  auto r = readRtStruct(dir_ / "ct" / "rt.dcm");
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_TRUE(placeOnCtSlices(r->contours, *series, 0.01));
+  GridOptions o;
+  o.reference = gridReferenceOf(*series);
+  const Built b = buildCpu(r->contours, o);
+  const Grid& g = b.volume.grid;
+  // One background pixel and layer around the CT: CT voxel (i, j, k) is grid voxel (i+1, j+1, k+1).
+  EXPECT_EQ(g.nx, 42);
+  EXPECT_EQ(g.ny, 32);
+  EXPECT_EQ(g.nz, 8);
+  EXPECT_DOUBLE_EQ(g.originX, -15.2 - 0.8);
+  EXPECT_DOUBLE_EQ(g.originY, -12.6 - 0.9);
+  EXPECT_EQ(g.layerZ, (std::vector<double>{-7.5, -5, -2.5, 0, 2.5, 5, 7.5, 10}));
+  expectClosed(b, r->contours);
+  // Labels on CT pixel centres: inside the square, outside it, and on CT slices without contours.
+  EXPECT_EQ(labelAt(b.volume, -15.2 + 0.8 * 20, -12.6 + 0.9 * 15, 0), labelOfFeature(0));
+  EXPECT_EQ(labelAt(b.volume, -15.2 + 0.8 * 2, -12.6 + 0.9 * 15, 0), kBackground);
+  EXPECT_EQ(labelAt(b.volume, -15.2 + 0.8 * 20, -12.6 + 0.9 * 15, -5), kBackground);
+
+  // Contours reaching beyond the CT: the grid grows by whole CT pixels, still on its lattice.
+  r->contours.features[0].slices[0].contours[0].points[1].x = 30;
+  auto wide = makeGrid(r->contours, o);
+  ASSERT_TRUE(wide) << wide.error().message;
+  EXPECT_DOUBLE_EQ(wide->originX, -15.2 - 0.8);
+  const double lastCentre = wide->originX + (wide->nx - 1) * 0.8;
+  EXPECT_GT(lastCentre, 30);
+  EXPECT_LE(lastCentre, 30 + 2 * 0.8 + 1e-9);
+  const double steps = (lastCentre - ct.originX) / 0.8;
+  EXPECT_NEAR(steps, std::round(steps), 1e-9);
+
+  // A contour plane between CT slices is an error naming it and the nearest CT slice.
+  auto between = readRtStruct(dir_ / "ct" / "rt.dcm");
+  ASSERT_TRUE(between);
+  between->contours.features[0].slices[1].z = 1.2;
+  auto placed = placeOnCtSlices(between->contours, *series, 0.01);
+  ASSERT_FALSE(placed);
+  EXPECT_NE(placed.error().message.find("feature \"organ\" (#0), slice z=1.2 (#1): not on a slice of the reference series"),
+            std::string::npos)
+      << placed.error().message;
+  EXPECT_NE(placed.error().message.find("nearest z=0"), std::string::npos);
+  EXPECT_FALSE(makeGrid(between->contours, o));
+}
+
+TEST_F(Dicom, ReferenceSeriesErrors) {
+  auto r = readCtSeries(dir_ / "nothing");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::Io);
+  fs::create_directories(dir_ / "empty");
+  std::ofstream(dir_ / "empty" / "readme.txt") << "no images here\n";
+  r = readCtSeries(dir_ / "empty");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("no DICOM images"), std::string::npos);
+
+  test::TestCt oblique;
+  oblique.sliceZ = {0, 1};
+  oblique.orientation = {1, 0, 0, 0, 0.8660254, -0.5};
+  test::writeTestCtSeries(oblique, dir_ / "oblique");
+  r = readCtSeries(dir_ / "oblique");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("Image Orientation (Patient) is 1\\0\\0\\0\\0.8660254\\-0.5; only axial"),
+            std::string::npos)
+      << r.error().message;
+
+  test::TestCt a, b;
+  a.sliceZ = {0, 1};
+  b.sliceZ = {2};
+  b.seriesUid = "1.2.3.4";
+  test::writeTestCtSeries(a, dir_ / "two");
+  test::writeTestCtSeries(b, dir_ / "two" / "sub");
+  fs::rename(dir_ / "two" / "sub" / "ct_0.dcm", dir_ / "two" / "other.dcm");
+  r = readCtSeries(dir_ / "two");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("holds more than one series"), std::string::npos) << r.error().message;
+}
+
+// ---------------------------------------------------------------------------------------
+// The public samples (../shared/data/rtstruct, see its SOURCES.md).
+
+struct SampleRun {
+  RtStructure rt;
+  Built built;
+  std::vector<MeshStats> stats;  // per feature
+  double seconds = 0;
+};
+
+SampleRun runSample(const fs::path& file, const fs::path& reference = {}) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SampleRun run;
+  auto r = readRtStruct(file);
+  EXPECT_TRUE(r) << r.error().message;
+  if (!r) return run;
+  run.rt = std::move(*r);
+  GridOptions o;  // the CLI's default: 256 pixels along the longer side
+  if (!reference.empty()) {
+    auto ct = readCtSeries(reference);
+    EXPECT_TRUE(ct) << ct.error().message;
+    if (!ct) return run;
+    EXPECT_TRUE(placeOnCtSlices(run.rt.contours, *ct, 0.01));
+    o = {};
+    o.reference = gridReferenceOf(*ct);
+  }
+  run.built = buildCpu(run.rt.contours, o);
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("%s: %zu ROIs read, %zu surfaces, %.3f s (CPU pipeline)\n", file.filename().c_str(), run.rt.rois.size(),
+              run.rt.contours.features.size(), run.seconds);
+  for (std::size_t f = 0; f < run.rt.contours.features.size(); ++f) {
+    run.stats.push_back(run.built.stats(static_cast<int>(f)));
+    const MeshStats& s = run.stats.back();
+    std::printf("  %-12s volume %10.1f mm3 closed %s\n", run.rt.contours.features[f].name.c_str(), s.volume,
+                s.closed ? "yes" : "NO");
+    EXPECT_TRUE(s.closed && s.manifold && s.oriented) << run.rt.contours.features[f].name;
+    EXPECT_GT(s.volume, 0) << run.rt.contours.features[f].name;
+  }
+  return run;
+}
+
+const fs::path kSamples = SCANSURF_RTSTRUCT_SAMPLES;
+
+TEST(RtStructSamples, PydicomWithoutFileHeader) {
+  const fs::path file = kSamples / "pydicom-rtstruct.dcm";
+  ASSERT_TRUE(fs::exists(file)) << file;
+  EXPECT_FALSE(hasDicomPreamble(file));
+  const SampleRun run = runSample(file);
+  ASSERT_EQ(run.rt.rois.size(), 3u);
+  ASSERT_EQ(run.rt.contours.features.size(), 1u);
+  EXPECT_EQ(run.rt.contours.features[0].name, "patient");
+  EXPECT_EQ(run.rt.contours.features[0].color, (Rgb{220, 160, 120}));
+  EXPECT_EQ(run.rt.rois[0].interpretedType, "EXTERNAL");
+  EXPECT_EQ(run.rt.warnings.size(), 2u);  // the two POINT ROIs, one warning each
+}
+
+TEST(RtStructSamples, MockSquareWithHole) {
+  const SampleRun run = runSample(kSamples / "rt-utils" / "mock_data_rt.dcm");
+  ASSERT_GE(run.rt.contours.features.size(), 1u);
+  ASSERT_EQ(run.stats.size(), 1u);
+  EXPECT_GE(run.stats[0].genus, 1);  // the hole goes through
+}
+
+TEST(RtStructSamples, MimPhantomOnItsCt) {
+  const fs::path dir = kSamples / "rt-utils" / "mim_phantom";
+  const SampleRun run = runSample(dir / "rt.dcm", dir);
+  ASSERT_EQ(run.rt.contours.features.size(), 4u);
+  const Grid& g = run.built.volume.grid;
+  EXPECT_EQ(g.nx, 514);
+  EXPECT_EQ(g.ny, 514);
+  EXPECT_EQ(g.nz, 7);
+  EXPECT_NEAR(g.originX, -125 - 0.488281, 1e-9);
+  // The same set with its image references stripped reads the same ROIs and volumes.
+  const SampleRun stripped = runSample(kSamples / "rt-utils" / "non_existent_reference_rt.dcm", dir);
+  ASSERT_EQ(stripped.rt.contours.features.size(), 4u);
+  for (int f = 0; f < 4; ++f) EXPECT_NEAR(stripped.stats[f].volume, run.stats[f].volume, 1e-6);
+}
+
+}  // namespace
+}  // namespace scansurf
