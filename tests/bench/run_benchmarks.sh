@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# One command for the benchmark table (issue 6): installs the tools of the 3D Slicer route
+# (Debian's plastimatch and python3-vtk9; not test dependencies), builds scansurf in
+# Release, generates the synthetic structure sets, runs scansurf and the Slicer route on
+# each on the same grid, prints the table and writes docs/benchmarks.md.
+#
+#   tests/bench/run_benchmarks.sh [SET...]      (default: pelvis head-neck em-cells)
+set -euo pipefail
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+cd "$root"
+build="$root/build-bench"
+py=/usr/bin/python3  # Debian's Python, where python3-vtk9 installs
+work="$build/bench-work"
+
+./cmake/install-deps.sh
+missing=()
+for p in plastimatch python3-vtk9; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=(); [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build "$build" --target scansurf_bench -j2
+mkdir -p "$work"
+sets=("$@")
+[ ${#sets[@]} -gt 0 ] || sets=(pelvis head-neck em-cells)
+"$build/tests/scansurf_bench" generate "$work" "${sets[@]}"
+
+results="$work/results.jsonl"
+: > "$results"
+for set in "${sets[@]}"; do
+  echo "== $set: scansurf" >&2
+  ours=$("$build/tests/scansurf_bench" run "$work/$set.json" 512)
+  echo "$ours" >&2
+  read -r nx ny nz ox oy vs <<< "$("$py" -c 'import json,sys; d=json.loads(sys.argv[1]); print(int(d["nx"]), int(d["ny"]), int(d["nz"]), d["origin_x"], d["origin_y"], d["voxel_size"])' "$ours")"
+  read -r oz sz <<< "$("$py" -c 'import json,sys; zs=sorted({s["z"] for f in json.load(open(sys.argv[1]))["features"] for s in f["slices"]}); d=zs[1]-zs[0]; print(zs[0]-d, d)' "$work/$set.json")"
+  echo "== $set: Slicer route (plastimatch + VTK) on the same ${nx}x${ny}x${nz} grid" >&2
+  slicer=$("$py" tests/bench/slicer_route.py "$work/$set.json" "$nx" "$ny" "$nz" "$ox" "$oy" "$oz" "$vs" "$sz" "$work/slicer-$set")
+  echo "$slicer" >&2
+  "$py" -c 'import json,sys; print(json.dumps({"set": sys.argv[1], "ours": json.loads(sys.argv[2]), "slicer": json.loads(sys.argv[3])}))' "$set" "$ours" "$slicer" >> "$results"
+done
+
+"$py" tests/bench/make_table.py "$results" "$(git rev-parse --short HEAD)" > docs/benchmarks.md
+cat docs/benchmarks.md
