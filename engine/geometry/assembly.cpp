@@ -250,6 +250,7 @@ MultiLabelMesh assembleMesh(const Grid& grid, std::span<const CellCase> cases, i
       mesh.positions[3 * v + 2] = static_cast<float>(pz);
     }
   });
+  mesh.keys = std::move(unique);
   return mesh;
 }
 

@@ -22,7 +22,7 @@ inline std::uint64_t packVertexKey(std::uint64_t x, std::uint64_t y, std::uint64
 // each tet code a valid partition code consistent with the record's labels (records that
 // break this yield triangles whose label pair is not {a < b}). Grid axes must hold fewer than
 // 2^21 / 12 voxels. threads: 0 = defaultThreadCount().
-// Returns vertices in key order (z, then y, then x in twelfths), triangles in cell order and,
+// Returns vertices in key order (mesh.keys) (z, then y, then x in twelfths), triangles in cell order and,
 // within a cell, in tetrahedron and case-table order: the same for any thread count.
 // Positions in input units; every triangle wound so its normal points from labels[2t]'s
 // region into labels[2t+1]'s.

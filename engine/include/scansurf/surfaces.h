@@ -19,6 +19,10 @@ struct MultiLabelMesh {
   // 2 labels per triangle, {a, b} with a < b; the triangle's normal (counter-clockwise
   // winding, right-hand rule) points out of a's region into b's.
   std::vector<Label> labels;
+  // Per vertex, its exact position on the grid lattice of 1/12 cell (packVertexKey in
+  // geometry/assembly.h), sorted; empty for meshes not made by assembly. Smoothing uses it to
+  // know which grid edge, face or tetrahedron each vertex belongs to.
+  std::vector<std::uint64_t> keys;
 
   std::size_t vertexCount() const { return positions.size() / 3; }
   std::size_t triangleCount() const { return triangles.size() / 3; }

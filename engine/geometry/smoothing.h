@@ -1,0 +1,30 @@
+// scansurf: constrained smoothing of the multi-label separating-surface mesh (paper §3.5).
+#pragma once
+
+#include <cstddef>
+
+#include "scansurf/contours.h"
+#include "scansurf/grid.h"
+#include "scansurf/smoothing.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf {
+
+// What the smoother did, by vertex role.
+struct SmoothingReport {
+  std::size_t sheet = 0;     // relaxed over their surface sheet
+  std::size_t curve = 0;     // relaxed along a junction curve (three or more labels)
+  std::size_t fixed = 0;     // junction curve meeting points and unrecognised vertices: kept
+  std::size_t fitted = 0;    // placed on their contour's crossing and kept there
+};
+
+// Smooths mesh.positions in place; triangles, labels and keys are unchanged. Requires
+// mesh.keys (assembleMesh) and the grid the mesh was assembled on; contours (the set scan
+// converted onto that grid, or null) enable contour fitting. Every vertex stays strictly
+// inside the lattice simplex it was the barycentre of, so the surfaces never cross (see
+// smoothing.cpp). Deterministic for any thread count (0 = all).
+SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
+                           const SmoothingOptions& options, int threads = 0,
+                           double sliceTolerance = kDefaultSliceTolerance);
+
+}  // namespace scansurf

@@ -1,0 +1,23 @@
+// scansurf: options of the constrained smoothing of separating surfaces (paper §3.5 and its
+// "future work": smoothing that conforms to the original contours).
+#pragma once
+
+namespace scansurf {
+
+// Defaults suit typical CT contours (about 1 mm pixels, 1-3 mm slices); they never need
+// touching. Positions change, never the triangles or their labels.
+struct SmoothingOptions {
+  // Off by default in the library (Engine::build); the command-line tool turns it on.
+  bool enabled = false;
+  // Relaxation steps; each is one Jacobi sweep of every vertex.
+  int iterations = 150;
+  // Step size of each sweep in (0, 1]: how far a vertex moves toward its relaxed target.
+  double strength = 0.8;
+  // Junction curves (three or more labels) relax along themselves; off: they stay put.
+  bool junctions = true;
+  // Vertices on contour planes sit where the original contours cross their grid edges and stay
+  // there; off: they relax like the others (still on their plane).
+  bool contourFit = true;
+};
+
+}  // namespace scansurf

@@ -1,0 +1,383 @@
+// Constrained smoothing and contour-faithful vertices (issue 3), on the CPU pipeline:
+// makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh.
+#include "geometry/smoothing.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <set>
+#include <vector>
+
+#include "geometry/assembly.h"
+#include "geometry/cell_cases.h"
+#include "geometry/contour_fit.h"
+#include "geometry/feature_surfaces.h"
+#include "scansurf/nesting.h"
+#include "support/intersections.h"
+#include "support/reference_rasterizer.h"
+#include "support/shapes.h"
+
+namespace scansurf::test {
+namespace {
+
+// ---------------------------------------------------------------- exact intersection tests
+
+using Tri = std::array<Point3, 3>;
+
+TEST(Intersections, OrientationIsExactOnNearlyCoplanarPoints) {
+  const Point3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_EQ(orient3d(a, b, c, {0.25, 0.25, 0}), 0);
+  EXPECT_EQ(orient3d(a, b, c, {0.25, 0.25, 1e-300}), -1);  // above the ccw triangle
+  EXPECT_EQ(orient3d(a, b, c, {0.25, 0.25, -1e-300}), 1);
+  // Far from the origin, where the naive determinant rounds to garbage.
+  const double big = 1e8;
+  const Point3 p{big, big, big}, q{big + 1, big, big}, r{big, big + 1, big};
+  EXPECT_EQ(orient3d(p, q, r, {big + 0.5, big + 0.5, big}), 0);
+  EXPECT_EQ(orient3d(p, q, r, {big + 0.5, big + 0.5, std::nextafter(big, 2 * big)}), -1);
+  EXPECT_EQ(orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1), orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1));
+  EXPECT_EQ(orient2d({1, 1, 0}, {2, 2, 0}, {3, 3, 0}, 0, 1), 0);
+}
+
+TEST(Intersections, DisjointPiercingAndTouchingTriangles) {
+  const Tri a = {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}};
+  const Tri above = {{{0, 0, 1}, {2, 0, 1}, {0, 2, 1}}};
+  const Tri pierce = {{{0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, -1, 0.2}}};
+  const Tri touchVertex = {{{0.5, 0.5, 0}, {0.5, 0.5, 1}, {1, 0.7, 1}}};  // a vertex on a's interior
+  const Tri coplanarOverlap = {{{0.5, 0.5, 0}, {3, 0.5, 0}, {0.5, 3, 0}}};
+  const Tri coplanarApart = {{{3, 3, 0}, {4, 3, 0}, {3, 4, 0}}};
+  EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {3, 4, 5}, above));
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {3, 4, 5}, pierce));
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {3, 4, 5}, touchVertex));
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {3, 4, 5}, coplanarOverlap));
+  EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {3, 4, 5}, coplanarApart));
+}
+
+TEST(Intersections, SharedEdgesAndVerticesAreNotCrossings) {
+  const Tri a = {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}};
+  // Shares edge (0,0,0)-(2,0,0): a hinge is fine, a fold onto a is not.
+  EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {0, 1, 3}, {{{0, 0, 0}, {2, 0, 0}, {1, -1, 0.5}}}));
+  EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {0, 1, 3}, {{{0, 0, 0}, {2, 0, 0}, {1, -1, 0}}}));
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 1, 3}, {{{0, 0, 0}, {2, 0, 0}, {1, 0.5, 0}}}));
+  // Shares vertex (0,0,0).
+  EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {-1, 0, 1}, {0, -1, 1}}}));
+  EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {-1, 0, 0}, {0, -1, 0}}}));
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {1, 1, 1}, {1, 1, -1}}}));  // slices through a
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {1, 0.5, 0}, {1, 1, 1}}}));  // an edge inside a's angle
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {3, 0, 0}, {1, -1, 1}}}));   // along a's edge
+  // Far side: b's opposite edge passes through a.
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {0.5, 0.5, 1}, {0.6, 0.6, -1}}}));
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 1, 2}, a));  // duplicate
+}
+
+TEST(Intersections, FindsEveryCrossingPairInAMesh) {
+  // Two fans of two triangles each; one triangle of the second pierces one of the first.
+  const std::vector<float> p = {0, 0, 0, 2, 0, 0, 0, 2, 0, 2, 2, 0,            // square at z = 0
+                                0.5f, 0.5f, -1, 0.5f, 0.5f, 1, 1.5f, -1, 0.2f, 5, 5, 5};
+  const std::vector<std::uint32_t> t = {0, 1, 2, 1, 3, 2, 4, 5, 6, 5, 6, 7};
+  const IntersectionReport r = findCrossings(p, t);
+  EXPECT_EQ(r.crossings, 1u);
+  ASSERT_EQ(r.examples.size(), 1u);
+  EXPECT_EQ(r.examples[0], (std::pair<std::uint32_t, std::uint32_t>{0, 2}));
+  EXPECT_EQ(r.degenerate, 0u);
+}
+
+// ---------------------------------------------------------------- the CPU pipeline
+
+struct Built {
+  ContourSet set;
+  Grid grid;
+  Nesting nesting;
+  MultiLabelMesh mesh;
+  std::vector<FeatureSurface> features;
+};
+
+Built buildCpu(const ContourSet& set, double voxelSize) {
+  Built b;
+  b.set = set;
+  GridOptions options;
+  options.voxelSize = voxelSize;
+  auto grid = makeGrid(set, options);
+  EXPECT_TRUE(grid) << grid.error().message;
+  b.grid = *grid;
+  b.nesting = computeNesting(set);
+  const LabelVolume volume = referenceScanConvert(set, b.grid, b.nesting.order, 8);
+  b.mesh = assembleMesh(b.grid, classifyCellsReference(volume));
+  b.features = extractFeatureSurfaces(b.mesh, static_cast<int>(set.features.size()), b.nesting, SurfaceConvention::Enclosing);
+  return b;
+}
+
+SmoothingOptions on() {
+  SmoothingOptions o;
+  o.enabled = true;
+  return o;
+}
+
+SmoothingReport smooth(Built& b, const SmoothingOptions& options = on(), int threads = 0) {
+  return smoothMesh(b.mesh, b.grid, &b.set, options, threads);
+}
+
+struct Angles {
+  double min = 180, p5 = 180;
+};
+Angles minAngles(const MultiLabelMesh& m) {
+  std::vector<double> mins;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+    double best = 180;
+    for (int c = 0; c < 3; ++c) {
+      const float* o = &m.positions[3 * m.triangles[3 * t + c]];
+      const float* p = &m.positions[3 * m.triangles[3 * t + (c + 1) % 3]];
+      const float* q = &m.positions[3 * m.triangles[3 * t + (c + 2) % 3]];
+      double u[3], v[3];
+      for (int k = 0; k < 3; ++k) u[k] = p[k] - o[k], v[k] = q[k] - o[k];
+      const double d = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+      const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), nv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      best = std::min(best, std::acos(std::clamp(d / (nu * nv), -1.0, 1.0)) * 180 / std::numbers::pi);
+    }
+    mins.push_back(best);
+  }
+  std::sort(mins.begin(), mins.end());
+  return {mins.front(), mins[mins.size() / 20]};
+}
+
+// Feature surfaces closed, manifold, oriented, with the expected genus each, and no two
+// triangles of the whole multi-label mesh crossing.
+void expectSoundSurfaces(const Built& b, const std::vector<int>& genus, const char* when) {
+  for (std::size_t f = 0; f < b.features.size(); ++f) {
+    const MeshStats s = computeMeshStats(b.mesh.positions, b.features[f].triangles);
+    EXPECT_TRUE(s.closed && s.manifold && s.oriented) << b.set.source << " feature " << f << " " << when;
+    EXPECT_EQ(s.genus, genus[f]) << b.set.source << " feature " << f << " " << when;
+    EXPECT_GT(s.volume, 0) << b.set.source << " feature " << f << " " << when;
+  }
+  const IntersectionReport r = findCrossings(b.mesh.positions, b.mesh.triangles);
+  EXPECT_EQ(r.crossings, 0u) << b.set.source << " " << when;
+  EXPECT_EQ(r.degenerate, 0u) << b.set.source << " " << when;
+  EXPECT_GT(r.pairsTested, b.mesh.triangleCount()) << "the broad phase must pair up neighbours";
+  std::printf("[ figure   ] %-14s %-6s %8zu triangles, %9zu pairs tested exactly, %zu crossing\n", b.set.source.c_str(), when,
+              b.mesh.triangleCount(), r.pairsTested, r.crossings);
+}
+
+// Two thin bars (2.2 pixels across) one pixel apart, on five slices.
+ContourSet thinBars() {
+  ContourSet set;
+  set.source = "thin bars";
+  for (int f = 0; f < 2; ++f) {
+    Feature feature;
+    feature.name = f == 0 ? "a" : "b";
+    for (int k = 0; k < 5; ++k)
+      feature.slices.push_back({2.0 * k, {ellipseContour({0, f == 0 ? -1.6 : 1.6}, 10 - k, 1.1, 96)}});
+    set.features.push_back(feature);
+  }
+  return set;
+}
+
+void checkNeverCross(const ContourSet& set, double voxel, const std::vector<int>& genus) {
+  Built b = buildCpu(set, voxel);
+  ASSERT_EQ(b.mesh.keys.size(), b.mesh.vertexCount());
+  expectSoundSurfaces(b, genus, "raw");
+  const SmoothingReport r = smooth(b);
+  EXPECT_GT(r.sheet, 0u);
+  expectSoundSurfaces(b, genus, "smooth");
+}
+
+TEST(Smoothing, NestedSpheresNeverCross) { checkNeverCross(nestedSpheresContours(), 1.0, {0, 0}); }
+TEST(Smoothing, AbuttingHalvesNeverCross) { checkNeverCross(abuttingContours(10, 6, 2.5), 0.5, {0, 0}); }
+TEST(Smoothing, BranchingVesselNeverCrosses) { checkNeverCross(yBranchContours(), 0.5, {0}); }
+TEST(Smoothing, ThinBarsOnePixelApartNeverCross) { checkNeverCross(thinBars(), 1.0, {0, 0}); }
+TEST(Smoothing, PhantomNeverCrosses) {
+  // Every junction kind: abutting organs, nesting, a branch, a hollow vertebra (genus 0 each,
+  // the vertebra's two components: skin and cavity).
+  checkNeverCross(phantomContours(), 3.0, {0, 0, 0, 0, 0, 0});
+}
+
+TEST(Smoothing, CarrierOfEveryVertexHasItAsBarycentre) {
+  const Built b = buildCpu(phantomContours(), 3.0);
+  std::set<int> counts;
+  for (std::uint64_t key : b.mesh.keys) {
+    const Carrier c = carrierOfKey(key);
+    ASSERT_GE(c.count, 2);
+    counts.insert(c.count);
+    std::uint64_t sum[3] = {0, 0, 0};
+    for (int m = 0; m < c.count; ++m)
+      for (int a = 0; a < 3; ++a) sum[a] += static_cast<std::uint64_t>(c.corners[m][a]) * 12;
+    EXPECT_EQ(packVertexKey(sum[0] / c.count, sum[1] / c.count, sum[2] / c.count), key);
+    for (int m = 1; m < c.count; ++m)  // a chain: each corner steps forward from the previous
+      for (int a = 0; a < 3; ++a) EXPECT_GE(c.corners[m][a], c.corners[m - 1][a]);
+  }
+  EXPECT_EQ(counts, (std::set<int>{2, 3, 4}));  // edges, face centroids, tetrahedron centroids
+  EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5 + 6, 12 * 2, 12 * 7)).count, 2);
+  EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5, 12 * 2, 12 * 7)).count, 0);       // a voxel centre
+  EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5 + 4, 12 * 2 + 6, 12 * 7)).count, 0);  // mixed thirds and halves
+}
+
+TEST(Smoothing, SameResultForAnyThreadCount) {
+  Built one = buildCpu(yBranchContours(), 0.5);
+  Built two = one, three = one;
+  smooth(one, on(), 1);
+  smooth(two, on(), 2);
+  smooth(three, on(), 3);
+  EXPECT_EQ(one.mesh.positions, two.mesh.positions);
+  EXPECT_EQ(one.mesh.positions, three.mesh.positions);
+}
+
+TEST(Smoothing, OptionsSwitchEachPartOff) {
+  const Built raw = buildCpu(phantomContours(), 2.0);
+  Built off = raw;
+  SmoothingOptions o;
+  o.enabled = false;
+  smooth(off, o);
+  EXPECT_EQ(off.mesh.positions, raw.mesh.positions);
+
+  Built noJunctions = raw, full = raw;
+  o = on();
+  o.junctions = false;
+  const SmoothingReport rn = smooth(noJunctions, o);
+  const SmoothingReport rf = smooth(full);
+  EXPECT_GT(rf.curve, 0u);
+  EXPECT_EQ(rn.curve, 0u);
+  EXPECT_EQ(rn.fixed, rf.fixed + rf.curve);
+  // Junction vertices (triangles of more than one label pair) stay put without junctions.
+  std::vector<std::uint32_t> pairOf(raw.mesh.vertexCount(), 0);
+  std::vector<char> junction(raw.mesh.vertexCount(), 0);
+  for (std::size_t t = 0; t < raw.mesh.triangleCount(); ++t) {
+    const std::uint32_t pair = raw.mesh.labels[2 * t] | (static_cast<std::uint32_t>(raw.mesh.labels[2 * t + 1]) << 16);
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = raw.mesh.triangles[3 * t + c];
+      if (pairOf[v] != 0 && pairOf[v] != pair) junction[v] = 1;
+      pairOf[v] = pair;
+    }
+  }
+  std::size_t junctions = 0, stayed = 0, movedWithJunctions = 0;
+  for (std::size_t v = 0; v < raw.mesh.vertexCount(); ++v) {
+    if (!junction[v]) continue;
+    ++junctions;
+    const float* p = &raw.mesh.positions[3 * v];
+    stayed += std::equal(p, p + 3, &noJunctions.mesh.positions[3 * v]);
+    movedWithJunctions += !std::equal(p, p + 3, &full.mesh.positions[3 * v]);
+  }
+  EXPECT_GT(junctions, 0u);
+  EXPECT_EQ(stayed, junctions);
+  EXPECT_GT(movedWithJunctions, 0u);
+
+  Built noFit = raw;
+  o = on();
+  o.contourFit = false;
+  EXPECT_EQ(smooth(noFit, o).fitted, 0u);
+  EXPECT_GT(rf.fitted, 0u);
+}
+
+// ---------------------------------------------------------------- accuracy
+
+using Distance = std::function<double(double, double, double)>;
+
+struct Accuracy {
+  double mean = 0, max = 0, volume = 0;
+};
+
+// Area-weighted mean and max distance to the analytic surface over 7 samples per triangle.
+Accuracy accuracy(const Built& b, const Distance& distance) {
+  const std::vector<std::uint32_t>& tris = b.features[0].triangles;
+  double sum = 0, area = 0, worst = 0;
+  for (std::size_t t = 0; t < tris.size() / 3; ++t) {
+    double p[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) p[c][k] = b.mesh.positions[3 * tris[3 * t + c] + k];
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) u[k] = p[1][k] - p[0][k], v[k] = p[2][k] - p[0][k];
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double a = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    static constexpr double kBary[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {.5, .5, 0}, {0, .5, .5}, {.5, 0, .5}, {1. / 3, 1. / 3, 1. / 3}};
+    double local = 0;
+    for (const auto& w : kBary) {
+      double q[3];
+      for (int k = 0; k < 3; ++k) q[k] = w[0] * p[0][k] + w[1] * p[1][k] + w[2] * p[2][k];
+      const double d = std::abs(distance(q[0], q[1], q[2]));
+      local += d / 7;
+      worst = std::max(worst, d);
+    }
+    sum += local * a;
+    area += a;
+  }
+  return {sum / area, worst, computeMeshStats(b.mesh.positions, tris).volume};
+}
+
+// Mean distance, in pixels, from the surface's cross-sections at the contour planes to the
+// original contours: every mesh edge lying in a layer plane, sampled at 5 points, weighted by
+// length.
+double crossSectionError(const Built& b) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  const std::vector<std::uint32_t>& tris = b.features[0].triangles;
+  const auto zOf = [&](std::uint32_t v) { return (b.mesh.keys[v] >> (2 * kKeyBits)) & kKeyMask; };
+  for (std::size_t t = 0; t < tris.size() / 3; ++t)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t p = tris[3 * t + c], q = tris[3 * t + (c + 1) % 3];
+      if (zOf(p) % 12 == 0 && zOf(p) == zOf(q)) edges.insert({std::min(p, q), std::max(p, q)});
+    }
+  double sum = 0, length = 0;
+  for (const auto& [p, q] : edges) {
+    const int layer = static_cast<int>(zOf(p) / 12);
+    const FeatureSlice* slice = nullptr;
+    for (const FeatureSlice& s : b.set.features[0].slices)
+      if (layerOfZ(b.grid, s.z, kDefaultSliceTolerance) == layer) slice = &s;
+    EXPECT_NE(slice, nullptr);
+    if (!slice) continue;
+    const float* a = &b.mesh.positions[3 * p];
+    const float* c = &b.mesh.positions[3 * q];
+    const double len = std::hypot(c[0] - a[0], c[1] - a[1]);
+    for (int i = 0; i < 5; ++i) {
+      const double s = i / 4.0, x = a[0] + s * (c[0] - a[0]), y = a[1] + s * (c[1] - a[1]);
+      double best = 1e300;
+      for (const Contour& contour : slice->contours)
+        for (std::size_t j = 0; j < contour.points.size(); ++j) {
+          const Point2 u = contour.points[j], w = contour.points[(j + 1) % contour.points.size()];
+          const double dx = w.x - u.x, dy = w.y - u.y;
+          const double h = std::clamp(((x - u.x) * dx + (y - u.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+          best = std::min(best, std::hypot(x - u.x - h * dx, y - u.y - h * dy));
+        }
+      sum += best * len / 5;
+    }
+    length += len;
+  }
+  return sum / length / b.grid.spacingX;
+}
+
+void reportAccuracy(const char* name, const Built& raw, const Built& smooth, const Distance& distance, double analyticVolume,
+                    double meanLimit, double maxLimit) {
+  const Accuracy r = accuracy(raw, distance), s = accuracy(smooth, distance);
+  const Angles ar = minAngles(raw.mesh), as = minAngles(smooth.mesh);
+  const double xr = crossSectionError(raw), xs = crossSectionError(smooth);
+  std::printf("[ figure   ] %s raw:    distance mean %.4f max %.4f mm, volume %+.2f %%, cross-section %.4f px, min angle %.1f (5%% %.1f)\n",
+              name, r.mean, r.max, 100 * (r.volume / analyticVolume - 1), xr, ar.min, ar.p5);
+  std::printf("[ figure   ] %s smooth: distance mean %.4f max %.4f mm, volume %+.2f %%, cross-section %.4f px, min angle %.1f (5%% %.1f)\n",
+              name, s.mean, s.max, 100 * (s.volume / analyticVolume - 1), xs, as.min, as.p5);
+  EXPECT_LE(s.mean, meanLimit);
+  EXPECT_LE(s.max, maxLimit);
+  EXPECT_LE(s.mean, r.mean / 3);
+  EXPECT_LE(s.max, r.max / 3);
+  EXPECT_LT(std::abs(s.volume / analyticVolume - 1), 0.01);
+  EXPECT_LE(xs, 0.05);
+  EXPECT_LT(xs, xr);
+}
+
+TEST(SmoothingAccuracy, Sphere20mmAt1mmPixels2mmSlices) {
+  const Built raw = buildCpu(sphereContours(10, 2.0), 1.0);
+  Built smoothed = raw;
+  smooth(smoothed);
+  reportAccuracy("sphere r10", raw, smoothed, [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 10; },
+                 4.0 / 3.0 * std::numbers::pi * 1000, 0.05, 0.35);
+}
+
+TEST(SmoothingAccuracy, TorusAt1mmPixels2mmSlices) {
+  const double R = 10, r = 4;
+  const Built raw = buildCpu(torusContours(R, r, 2.0), 1.0);
+  Built smoothed = raw;
+  smooth(smoothed);
+  reportAccuracy("torus R10 r4", raw, smoothed,
+                 [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - R, z) - r; },
+                 2 * std::numbers::pi * std::numbers::pi * R * r * r, 0.05, 0.35);
+}
+
+}  // namespace
+}  // namespace scansurf::test
