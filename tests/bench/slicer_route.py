@@ -64,13 +64,28 @@ def main():
     reader.Update()
     image = reader.GetOutput()
     result["read_labelmap"] = time.perf_counter() - t
-    lo, hi = image.GetPointData().GetScalars().GetRange()
+    # Slicer keeps each segment's labelmap cropped to the segment's extent; crop likewise to
+    # each structure's bounding box (from its contours, one voxel of margin).
+    def extent(feature):
+        xs = [p[0] for s in feature["slices"] for c in s["contours"] for p in c]
+        ys = [p[1] for s in feature["slices"] for c in s["contours"] for p in c]
+        zs = [s["z"] for s in feature["slices"]]
+        def index(v, o, d, n, up):
+            i = (v - o) / d
+            i = int(i) + 1 if up else int(i) - 1
+            return max(0, min(n - 1, i + (1 if up else -1)))
+        return (index(min(xs), ox, sxy, nx, False), index(max(xs), ox, sxy, nx, True),
+                index(min(ys), oy, sxy, ny, False), index(max(ys), oy, sxy, ny, True),
+                index(min(zs), oz, sz, nz, False), index(max(zs), oz, sz, nz, True))
 
     t = time.perf_counter()
     triangles = 0
-    for label in range(max(1, int(lo)), int(hi) + 1):
+    for label, feature in enumerate(contours["features"], start=1):
+        voi = vtk.vtkExtractVOI()
+        voi.SetInputData(image)
+        voi.SetVOI(*extent(feature))
         fe = vtk.vtkDiscreteFlyingEdges3D()
-        fe.SetInputData(image)
+        fe.SetInputConnection(voi.GetOutputPort())
         fe.SetValue(0, label)
         fe.ComputeGradientsOff()
         fe.ComputeNormalsOff()

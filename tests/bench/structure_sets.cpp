@@ -233,15 +233,14 @@ ContourSet emCells() {
   Builder b("em-cells", planes(300, 0.05), 0.04);
   ShapeRng rng(42);
   for (int i = 0; i < 2000; ++i) {
-    const double x = rng.uniform(-19, 19), y = rng.uniform(-19, 19), z = rng.uniform(1, 14);
-    const std::string name = "cell_" + std::to_string(i + 1);
-    if (i % 3 == 0) {  // a branching process (neurite): trunk then two branches
-      const double r = rng.uniform(0.12, 0.25);
-      b.add(name, paletteColor(i), b.branching(x, y, std::min(14.95, z + rng.uniform(1, 3)), z, std::max(0.0, z - rng.uniform(1, 3)), r, rng.uniform(0.6, 1.2)));
-    } else {  // a small round object (vesicle, nucleus)
-      const double r = rng.uniform(0.15, 0.45);
-      b.add(name, paletteColor(i), b.ellipsoid(x, y, z, r, r * rng.uniform(0.7, 1.0), r * rng.uniform(1.0, 2.0)));
-    }
+    // A process that branches once (a neurite, a tubule): trunk, then two diverging branches;
+    // a third of them thick and short like cell bodies with two processes.
+    const double x = rng.uniform(-19, 19), y = rng.uniform(-19, 19), z = rng.uniform(1.5, 13.5);
+    const bool body = i % 3 == 0;
+    const double r = body ? rng.uniform(0.3, 0.5) : rng.uniform(0.12, 0.25);
+    const double up = body ? rng.uniform(0.5, 1.0) : rng.uniform(1, 3), down = body ? rng.uniform(0.5, 1.0) : rng.uniform(1, 3);
+    b.add("cell_" + std::to_string(i + 1), paletteColor(i),
+          b.branching(x, y, std::min(14.95, z + up), z, std::max(0.0, z - down), r, rng.uniform(0.6, 1.2)));
   }
   ContourSet set = b.take();
   set.units = "um";
