@@ -1,6 +1,7 @@
 // scansurf_bench: the benchmark driver (issue 6).
 //
-//   scansurf_bench generate OUTDIR [SET...]    writes OUTDIR/<set>.json (pelvis, head-neck, em-cells)
+//   scansurf_bench generate OUTDIR [SET...]    writes OUTDIR/<set>.json and OUTDIR/<set>.dcm (RTSTRUCT)
+//                                              for the sets pelvis, head-neck, em-cells
 //   scansurf_bench run INPUT.json PIXELS [--repeat N]
 //
 // `run` times every stage of the method on one input (parse, nesting, grid, scan conversion,
@@ -21,6 +22,7 @@
 #include "io/contours_json.h"
 #include "io/ply_writer.h"
 #include "scansurf/engine.h"
+#include "support/rtstruct_builder.h"
 
 namespace fs = std::filesystem;
 using namespace scansurf;
@@ -54,6 +56,15 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
     const fs::path path = outDir / (name + ".json");
     if (auto ok = writeContoursJson(spec.contours, path); !ok) {
       std::fprintf(stderr, "%s\n", ok.error().message.c_str());
+      return 4;
+    }
+    test::TestRtStruct rt;
+    for (std::size_t f = 0; f < spec.contours.features.size(); ++f)
+      rt.rois.push_back(test::roiFromFeature(spec.contours.features[f], static_cast<int>(f) + 1));
+    try {
+      test::writeTestRtStruct(rt, outDir / (name + ".dcm"));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
       return 4;
     }
     std::printf("%s: %zu structures, %zu contours, %zu points -> %s\n", name.c_str(), spec.contours.features.size(),
