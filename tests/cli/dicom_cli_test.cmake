@@ -1,0 +1,73 @@
+# End-to-end checks of DICOM RTSTRUCT input on the public samples (../shared/data/rtstruct,
+# see its SOURCES.md): listing, ROI selection, the reference CT grid, exit codes and messages.
+# Run by ctest with -DSCANSURF=<exe> -DSAMPLES=<dir> -DOUT=<dir>.
+
+function(run_scansurf expected_code)
+  execute_process(COMMAND ${SCANSURF} ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(last_output "${out}${err}" PARENT_SCOPE)
+  if(NOT code EQUAL expected_code)
+    message(FATAL_ERROR "scansurf ${ARGN}: exit ${code}, expected ${expected_code}\n${out}${err}")
+  endif()
+endfunction()
+
+function(expect_output pattern)
+  if(NOT last_output MATCHES "${pattern}")
+    message(FATAL_ERROR "output does not match '${pattern}':\n${last_output}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE "${OUT}")
+file(MAKE_DIRECTORY "${OUT}")
+set(MIM "${SAMPLES}/rt-utils/mim_phantom")
+
+# Listing: every ROI with its number, type, contours by geometric type, slices and z range.
+run_scansurf(0 "${SAMPLES}/pydicom-rtstruct.dcm" --list-rois)
+expect_output("RT Structure Set \"sep30\", 3 ROIs")
+expect_output("1 +patient +EXTERNAL +3 CLOSED_PLANAR +3 +-200 \\.\\. -180 +yes")
+expect_output("2 +Isocenter 1 +ISOCENTER +1 POINT +0 ")
+run_scansurf(0 "${MIM}/rt.dcm" --list-rois --roi "roi-[12]")
+expect_output("3 +ROI-3 +- +3 CLOSED_PLANAR +3 +60 \\.\\. 70 +no")
+
+# The file without a DICOM file header, with POINT ROIs skipped (one warning each).
+run_scansurf(0 "${SAMPLES}/pydicom-rtstruct.dcm" -o "${OUT}/pydicom")
+expect_output("ROI \"Isocenter 1\" \\(#2\\): skipped 1 POINT contour\\(s\\)")
+expect_output("patient +1 +[0-9]+ +[0-9.]+ +1 +0 yes")
+
+# The MIM phantom on its own CT: the grid is the CT's 512 x 512 x 5 plus the border.
+run_scansurf(0 "${MIM}/rt.dcm" --reference "${MIM}" -o "${OUT}/mim" --roi "ROI-*")
+expect_output("grid: 514 x 514 x 7 voxels \\(0.488281 x 0.488281 mm pixels, 5 slices")
+foreach(n 1 2 3 4)
+  expect_output("ROI-${n} +${n} +[0-9]+ +[0-9.]+ +1 +[01] yes")
+  if(NOT EXISTS "${OUT}/mim/ROI-${n}.ply")
+    message(FATAL_ERROR "missing ${OUT}/mim/ROI-${n}.ply")
+  endif()
+endforeach()
+# Selection: only the ROIs asked for.
+run_scansurf(0 "${SAMPLES}/rt-utils/non_existent_reference_rt.dcm" -o "${OUT}/selected" --roi "roi-4" -q)
+file(GLOB selected "${OUT}/selected/*.ply")
+list(LENGTH selected count)
+if(NOT count EQUAL 2)
+  message(FATAL_ERROR "--roi roi-4: expected ROI-4.ply and multilabel.ply, got ${selected}")
+endif()
+
+# Bad input and options.
+run_scansurf(2 "${MIM}/rt.dcm" -o "${OUT}/bad" --roi Liver)
+expect_output("--roi \"Liver\" matches no ROI; the file holds \"ROI-1\", \"ROI-2\", \"ROI-3\", \"ROI-4\"")
+file(WRITE "${OUT}/notes.dcm" "plain text, not DICOM\n")
+run_scansurf(3 "${OUT}/notes.dcm" -o "${OUT}/bad")
+expect_output("notes.dcm: not a DICOM file")
+file(GLOB ct_files "${MIM}/2.16.*.dcm")
+list(GET ct_files 0 ct_file)
+run_scansurf(3 "${ct_file}" -o "${OUT}/bad")
+expect_output("a DICOM CT object \\(SOP class CTImageStorage\\), not an RT Structure Set")
+run_scansurf(3 "${SAMPLES}/pydicom-rtstruct.dcm" --reference "${MIM}" -o "${OUT}/bad")
+expect_output("frame of reference .* differs from the reference series'")
+run_scansurf(4 "${MIM}/rt.dcm" --reference "${OUT}/no-such-dir" -o "${OUT}/bad")
+run_scansurf(2 "${MIM}/rt.dcm")
+expect_output("-o/--output is required")
+if(EXISTS "${OUT}/bad")
+  file(GLOB leftovers "${OUT}/bad/*")
+  if(leftovers)
+    message(FATAL_ERROR "failed runs left output behind: ${leftovers}")
+  endif()
+endif()
