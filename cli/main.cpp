@@ -5,6 +5,7 @@
 // Exit codes: 0 success; 2 bad command line or option; 3 invalid input file; 4 file I/O
 // error; 5 no usable Vulkan device; 6 Vulkan failure; 7 internal error.
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -13,8 +14,11 @@
 
 #include "io/atomic_file.h"
 #include "io/contours_json.h"
-#include "dicom_input.h"
 #include "outputs.h"
+#include "progress.h"
+#include "io/report_json.h"
+#include "io/png_writer.h"
+#include "scansurf/palette.h"
 #include "scansurf/engine.h"
 
 namespace fs = std::filesystem;
@@ -25,6 +29,7 @@ namespace {
 int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 
 int fail(const Error& error) {
+  if (::isatty(STDERR_FILENO)) std::fputs("\r\033[K", stderr);  // over a progress line
   std::fprintf(stderr, "scansurf: error: %s\n", error.message.c_str());
   return exitCode(error.code);
 }
@@ -37,7 +42,8 @@ int main(int argc, char** argv) {
   CLI::App app{"scansurf: separating surfaces from planar contours (scanline surfacing on Vulkan)"};
   app.footer(
       "Outputs: OUTDIR/<feature>.ply (one closed surface per feature, outward), OUTDIR/multilabel.ply\n"
-      "(every separating surface, each face with its two labels; label = feature index + 1).\n"
+      "(every separating surface, each face with its two labels; label = feature index + 1); other formats\n"
+      "with --format; -o NAME.glb writes one Draco-compressed glTF scene instead.\n"
       "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal.\n"
       "Environment: SCANSURF_DEVICE (device index or name), SCANSURF_VALIDATION=1, SCANSURF_THREADS.");
   std::string input;
@@ -49,8 +55,8 @@ int main(int argc, char** argv) {
   bool validation = false;
   bool quiet = false;
   int threads = 0;
-  app.add_option("input", input, "contour set: JSON (docs/input-format.md) or DICOM RTSTRUCT")->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", outDir, "output directory (created if missing); required unless --list-rois");
+  app.add_option("input", input, "contour set (JSON, see docs/contours-json.md)")->required()->check(CLI::ExistingFile);
+  app.add_option("-o,--output", outDir, "output directory (created if missing)")->required();
   auto* voxelOpt = app.add_option("--voxel-size", voxelSize, "in-plane pixel size, input units (default: 256 pixels along the longer side)")
                        ->check(CLI::PositiveNumber);
   app.add_option("--grid", gridSize, "NX NY: pixels along x and y including the 1-pixel border")
@@ -64,27 +70,37 @@ int main(int argc, char** argv) {
   app.add_flag("--validation", validation, "enable the Vulkan validation layers");
   app.add_option("--threads", threads, "CPU threads for assembly (default: all)")->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", quiet, "print errors only");
-  // DICOM RTSTRUCT input (issue 5).
-  std::vector<std::string> roiPatterns;
-  bool listRois = false;
-  std::string reference;
-  app.add_option("--roi", roiPatterns, "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
-      ->expected(1)
-      ->take_all();
-  app.add_flag("--list-rois", listRois, "RTSTRUCT: list the file's ROIs and exit");
-  app.add_option("--reference", reference, "RTSTRUCT: folder of a CT series; the label volume lies on its voxel grid");
+  // Outputs (issue 4): formats, scene, label volume, report, preview.
+  std::vector<std::string> formats;
+  bool noDraco = false;
+  int dracoBits = 0;
+  int dracoLevel = 7;
+  std::string labelVolume, report, preview, view = "oblique";
+  std::vector<unsigned> previewSize;
+  bool jsonProgress = false;
+  app.add_option("--format", formats, "per-feature formats in OUTDIR: ply (default, with multilabel.ply), drc, obj, stl, "
+                                      "glb (one scene OUTDIR/surfaces.glb); comma-separated")
+      ->delimiter(',');
+  app.add_flag("--no-draco", noDraco, "GLB without KHR_draco_mesh_compression (plain float accessors)");
+  app.add_option("--draco-bits", dracoBits, "Draco position quantization bits (default: error below 1/25 voxel)")
+      ->check(CLI::Range(1, 30));
+  app.add_option("--draco-level", dracoLevel, "Draco compression level, 0 fastest .. 10 smallest")->check(CLI::Range(0, 10))
+      ->capture_default_str();
+  app.add_option("--label-volume", labelVolume, "write the label volume as NRRD (.nrrd; *.seg.nrrd opens as a Slicer "
+                                                "segmentation) plus its label table (.ctbl)");
+  app.add_option("--report", report, "write a JSON report: per-feature statistics, parameters, device, timings");
+  app.add_option("--preview", preview, "render a picture of the surfaces on the Vulkan device (.png)");
+  app.add_option("--view", view, "preview camera")
+      ->check(CLI::IsMember({"oblique", "front", "back", "left", "right", "top", "bottom"}))
+      ->capture_default_str();
+  app.add_option("--preview-size", previewSize, "W H: preview size in pixels (default 960 720)")->expected(2);
+  app.add_flag("--json-progress", jsonProgress, "progress as JSON lines on stderr, for scripts");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : exitCode(Errc::InvalidArgument);
   }
-
-  if (listRois) {
-    auto listed = cli::printRoiList(input, roiPatterns);
-    return listed ? 0 : fail(listed.error());
-  }
-  if (outDir.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois)"});
 
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
@@ -95,16 +111,37 @@ int main(int argc, char** argv) {
     t0 = now;
   };
 
-  // Check the output before the work, so a typo does not cost a whole run.
-  if (auto ok = ensureWritableDirectory(outDir); !ok) return fail(ok.error());
+  // Check every output before the work, so a typo does not cost a whole run. `-o x.glb`
+  // writes one GLB scene; otherwise -o is a directory for the per-feature files.
+  cli::OutputPlan plan;
+  if (fs::path(outDir).extension() == ".glb" || fs::path(outDir).extension() == ".GLB") {
+    if (!formats.empty()) return fail({Errc::InvalidArgument, "--format needs an output directory, not the file " + outDir});
+    plan.glbFile = outDir;
+  } else {
+    plan.dir = outDir;
+    if (formats.empty()) formats = {"ply"};
+    for (const std::string& f : formats) {
+      auto format = cli::parseMeshFormat(f);
+      if (!format) return fail(format.error());
+      plan.formats.push_back(*format);
+    }
+    plan.sceneName = fs::path(input).stem().string();
+  }
+  plan.draco = !noDraco;
+  plan.dracoOptions.quantizationBits = dracoBits;
+  plan.dracoOptions.compressionLevel = dracoLevel;
+  plan.labelVolume = labelVolume;
+  plan.report = report;
+  plan.preview = preview;
+  if (auto ok = cli::checkOutputs(plan); !ok) return fail(ok.error());
+  cli::Progress progress(cli::chooseProgressMode(quiet, jsonProgress));
+  progress.begin("read");
 
-  auto loaded = cli::readInput(input, {roiPatterns, reference});
-  if (!loaded) return fail(loaded.error());
-  for (const std::string& w : loaded->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
-  if (!quiet)
-    for (const std::string& note : loaded->notes) std::printf("%s\n", note.c_str());
-  Result<ContourSet> contours = std::move(loaded->contours);
+  auto contours = readContoursJson(input);
+  if (!contours) return fail(contours.error());
   lap("read");
+  progress.done("read", timings.back().seconds);
+  progress.begin("device");
 
   EngineOptions engineOptions;
   engineOptions.device = device;
@@ -112,6 +149,7 @@ int main(int argc, char** argv) {
   auto engine = Engine::create(engineOptions);
   if (!engine) return fail(engine.error());
   lap("device");
+  progress.done("device", timings.back().seconds);
   const DeviceInfo& info = engine->device();
   if (!quiet) std::printf("device: %s (%s, %s)\n", info.name.c_str(), info.type.c_str(), info.driver.c_str());
 
@@ -120,15 +158,73 @@ int main(int argc, char** argv) {
   if (gridSize.size() == 2) options.grid.nx = gridSize[0], options.grid.ny = gridSize[1];
   options.convention = convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
   options.threads = threads;
-  options.grid.reference = loaded->reference;
+  options.onStage = [&](const std::string& stage, double seconds) { progress.done(stage, seconds); };
+  progress.begin("surfaces");
   auto built = engine->build(*contours, options);
   if (!built) return fail(built.error());
   timings.insert(timings.end(), built->timings.begin(), built->timings.end());
   t0 = Clock::now();
 
-  auto written = cli::writeOutputs(outDir, *contours, built->surfaces);
-  if (!written) return fail(written.error());
+  cli::Staging staging;
+  auto perFeature = cli::writeSurfaceOutputs(staging, plan, *contours, built->surfaces, built->volume);
+  if (!perFeature) return fail(perFeature.error());
   lap("write");
+  progress.done("write", timings.back().seconds);
+  if (!preview.empty()) {
+    progress.begin("preview");
+    PreviewOptions previewOptions;
+    previewOptions.view = *parseViewPreset(view);
+    if (previewSize.size() == 2) previewOptions.width = previewSize[0], previewOptions.height = previewSize[1];
+    previewOptions.colors = featureColors(*contours);
+    // Features that enclose others are drawn translucent, so that what they hold shows.
+    previewOptions.opacity.assign(contours->features.size(), 1.0f);
+    for (int parent : built->nesting.parent)
+      if (parent >= 0) previewOptions.opacity[static_cast<std::size_t>(parent)] = 0.3f;
+    auto picture = engine->renderPreview(built->surfaces, previewOptions);
+    if (!picture) return fail(picture.error());
+    auto staged = staging.path(preview);
+    if (!staged) return fail(staged.error());
+    if (auto ok = writePng(*staged, picture->width, picture->height, picture->rgba); !ok) return fail(ok.error());
+    lap("preview");
+    progress.done("preview", timings.back().seconds);
+  }
+  if (!report.empty()) {
+    RunReport r;
+    r.input = input;
+    r.units = contours->units;
+    r.parameters = {{"convention", conventionName(options.convention)},
+                    {"voxel_size", voxelSize},
+                    {"grid_nx", static_cast<double>(options.grid.nx)},
+                    {"grid_ny", static_cast<double>(options.grid.ny)},
+                    {"threads", static_cast<double>(threads)},
+                    {"draco", !noDraco},
+                    {"draco_bits", static_cast<double>(dracoBits)},
+                    {"draco_level", static_cast<double>(dracoLevel)},
+                    {"validation", validation}};
+    r.deviceName = info.name, r.deviceType = info.type, r.driver = info.driver;
+    r.grid = built->volume.grid;
+    for (int f : built->nesting.order) r.nestingOrder.push_back(contours->features[static_cast<std::size_t>(f)].name);
+    r.userOrder = built->nesting.userOrder;
+    r.meshVertices = built->surfaces.mesh.vertexCount();
+    r.meshTriangles = built->surfaces.mesh.triangleCount();
+    const std::vector<Rgb> colors = featureColors(*contours);
+    for (std::size_t f = 0; f < contours->features.size(); ++f) {
+      ReportFeature rf{contours->features[f].name, labelOfFeature(static_cast<int>(f)), colors[f],
+                       computeMeshStats(built->surfaces.mesh.positions, built->surfaces.features[f].triangles), {}};
+      for (const fs::path& p : (*perFeature)[f]) rf.files.push_back(p.string());
+      r.features.push_back(std::move(rf));
+    }
+    for (const StageTime& t : timings) r.timings.emplace_back(t.stage, t.seconds);
+    for (const fs::path& p : staging.targets()) r.outputs.push_back(p.string());
+    r.outputs.push_back(report);
+    r.warnings = built->warnings;
+    auto staged = staging.path(report);
+    if (!staged) return fail(staged.error());
+    if (auto ok = writeReportJson(*staged, r); !ok) return fail(ok.error());
+  }
+  auto written = staging.commit();
+  if (!written) return fail(written.error());
+  progress.finish(0);
 
   if (engine->validationMessageCount() > 0)
     return fail({Errc::Vulkan, std::to_string(engine->validationMessageCount()) + " Vulkan validation message(s); see above"});

@@ -7,6 +7,7 @@
 #include "geometry/feature_surfaces.h"
 #include "gpu/context.h"
 #include "passes/classification.h"
+#include "passes/preview.h"
 #include "passes/scan_conversion.h"
 #include "scansurf/vulkan_interop.h"
 
@@ -16,21 +17,25 @@ struct Engine::Impl {
   std::unique_ptr<gpu::Context> context;
   std::unique_ptr<passes::ScanConverter> scanConverter;  // created on first use
   std::unique_ptr<passes::Classifier> classifier;
+  std::unique_ptr<passes::PreviewRenderer> previewRenderer;
 };
 
 namespace {
 
 class StageClock {
  public:
-  explicit StageClock(std::vector<StageTime>& out) : out_(out), start_(std::chrono::steady_clock::now()) {}
+  StageClock(std::vector<StageTime>& out, const BuildOptions& options)
+      : out_(out), options_(options), start_(std::chrono::steady_clock::now()) {}
   void lap(const char* stage) {
     const auto now = std::chrono::steady_clock::now();
     out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
+    if (options_.onStage) options_.onStage(out_.back().stage, out_.back().seconds);
     start_ = now;
   }
 
  private:
   std::vector<StageTime>& out_;
+  const BuildOptions& options_;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -81,9 +86,16 @@ Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesti
   return surfaces;
 }
 
+Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const PreviewOptions& options) {
+  if (!impl_->previewRenderer) {
+    SCANSURF_ASSIGN_OR_RETURN(impl_->previewRenderer, passes::PreviewRenderer::create(*impl_->context));
+  }
+  return impl_->previewRenderer->render(surfaces, options);
+}
+
 Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions& options) {
   BuildResult out;
-  StageClock clock(out.timings);
+  StageClock clock(out.timings, options);
   out.nesting = computeNesting(contours);
   clock.lap("nesting");
   SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));

@@ -18,6 +18,7 @@
 #include "scansurf/grid.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"
+#include "scansurf/preview.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"
 
@@ -54,6 +55,8 @@ struct BuildOptions {
   GridOptions grid;
   SurfaceConvention convention = SurfaceConvention::Enclosing;
   int threads = 0;  // CPU threads for assembly; 0 = all
+  // Called after each stage of build() with its name and time (progress reports).
+  std::function<void(const std::string& stage, double seconds)> onStage;
 };
 
 struct BuildResult {
@@ -94,6 +97,9 @@ class Engine {
                            SurfaceConvention convention, int threads = 0);
   // The whole method: nesting, grid, scan conversion, classification, assembly.
   Result<BuildResult> build(const ContourSet& contours, const BuildOptions& options);
+  // Renders the feature surfaces offscreen on this device (passes/preview.h): shaded, each
+  // feature in options.colors, an orthographic camera fitted to them from options.view.
+  Result<PreviewImage> renderPreview(const Surfaces& surfaces, const PreviewOptions& options);
 
   struct Impl;
 

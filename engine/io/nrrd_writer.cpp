@@ -1,0 +1,143 @@
+// NRRD writer (format 4: teem.sourceforge.net/nrrd/format.html): a text header, a blank line,
+// then the voxels gzip-compressed by zlib.
+#include "io/nrrd_writer.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "io/atomic_file.h"
+
+namespace scansurf {
+namespace {
+
+std::string vec(const std::array<double, 3>& v) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "(%.17g,%.17g,%.17g)", v[0], v[1], v[2]);
+  return buf;
+}
+
+// Segment names and values must stay on one header line.
+std::string oneLine(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  return s;
+}
+
+Result<std::vector<unsigned char>> gzip(const void* data, std::size_t size, const std::filesystem::path& path) {
+  z_stream z{};
+  // windowBits 15 + 16: a gzip wrapper, which NRRD's "encoding: gzip" expects.
+  if (deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+    return makeError(Errc::Internal, "cannot write '" + path.string() + "': zlib initialisation failed");
+  std::vector<unsigned char> out(deflateBound(&z, static_cast<uLong>(size)) + 64);
+  z.next_in = static_cast<Bytef*>(const_cast<void*>(data));
+  z.avail_in = static_cast<uInt>(size);
+  z.next_out = out.data();
+  z.avail_out = static_cast<uInt>(out.size());
+  const int rc = deflate(&z, Z_FINISH);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  if (rc != Z_STREAM_END) return makeError(Errc::Internal, "cannot write '" + path.string() + "': zlib compression failed");
+  return out;
+}
+
+}  // namespace
+
+RegularLabelVolume regularize(const LabelVolume& volume) {
+  const Grid& g = volume.grid;
+  RegularLabelVolume out;
+  out.nx = g.nx, out.ny = g.ny;
+  out.geometry.origin = {g.originX, g.originY, g.layerZ.empty() ? 0.0 : g.layerZ.front()};
+  out.geometry.axes[0] = {g.spacingX, 0, 0};
+  out.geometry.axes[1] = {0, g.spacingY, 0};
+  if (g.nz < 2) {
+    out.nz = g.nz;
+    out.labels = volume.labels;
+    out.geometry.axes[2] = {0, 0, 1};
+    return out;
+  }
+  const double first = g.layerZ.front(), last = g.layerZ.back();
+  const double mean = (last - first) / (g.nz - 1);
+  double minGap = mean;
+  bool even = true;
+  for (int k = 1; k < g.nz; ++k) {
+    const double gap = g.layerZ[static_cast<std::size_t>(k)] - g.layerZ[static_cast<std::size_t>(k - 1)];
+    minGap = std::min(minGap, gap);
+    even = even && std::abs(gap - mean) <= 1e-4 * mean;
+  }
+  if (even) {
+    out.nz = g.nz;
+    out.labels = volume.labels;
+    out.geometry.axes[2] = {0, 0, mean};
+    return out;
+  }
+  out.resampled = true;
+  out.nz = static_cast<int>(std::floor((last - first) / minGap + 1e-6)) + 1;
+  out.geometry.axes[2] = {0, 0, minGap};
+  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  out.labels.resize(plane * static_cast<std::size_t>(out.nz));
+  std::size_t layer = 0;
+  for (int k = 0; k < out.nz; ++k) {
+    const double z = first + k * minGap;
+    while (layer + 1 < g.layerZ.size() && std::abs(g.layerZ[layer + 1] - z) < std::abs(g.layerZ[layer] - z)) ++layer;
+    std::copy_n(volume.labels.begin() + static_cast<std::ptrdiff_t>(layer * plane), plane,
+                out.labels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(k) * plane));
+  }
+  return out;
+}
+
+Result<void> writeNrrd(const std::filesystem::path& path, const RegularLabelVolume& volume, const std::vector<LabelEntry>& table) {
+  const Label maxLabel = volume.labels.empty() ? Label{0} : *std::max_element(volume.labels.begin(), volume.labels.end());
+  const bool bytes = maxLabel < 256;
+  std::ostringstream h;
+  h << "NRRD0004\n# scansurf label volume: label = feature index + 1, 0 = background\n";
+  h << "type: " << (bytes ? "unsigned char" : "unsigned short") << "\ndimension: 3\nspace: " << volume.geometry.space << "\n";
+  h << "sizes: " << volume.nx << " " << volume.ny << " " << volume.nz << "\n";
+  h << "space directions: " << vec(volume.geometry.axes[0]) << " " << vec(volume.geometry.axes[1]) << " "
+    << vec(volume.geometry.axes[2]) << "\n";
+  h << "kinds: domain domain domain\nendian: little\nencoding: gzip\n";
+  h << "space origin: " << vec(volume.geometry.origin) << "\n";
+  h << "Segmentation_MasterRepresentation:=Binary labelmap\n";
+  h << "Segmentation_ContainedRepresentationNames:=Binary labelmap|\n";
+  for (std::size_t s = 0; s < table.size(); ++s) {
+    const LabelEntry& e = table[s];
+    char color[64];
+    std::snprintf(color, sizeof color, "%.6g %.6g %.6g", e.color[0] / 255.0, e.color[1] / 255.0, e.color[2] / 255.0);
+    h << "Segment" << s << "_ID:=" << oneLine(e.name) << "\nSegment" << s << "_Name:=" << oneLine(e.name) << "\nSegment" << s
+      << "_Color:=" << color << "\nSegment" << s << "_LabelValue:=" << e.label << "\nSegment" << s << "_Layer:=0\n";
+  }
+  h << "\n";
+
+  std::vector<unsigned char> raw;
+  if (bytes) {
+    raw.assign(volume.labels.begin(), volume.labels.end());
+  } else {
+    raw.reserve(volume.labels.size() * 2);
+    for (Label l : volume.labels) raw.push_back(static_cast<unsigned char>(l & 0xFF)), raw.push_back(static_cast<unsigned char>(l >> 8));
+  }
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<unsigned char> packed, gzip(raw.data(), raw.size(), path));
+  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
+  const std::string header = h.str();
+  SCANSURF_TRY(file.write(header.data(), header.size()));
+  SCANSURF_TRY(file.write(packed.data(), packed.size()));
+  return file.commit();
+}
+
+Result<void> writeLabelTable(const std::filesystem::path& path, const std::vector<LabelEntry>& table) {
+  std::ostringstream t;
+  t << "# scansurf label table (3D Slicer colour table): label name R G B A\n0 background 0 0 0 0\n";
+  for (const LabelEntry& e : table) {
+    std::string name = oneLine(e.name);
+    std::replace(name.begin(), name.end(), ' ', '_');  // one token per field
+    t << e.label << " " << name << " " << int{e.color[0]} << " " << int{e.color[1]} << " " << int{e.color[2]} << " 255\n";
+  }
+  const std::string text = t.str();
+  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
+  SCANSURF_TRY(file.write(text.data(), text.size()));
+  return file.commit();
+}
+
+}  // namespace scansurf

@@ -1,0 +1,542 @@
+// Round trips of every output format: each file is read back (Draco's decoders for .drc and
+// GLB, small readers of our own for OBJ, STL, NRRD, PNG) and compared with what was written.
+#include <draco/compression/decode.h>
+#include <draco/io/scene_io.h>
+#include <draco/scene/scene.h>
+#include <gtest/gtest.h>
+#include <png.h>
+#include <sys/resource.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/assembly.h"
+#include "geometry/cell_cases.h"
+#include "geometry/feature_surfaces.h"
+#include "io/draco_writer.h"
+#include "io/gltf_writer.h"
+#include "io/mesh_writers.h"
+#include "io/nrrd_writer.h"
+#include "io/png_writer.h"
+#include "io/report_json.h"
+#include "scansurf/nesting.h"
+#include "scansurf/palette.h"
+#include "support/reference_rasterizer.h"
+#include "support/shapes.h"
+
+namespace scansurf {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Built {
+  ContourSet set;
+  LabelVolume volume;
+  Surfaces surfaces;
+  std::vector<CompactMesh> meshes;
+};
+
+// The whole method on the CPU: reference scan conversion and classification.
+Built buildOnCpu(ContourSet set, double voxelSize) {
+  Built b;
+  b.set = std::move(set);
+  const Nesting nesting = computeNesting(b.set);
+  GridOptions options;
+  options.voxelSize = voxelSize;
+  auto grid = makeGrid(b.set, options);
+  EXPECT_TRUE(grid) << grid.error().message;
+  b.volume = test::referenceScanConvert(b.set, *grid, nesting.order, 8);
+  const std::vector<CellCase> cells = classifyCellsReference(b.volume);
+  b.surfaces.mesh = assembleMesh(*grid, cells, 1);
+  b.surfaces.features = extractFeatureSurfaces(b.surfaces.mesh, static_cast<int>(b.set.features.size()), nesting,
+                                               SurfaceConvention::Enclosing);
+  for (const FeatureSurface& f : b.surfaces.features) {
+    auto m = compactSurface(b.surfaces.mesh, f);
+    EXPECT_TRUE(m);
+    b.meshes.push_back(*m);
+  }
+  return b;
+}
+
+const Built& nested() {
+  static const Built b = buildOnCpu(nestedSpheresContours(12, 5, 1.5), 1.0);  // "outer", "inner"
+  return b;
+}
+
+class OutputFormatsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("scansurf-out-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::size_t fileCount() const {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
+  }
+  fs::path dir_;
+};
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+CompactMesh fromDraco(const draco::Mesh& m) {
+  CompactMesh out;
+  const draco::PointAttribute* pos = m.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  for (draco::PointIndex p(0); p < m.num_points(); ++p) {
+    float v[3];
+    pos->GetMappedValue(p, v);
+    out.positions.insert(out.positions.end(), v, v + 3);
+  }
+  for (draco::FaceIndex f(0); f < m.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) out.triangles.push_back(m.face(f)[c].value());
+  return out;
+}
+
+// Same topology, and every vertex within `bound` (per axis) of a vertex of the original.
+void expectSameSurface(const CompactMesh& original, const CompactMesh& read, double bound) {
+  const MeshStats a = computeMeshStats(original.positions, original.triangles);
+  const MeshStats b = computeMeshStats(read.positions, read.triangles);
+  EXPECT_EQ(b.triangles, a.triangles);
+  EXPECT_EQ(b.vertices, a.vertices);
+  EXPECT_EQ(b.components, a.components);
+  EXPECT_EQ(b.genus, a.genus);
+  EXPECT_EQ(b.closed, a.closed);
+  EXPECT_EQ(b.manifold, a.manifold);
+  EXPECT_EQ(b.oriented, a.oriented);
+  // Moving every vertex by at most `bound` per axis changes the volume by at most area * |d|.
+  EXPECT_NEAR(b.volume, a.volume, a.area * bound * std::sqrt(3.0) + 1e-6 * std::abs(a.volume));
+  // Nearest original vertex, searched in x order.
+  std::vector<std::array<float, 3>> sorted;
+  for (std::size_t v = 0; v < original.vertexCount(); ++v)
+    sorted.push_back({original.positions[3 * v], original.positions[3 * v + 1], original.positions[3 * v + 2]});
+  std::sort(sorted.begin(), sorted.end());
+  double worst = 0;
+  for (std::size_t v = 0; v < read.vertexCount(); ++v) {
+    const float* p = &read.positions[3 * v];
+    auto it = std::lower_bound(sorted.begin(), sorted.end(), std::array<float, 3>{static_cast<float>(p[0] - bound), -1e30f, -1e30f});
+    double best = 1e30;
+    for (; it != sorted.end() && (*it)[0] <= p[0] + bound; ++it) {
+      double d = 0;
+      for (int a2 = 0; a2 < 3; ++a2) d = std::max(d, std::abs(static_cast<double>((*it)[static_cast<std::size_t>(a2)]) - p[a2]));
+      best = std::min(best, d);
+    }
+    worst = std::max(worst, best);
+  }
+  EXPECT_LE(worst, bound);
+}
+
+TEST_F(OutputFormatsTest, DefaultQuantizationStaysBelowATenthOfAVoxelAndKeepsVerticesApart) {
+  const Built& b = nested();
+  const double bound = defaultQuantizationError(b.volume.grid);
+  EXPECT_NEAR(bound, 1.0 / 25.0, 1e-12);  // 1 mm pixels, 1.5 mm slices
+  DracoOptions options;
+  options.maxError = bound;
+  for (const CompactMesh& m : b.meshes) {
+    const int bits = quantizationBitsFor(m, options);
+    EXPECT_LE(quantizationError(m, bits), bound);
+    EXPECT_GT(quantizationError(m, bits - 1), 0.99 * bound) << "the fewest bits";
+  }
+  options.quantizationBits = 14;
+  EXPECT_EQ(quantizationBitsFor(b.meshes[0], options), 14);
+}
+
+TEST_F(OutputFormatsTest, DrcRoundTripKeepsTopologyAndPositionsWithinTheBound) {
+  const Built& b = nested();
+  DracoOptions options;
+  options.maxError = defaultQuantizationError(b.volume.grid);
+  for (const CompactMesh& m : b.meshes) {
+    const fs::path path = dir_ / "surface.drc";
+    ASSERT_TRUE(writeDrc(path, m, options));
+    const std::string bytes = readFile(path);
+    draco::DecoderBuffer buffer;
+    buffer.Init(bytes.data(), bytes.size());
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    ASSERT_TRUE(decoded.ok()) << decoded.status().error_msg_string();
+    expectSameSurface(m, fromDraco(*decoded.value()), options.maxError * 1.0001);
+  }
+  EXPECT_EQ(fileCount(), 1u) << "no temporary files left";
+}
+
+// The GLB container (glTF 2.0 §"Binary glTF Layout"): header, JSON chunk, BIN chunk.
+struct Glb {
+  nlohmann::json json;
+  std::string bin;
+};
+Glb parseGlb(const std::string& bytes) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, bytes.data() + at, 4);
+    return v;
+  };
+  Glb out;
+  EXPECT_GE(bytes.size(), 20u);
+  EXPECT_EQ(bytes.substr(0, 4), "glTF");
+  EXPECT_EQ(u32(4), 2u);
+  EXPECT_EQ(u32(8), bytes.size());
+  const std::uint32_t jsonLength = u32(12);
+  EXPECT_EQ(u32(16), 0x4E4F534Au);  // "JSON"
+  out.json = nlohmann::json::parse(bytes.substr(20, jsonLength));
+  const std::size_t binAt = 20 + jsonLength;
+  if (binAt < bytes.size()) {
+    EXPECT_EQ(u32(binAt + 4), 0x004E4942u);  // "BIN"
+    out.bin = bytes.substr(binAt + 8, u32(binAt));
+  }
+  return out;
+}
+
+// Structural checks: accessors and buffer views stay inside the BIN chunk, every primitive's
+// POSITION accessor holds `vertices` VEC3 floats, Draco extension declared when used.
+void checkGltfStructure(const Glb& glb, bool draco, const std::vector<std::size_t>& vertices,
+                        const std::vector<std::size_t>& triangles) {
+  const nlohmann::json& j = glb.json;
+  ASSERT_EQ(j["asset"]["version"], "2.0");
+  const auto has = [&](const char* list) {
+    if (!j.contains(list)) return false;
+    for (const auto& e : j[list])
+      if (e == "KHR_draco_mesh_compression") return true;
+    return false;
+  };
+  EXPECT_EQ(has("extensionsUsed"), draco);
+  EXPECT_EQ(has("extensionsRequired"), draco);
+  ASSERT_EQ(j["buffers"].size(), 1u);
+  EXPECT_EQ(j["buffers"][0]["byteLength"].get<std::size_t>(), glb.bin.size() - (glb.bin.size() - j["buffers"][0]["byteLength"].get<std::size_t>()));
+  EXPECT_LE(j["buffers"][0]["byteLength"].get<std::size_t>(), glb.bin.size());
+  for (const auto& view : j["bufferViews"])
+    EXPECT_LE(view.value("byteOffset", std::size_t{0}) + view["byteLength"].get<std::size_t>(),
+              j["buffers"][0]["byteLength"].get<std::size_t>());
+  ASSERT_EQ(j["meshes"].size(), vertices.size());
+  for (std::size_t m = 0; m < vertices.size(); ++m) {
+    ASSERT_EQ(j["meshes"][m]["primitives"].size(), 1u);
+    const auto& prim = j["meshes"][m]["primitives"][0];
+    const auto& pos = j["accessors"][prim["attributes"]["POSITION"].get<std::size_t>()];
+    EXPECT_EQ(pos["type"], "VEC3");
+    EXPECT_EQ(pos["componentType"], 5126);
+    EXPECT_EQ(pos["count"].get<std::size_t>(), vertices[m]);
+    EXPECT_EQ(pos["min"].size(), 3u);
+    const auto& idx = j["accessors"][prim["indices"].get<std::size_t>()];
+    EXPECT_EQ(idx["count"].get<std::size_t>(), 3 * triangles[m]);
+    EXPECT_EQ(prim.contains("extensions") && prim["extensions"].contains("KHR_draco_mesh_compression"), draco);
+    if (draco) {
+      EXPECT_FALSE(pos.contains("bufferView")) << "Draco accessors carry no buffer view";
+      EXPECT_LT(prim["extensions"]["KHR_draco_mesh_compression"]["bufferView"].get<std::size_t>(), j["bufferViews"].size());
+    }
+  }
+}
+
+TEST_F(OutputFormatsTest, GlbSceneWithAndWithoutDracoValidatesAndDecodes) {
+  const Built& b = nested();
+  const std::vector<Rgb> colors = featureColors(b.set);
+  std::vector<GltfFeature> features;
+  std::vector<std::size_t> vertices, triangles;
+  for (std::size_t f = 0; f < b.meshes.size(); ++f) {
+    features.push_back({b.set.features[f].name, colors[f], &b.meshes[f]});
+    vertices.push_back(b.meshes[f].vertexCount());
+    triangles.push_back(b.meshes[f].triangleCount());
+  }
+  for (bool draco : {true, false}) {
+    SCOPED_TRACE(draco ? "draco" : "plain");
+    GlbOptions options;
+    options.draco = draco;
+    options.dracoOptions.maxError = defaultQuantizationError(b.volume.grid);
+    const fs::path path = dir_ / (draco ? "draco.glb" : "plain.glb");
+    ASSERT_TRUE(writeGlb(path, features, options));
+    const Glb glb = parseGlb(readFile(path));
+    checkGltfStructure(glb, draco, vertices, triangles);
+    // Names and colours.
+    for (std::size_t f = 0; f < features.size(); ++f) {
+      const auto& mesh = glb.json["meshes"][f];
+      EXPECT_EQ(mesh["name"], features[f].name);
+      const auto& material = glb.json["materials"][mesh["primitives"][0]["material"].get<std::size_t>()];
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(material["pbrMetallicRoughness"]["baseColorFactor"][static_cast<std::size_t>(c)].get<double>(),
+                    srgbToLinear(colors[f][static_cast<std::size_t>(c)]), 1e-5);
+    }
+    bool named = false;
+    for (const auto& node : glb.json["nodes"]) named = named || node.value("name", "") == "inner";
+    EXPECT_TRUE(named);
+    // Draco's own scene reader decodes it back.
+    auto scene = draco::ReadSceneFromFile(path.string());
+    ASSERT_TRUE(scene.ok()) << scene.status().error_msg_string();
+    ASSERT_EQ(scene.value()->NumMeshes(), static_cast<int>(features.size()));
+    for (int m = 0; m < scene.value()->NumMeshes(); ++m)
+      expectSameSurface(b.meshes[static_cast<std::size_t>(m)], fromDraco(scene.value()->GetMesh(draco::MeshIndex(m))),
+                        draco ? options.dracoOptions.maxError * 1.0001 : 0.0);
+  }
+}
+
+// Minimal OBJ reader: `v x y z` and `f a b c` (1-based, optionally a/b/c).
+CompactMesh readObj(const fs::path& path) {
+  CompactMesh m;
+  std::istringstream in(readFile(path));
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream l(line);
+    std::string tag;
+    l >> tag;
+    if (tag == "v") {
+      float x, y, z;
+      l >> x >> y >> z;
+      m.positions.insert(m.positions.end(), {x, y, z});
+    } else if (tag == "f") {
+      std::string c;
+      int n = 0;
+      while (l >> c) m.triangles.push_back(static_cast<std::uint32_t>(std::stoul(c.substr(0, c.find('/'))) - 1)), ++n;
+      EXPECT_EQ(n, 3);
+    }
+  }
+  return m;
+}
+
+TEST_F(OutputFormatsTest, ObjRoundTrip) {
+  const Built& b = nested();
+  for (std::size_t f = 0; f < b.meshes.size(); ++f) {
+    const fs::path path = dir_ / "surface.obj";
+    ASSERT_TRUE(writeObj(path, b.meshes[f], b.set.features[f].name));
+    expectSameSurface(b.meshes[f], readObj(path), 1e-6 * 20);  // 6 decimals
+  }
+}
+
+TEST_F(OutputFormatsTest, BinaryStlRoundTripWithOutwardNormals) {
+  const Built& b = nested();
+  const CompactMesh& m = b.meshes[0];
+  const fs::path path = dir_ / "surface.stl";
+  ASSERT_TRUE(writeStl(path, m));
+  const std::string bytes = readFile(path);
+  ASSERT_GE(bytes.size(), 84u);
+  std::uint32_t count;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  ASSERT_EQ(count, m.triangleCount());
+  ASSERT_EQ(bytes.size(), 84u + 50u * count);
+  double volume = 0;
+  int outward = 0;
+  for (std::uint32_t t = 0; t < count; ++t) {
+    float rec[12];
+    std::memcpy(rec, bytes.data() + 84 + 50 * t, sizeof rec);
+    const float* a = rec + 3;
+    const float* b2 = rec + 6;
+    const float* c = rec + 9;
+    // Exactly the original triangle's corners, in order.
+    for (int k = 0; k < 3; ++k)
+      for (int ax = 0; ax < 3; ++ax)
+        EXPECT_EQ(rec[3 + 3 * k + ax], m.positions[3 * m.triangles[3 * t + static_cast<std::size_t>(k)] + static_cast<std::size_t>(ax)]);
+    const double ux = b2[0] - a[0], uy = b2[1] - a[1], uz = b2[2] - a[2];
+    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    outward += (nx * rec[0] + ny * rec[1] + nz * rec[2]) > 0;
+    volume += (a[0] * (b2[1] * c[2] - b2[2] * c[1]) - a[1] * (b2[0] * c[2] - b2[2] * c[0]) + a[2] * (b2[0] * c[1] - b2[1] * c[0])) / 6;
+  }
+  EXPECT_EQ(outward, static_cast<int>(count)) << "stored normals agree with the winding";
+  EXPECT_NEAR(volume, computeMeshStats(m.positions, m.triangles).volume, 1e-6 * volume);
+}
+
+std::string gunzip(const std::string& data) {
+  z_stream z{};
+  EXPECT_EQ(inflateInit2(&z, 15 + 32), Z_OK);
+  std::string out;
+  char buf[1 << 15];
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  z.avail_in = static_cast<uInt>(data.size());
+  int rc;
+  do {
+    z.next_out = reinterpret_cast<Bytef*>(buf);
+    z.avail_out = sizeof buf;
+    rc = inflate(&z, Z_NO_FLUSH);
+    out.append(buf, sizeof buf - z.avail_out);
+  } while (rc == Z_OK);
+  EXPECT_EQ(rc, Z_STREAM_END);
+  inflateEnd(&z);
+  return out;
+}
+
+struct Nrrd {
+  std::map<std::string, std::string> fields;
+  std::string data;
+};
+Nrrd readNrrd(const fs::path& path) {
+  const std::string bytes = readFile(path);
+  const std::size_t end = bytes.find("\n\n");
+  EXPECT_NE(end, std::string::npos);
+  Nrrd n;
+  std::istringstream in(bytes.substr(0, end));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "NRRD0004");
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t kv = line.find(":=");
+    const std::size_t colon = line.find(": ");
+    if (kv != std::string::npos && (colon == std::string::npos || kv < colon)) n.fields[line.substr(0, kv)] = line.substr(kv + 2);
+    else n.fields[line.substr(0, colon)] = line.substr(colon + 2);
+  }
+  n.data = gunzip(bytes.substr(end + 2));
+  return n;
+}
+
+std::vector<double> numbers(std::string s) {
+  for (char& c : s)
+    if (c == '(' || c == ')' || c == ',') c = ' ';
+  std::istringstream in(s);
+  std::vector<double> out;
+  double v;
+  while (in >> v) out.push_back(v);
+  return out;
+}
+
+// A voxel whose centre is at a known mm position reads the label of the contour around it.
+TEST_F(OutputFormatsTest, NrrdGeometryPutsKnownPointsInTheirFeature) {
+  const Built& b = nested();
+  std::vector<LabelEntry> table;
+  for (std::size_t f = 0; f < b.set.features.size(); ++f)
+    table.push_back({labelOfFeature(static_cast<int>(f)), b.set.features[f].name, featureColors(b.set)[f]});
+  const RegularLabelVolume regular = regularize(b.volume);
+  EXPECT_FALSE(regular.resampled) << "1.5 mm slices are evenly spaced";
+  const fs::path path = dir_ / "labels.seg.nrrd";
+  ASSERT_TRUE(writeNrrd(path, regular, table));
+  const Nrrd n = readNrrd(path);
+  EXPECT_EQ(n.fields.at("type"), "unsigned char");
+  EXPECT_EQ(n.fields.at("encoding"), "gzip");
+  EXPECT_EQ(n.fields.at("space"), "left-posterior-superior");
+  EXPECT_EQ(n.fields.at("Segment1_Name"), "inner");
+  EXPECT_EQ(n.fields.at("Segment1_LabelValue"), "2");
+  const std::vector<double> sizes = numbers(n.fields.at("sizes"));
+  const std::vector<double> dirs = numbers(n.fields.at("space directions"));
+  const std::vector<double> origin = numbers(n.fields.at("space origin"));
+  ASSERT_EQ(sizes.size(), 3u);
+  ASSERT_EQ(dirs.size(), 9u);
+  ASSERT_EQ(origin.size(), 3u);
+  ASSERT_EQ(n.data.size(), static_cast<std::size_t>(sizes[0] * sizes[1] * sizes[2]));
+  // Diagonal directions here; index = (p - origin) / step, rounded.
+  auto labelAt = [&](double x, double y, double z) {
+    const double p[3] = {x, y, z};
+    long idx[3];
+    for (int a = 0; a < 3; ++a) idx[a] = std::lround((p[a] - origin[static_cast<std::size_t>(a)]) / dirs[static_cast<std::size_t>(4 * a)]);
+    return static_cast<int>(static_cast<unsigned char>(
+        n.data[static_cast<std::size_t>(idx[0] + static_cast<long>(sizes[0]) * (idx[1] + static_cast<long>(sizes[1]) * idx[2]))]));
+  };
+  // Spheres centred at the origin, slices at z = ±0.75, ±2.25, ...: inner r = 5, outer r = 12.
+  EXPECT_EQ(labelAt(0, 0, 0.75), 2);   // inside "inner"
+  EXPECT_EQ(labelAt(8, 0, 0.75), 1);   // between the spheres: "outer"
+  EXPECT_EQ(labelAt(0, -9, -2.25), 1);
+  EXPECT_EQ(labelAt(14, 0, 0.75), 0);  // outside both
+  // The label table beside it.
+  ASSERT_TRUE(writeLabelTable(dir_ / "labels.ctbl", table));
+  EXPECT_NE(readFile(dir_ / "labels.ctbl").find("\n2 inner "), std::string::npos);
+}
+
+TEST_F(OutputFormatsTest, UnevenLayersAreResampledOntoTheSmallestGap) {
+  LabelVolume v;
+  v.grid.nx = 2, v.grid.ny = 1, v.grid.nz = 4;
+  v.grid.originX = 10, v.grid.originY = 20, v.grid.spacingX = 0.5, v.grid.spacingY = 0.5;
+  v.grid.layerZ = {0, 1, 3, 4};
+  v.labels = {0, 1, 2, 3, 4, 5, 6, 7};
+  const RegularLabelVolume r = regularize(v);
+  EXPECT_TRUE(r.resampled);
+  ASSERT_EQ(r.nz, 5);  // z = 0, 1, 2, 3, 4
+  EXPECT_DOUBLE_EQ(r.geometry.axes[2][2], 1.0);
+  EXPECT_DOUBLE_EQ(r.geometry.origin[0], 10);
+  EXPECT_DOUBLE_EQ(r.geometry.origin[2], 0);
+  const std::vector<Label> expected{0, 1, 2, 3, 2, 3, 4, 5, 6, 7};  // z = 2 ties: the lower layer
+  EXPECT_EQ(r.labels, expected);
+}
+
+TEST_F(OutputFormatsTest, ReportJsonCarriesStatisticsParametersAndTimings) {
+  const Built& b = nested();
+  RunReport r;
+  r.input = "nested.json";
+  r.parameters = {{"convention", std::string("enclosing")}, {"voxel_size", 1.0}, {"draco", true}};
+  r.deviceName = "test device";
+  r.grid = b.volume.grid;
+  r.features.push_back({"outer", 1, {1, 2, 3}, computeMeshStats(b.meshes[0].positions, b.meshes[0].triangles), {"x.ply"}});
+  r.timings = {{"assembly", 0.25}, {"write", 0.5}};
+  const fs::path path = dir_ / "report.json";
+  ASSERT_TRUE(writeReportJson(path, r));
+  const nlohmann::json j = nlohmann::json::parse(readFile(path));
+  EXPECT_EQ(j["format"], "scansurf-report");
+  EXPECT_EQ(j["parameters"]["convention"], "enclosing");
+  EXPECT_EQ(j["parameters"]["draco"], true);
+  EXPECT_EQ(j["device"]["name"], "test device");
+  const MeshStats& s = r.features[0].stats;
+  EXPECT_EQ(j["features"][0]["triangles"].get<std::size_t>(), s.triangles);
+  EXPECT_DOUBLE_EQ(j["features"][0]["volume"].get<double>(), s.volume);
+  EXPECT_DOUBLE_EQ(j["features"][0]["area"].get<double>(), s.area);
+  EXPECT_EQ(j["features"][0]["genus"], 0);
+  EXPECT_EQ(j["features"][0]["closed"], true);
+  EXPECT_DOUBLE_EQ(j["total_seconds"].get<double>(), 0.75);
+  EXPECT_EQ(j["grid"]["size"][2].get<int>(), b.volume.grid.nz);
+}
+
+TEST_F(OutputFormatsTest, PngRoundTripIsExact) {
+  const std::uint32_t w = 7, h = 5;
+  std::vector<std::uint8_t> rgba(4 * w * h);
+  for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = static_cast<std::uint8_t>(i * 37 + 11);
+  const fs::path path = dir_ / "p.png";
+  ASSERT_TRUE(writePng(path, w, h, rgba));
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  ASSERT_TRUE(png_image_begin_read_from_file(&image, path.c_str()));
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<std::uint8_t> back(PNG_IMAGE_SIZE(image));
+  ASSERT_TRUE(png_image_finish_read(&image, nullptr, back.data(), 0, nullptr));
+  EXPECT_EQ(image.width, w);
+  EXPECT_EQ(image.height, h);
+  EXPECT_EQ(back, rgba);
+  EXPECT_FALSE(writePng(path, w, h + 1, rgba)) << "size mismatch is refused";
+}
+
+TEST_F(OutputFormatsTest, UnwritablePathsFailNamingThePathAndLeaveNothing) {
+  const Built& b = nested();
+  const fs::path missing = dir_ / "no-such-dir" / "x.drc";
+  auto r = writeDrc(missing, b.meshes[0], {});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::Io);
+  EXPECT_NE(r.error().message.find("no-such-dir"), std::string::npos) << r.error().message;
+  std::ofstream(dir_ / "file") << "x";
+  auto g = writeGlb(dir_ / "file" / "scene.glb", {}, {});
+  ASSERT_FALSE(g);
+  EXPECT_EQ(g.error().code, Errc::Io);
+  EXPECT_EQ(fileCount(), 1u);
+}
+
+// A full disk, simulated with a file-size limit: the write fails, nothing partial remains and
+// the previous file is untouched.
+TEST_F(OutputFormatsTest, FullDiskLeavesThePreviousFileIntact) {
+  const Built& b = nested();
+  const fs::path path = dir_ / "scene.glb";
+  std::ofstream(path) << "previous";
+  std::vector<GltfFeature> features{{"outer", {1, 2, 3}, &b.meshes[0]}};
+  GlbOptions options;
+  options.draco = false;  // large enough to exceed the limit
+  rlimit old{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto previousHandler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = old;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  auto r = writeGlb(path, features, options);
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, previousHandler);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::Io);
+  EXPECT_EQ(readFile(path), "previous");
+  EXPECT_EQ(fileCount(), 1u) << "the temporary file is removed";
+}
+
+}  // namespace
+}  // namespace scansurf
