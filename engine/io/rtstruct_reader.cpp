@@ -319,9 +319,23 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
       for (const RawContour& c : r.closed) allZ.push_back(c.z);
   const std::vector<double> planeOf = groupSlicePlanes(allZ, options.sliceTolerance);
 
-  std::size_t zIndex = 0;
+  // Where each ROI's planes start in planeOf (its closed contours, in ROI order).
+  std::vector<std::size_t> planeStart(rois.size(), 0);
+  for (std::size_t i = 0, next = 0; i < rois.size(); ++i) {
+    planeStart[i] = next;
+    if (rois[i].info.selected) next += rois[i].closed.size();
+  }
+  // Features in ROI order, except that EXTERNAL ROIs (the body outline) come last: where a
+  // drawn organ pokes out of BODY on some slice, nesting cannot prove BODY contains it, and
+  // among siblings the earlier feature wins, so the organ keeps its voxels.
+  std::vector<std::size_t> roiOrder(rois.size());
+  for (std::size_t i = 0; i < rois.size(); ++i) roiOrder[i] = i;
+  std::stable_partition(roiOrder.begin(), roiOrder.end(),
+                        [&](std::size_t i) { return rois[i].info.interpretedType != "EXTERNAL"; });
   std::set<std::string> usedNames;
-  for (RawRoi& r : rois) {
+  for (std::size_t roiIndex : roiOrder) {
+    RawRoi& r = rois[roiIndex];
+    std::size_t zIndex = planeStart[roiIndex];
     if (!r.info.selected) {
       // Unselected ROIs still report their slice count for listing.
       std::vector<double> zs;

@@ -42,7 +42,9 @@ struct RtStructOptions {
 };
 
 struct RtStructure {
-  ContourSet contours;  // validated (validateAndNormalize); slice z snapped to shared planes
+  // Validated (validateAndNormalize); slice z snapped to shared planes. Features follow the
+  // ROI order, except that ROIs of interpreted type EXTERNAL come last (see rois[].feature).
+  ContourSet contours;
   std::vector<RoiInfo> rois;                      // in Structure Set ROI Sequence order
   std::string label;                              // Structure Set Label
   std::string frameOfReferenceUid;                // of the first referenced frame, may be empty

@@ -151,6 +151,31 @@ TEST_F(Dicom, NestedRoisWithSliceJitterShareTheirPlanes) {
   EXPECT_NEAR(b.stats(0).volume, 10.0 * 10.0 * 15.0, 0.25 * 10 * 10 * 15);
 }
 
+TEST_F(Dicom, ExternalRoiComesLastSoAnOrganPokingOutKeepsItsVoxels) {
+  TestRoi body{1, "BODY", "EXTERNAL", std::nullopt, {}};
+  TestRoi organ{2, "organ", "ORGAN", std::nullopt, {}};
+  for (double z : {0.0, 2.0, 4.0}) {
+    body.contours.push_back(closedContour(square(-20, -20, 20, 20), z));
+    // On z = 2 the organ reaches outside BODY, so BODY does not contain it.
+    organ.contours.push_back(closedContour(square(-5, -5, z == 2 ? 25 : 5, 5), z));
+  }
+  TestRtStruct rt;
+  rt.rois = {body, organ};
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features.size(), 2u);
+  EXPECT_EQ(r->contours.features[0].name, "organ");
+  EXPECT_EQ(r->contours.features[1].name, "BODY");
+  EXPECT_EQ(r->rois[0].feature, 1);
+  EXPECT_EQ(r->rois[1].feature, 0);
+  const Built b = buildCpu(r->contours, voxels(1));
+  EXPECT_EQ(b.nesting.parent[0], -1);
+  EXPECT_EQ(labelAt(b.volume, 0, 0, 2), labelOfFeature(0));
+  EXPECT_EQ(labelAt(b.volume, 0, 0, 0), labelOfFeature(0));
+  EXPECT_EQ(labelAt(b.volume, 22, 0, 2), labelOfFeature(0));
+  EXPECT_EQ(labelAt(b.volume, -15, 0, 2), labelOfFeature(1));
+}
+
 TEST_F(Dicom, AbuttingRoisShareOneInterface) {
   TestRtStruct rt;
   TestRoi left{1, "left", "ORGAN", std::nullopt, {}};
