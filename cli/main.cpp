@@ -14,6 +14,7 @@
 
 #include "io/atomic_file.h"
 #include "io/contours_json.h"
+#include "dicom_input.h"
 #include "outputs.h"
 #include "progress.h"
 #include "io/report_json.h"
@@ -55,8 +56,8 @@ int main(int argc, char** argv) {
   bool validation = false;
   bool quiet = false;
   int threads = 0;
-  app.add_option("input", input, "contour set (JSON, see docs/contours-json.md)")->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", outDir, "output directory (created if missing)")->required();
+  app.add_option("input", input, "contour set: JSON (docs/input-format.md) or DICOM RTSTRUCT")->required()->check(CLI::ExistingFile);
+  app.add_option("-o,--output", outDir, "output directory (created if missing); required unless --list-rois");
   auto* voxelOpt = app.add_option("--voxel-size", voxelSize, "in-plane pixel size, input units (default: 256 pixels along the longer side)")
                        ->check(CLI::PositiveNumber);
   app.add_option("--grid", gridSize, "NX NY: pixels along x and y including the 1-pixel border")
@@ -70,6 +71,15 @@ int main(int argc, char** argv) {
   app.add_flag("--validation", validation, "enable the Vulkan validation layers");
   app.add_option("--threads", threads, "CPU threads for assembly (default: all)")->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", quiet, "print errors only");
+  // DICOM RTSTRUCT input (issue 5).
+  std::vector<std::string> roiPatterns;
+  bool listRois = false;
+  std::string reference;
+  app.add_option("--roi", roiPatterns, "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
+      ->expected(1)
+      ->take_all();
+  app.add_flag("--list-rois", listRois, "RTSTRUCT: list the file's ROIs and exit");
+  app.add_option("--reference", reference, "RTSTRUCT: folder of a CT series; the label volume lies on its voxel grid");
   // Outputs (issue 4): formats, scene, label volume, report, preview.
   std::vector<std::string> formats;
   bool noDraco = false;
@@ -101,6 +111,12 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : exitCode(Errc::InvalidArgument);
   }
+
+  if (listRois) {
+    auto listed = cli::printRoiList(input, roiPatterns);
+    return listed ? 0 : fail(listed.error());
+  }
+  if (outDir.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois)"});
 
   using Clock = std::chrono::steady_clock;
   auto t0 = Clock::now();
@@ -137,8 +153,12 @@ int main(int argc, char** argv) {
   cli::Progress progress(cli::chooseProgressMode(quiet, jsonProgress));
   progress.begin("read");
 
-  auto contours = readContoursJson(input);
-  if (!contours) return fail(contours.error());
+  auto loaded = cli::readInput(input, {roiPatterns, reference});
+  if (!loaded) return fail(loaded.error());
+  for (const std::string& w : loaded->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
+  if (!quiet)
+    for (const std::string& note : loaded->notes) std::printf("%s\n", note.c_str());
+  Result<ContourSet> contours = std::move(loaded->contours);
   lap("read");
   progress.done("read", timings.back().seconds);
   progress.begin("device");
@@ -158,6 +178,7 @@ int main(int argc, char** argv) {
   if (gridSize.size() == 2) options.grid.nx = gridSize[0], options.grid.ny = gridSize[1];
   options.convention = convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
   options.threads = threads;
+  options.grid.reference = loaded->reference;
   options.onStage = [&](const std::string& stage, double seconds) { progress.done(stage, seconds); };
   progress.begin("surfaces");
   auto built = engine->build(*contours, options);
