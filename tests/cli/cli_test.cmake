@@ -74,3 +74,58 @@ unset(ENV{VK_DRIVER_FILES})
 # A device selector that matches nothing: exit 5, listing the devices seen.
 run_scansurf(5 "${EXAMPLES}/phantom.json" -o "${OUT}/nodevice" --device no-such-gpu)
 expect_output("no usable Vulkan device matches \"no-such-gpu\"")
+
+# Outputs people open directly (issue 4): a GLB scene at -o NAME.glb, a preview picture, the
+# label volume with its table, and the JSON report, all in one run; progress as JSON lines.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/open/phantom.glb" --voxel-size 2
+             --preview "${OUT}/open/preview.png" --preview-size 320 240 --view front
+             --label-volume "${OUT}/open/labels.nrrd" --report "${OUT}/open/report.json" --json-progress)
+expect_output("\\{\"event\":\"done\",\"stage\":\"classification\",\"seconds\":[0-9.]+")
+expect_output("\\{\"event\":\"finish\",\"exit_code\":0")
+foreach(name phantom.glb preview.png labels.nrrd labels.ctbl report.json)
+  if(NOT EXISTS "${OUT}/open/${name}")
+    message(FATAL_ERROR "missing ${OUT}/open/${name}")
+  endif()
+endforeach()
+file(READ "${OUT}/open/phantom.glb" magic LIMIT 4 HEX)
+file(READ "${OUT}/open/preview.png" png_magic LIMIT 4 HEX)
+file(READ "${OUT}/open/labels.nrrd" nrrd_magic LIMIT 4 HEX)
+if(NOT magic STREQUAL "676c5446" OR NOT png_magic STREQUAL "89504e47" OR NOT nrrd_magic STREQUAL "4e525244")
+  message(FATAL_ERROR "wrong file signatures: '${magic}' '${png_magic}' '${nrrd_magic}'")
+endif()
+file(READ "${OUT}/open/report.json" report)
+string(JSON body_name GET "${report}" features 0 name)
+string(JSON body_genus GET "${report}" features 0 genus)
+string(JSON body_closed GET "${report}" features 0 closed)
+string(JSON stages LENGTH "${report}" timings)
+if(NOT body_name STREQUAL "BODY" OR NOT body_genus EQUAL 0 OR NOT body_closed OR stages LESS 5)
+  message(FATAL_ERROR "unexpected report: ${body_name} genus ${body_genus} closed ${body_closed}, ${stages} stages")
+endif()
+file(GLOB leftovers "${OUT}/open/.scansurf-staging*" "${OUT}/open/*.tmp-*")
+if(leftovers)
+  message(FATAL_ERROR "temporary files left behind: ${leftovers}")
+endif()
+
+# Every per-feature format in a directory, plus the scene named after the input.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/formats" --voxel-size 2 --format drc,obj,stl,glb -q)
+foreach(name BODY.drc BODY.obj BODY.stl target.drc target.obj target.stl phantom.glb)
+  if(NOT EXISTS "${OUT}/formats/${name}")
+    message(FATAL_ERROR "missing ${OUT}/formats/${name}")
+  endif()
+endforeach()
+if(EXISTS "${OUT}/formats/BODY.ply")
+  message(FATAL_ERROR "--format without ply wrote PLY files")
+endif()
+
+# Unknown formats: exit 2 before any work, naming what was asked.
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/unknown" --format fbx)
+expect_output("unknown output format \"fbx\"")
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/unknown" --preview "${OUT}/unknown/p.jpg")
+expect_output("preview '.*p.jpg': unknown format \\(expected a .png file\\)")
+# An unwritable output location: exit 4 before any work, nothing written anywhere.
+run_scansurf(4 "${EXAMPLES}/phantom.json" -o "${OUT}/unwritable" --report "${EXAMPLES}/phantom.json/report.json")
+expect_output("phantom.json")
+file(GLOB written "${OUT}/unwritable/*")
+if(written)
+  message(FATAL_ERROR "a run that failed its output check wrote ${written}")
+endif()
