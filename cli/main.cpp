@@ -69,8 +69,20 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--device", device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", validation, "enable the Vulkan validation layers");
-  app.add_option("--threads", threads, "CPU threads for assembly (default: all)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "CPU threads for assembly and smoothing (default: all)")->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", quiet, "print errors only");
+  // Constrained smoothing with contour-faithful vertices (issue 3): on unless --no-smooth.
+  SmoothingOptions smoothing;
+  bool noSmooth = false, noContourFit = false, noJunctions = false;
+  app.add_flag("--no-smooth", noSmooth, "write the raw (staircase) separating surfaces, without smoothing");
+  app.add_option("--smooth-iterations", smoothing.iterations, "smoothing sweeps")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--smooth-strength", smoothing.strength, "step of each smoothing sweep, in (0, 1]")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_flag("--no-contour-fit", noContourFit, "do not place contour-plane vertices on the original contours");
+  app.add_flag("--no-junction-smoothing", noJunctions, "keep vertices where three or more structures meet in place");
   // DICOM RTSTRUCT input (issue 5).
   std::vector<std::string> roiPatterns;
   bool listRois = false;
@@ -178,6 +190,10 @@ int main(int argc, char** argv) {
   if (gridSize.size() == 2) options.grid.nx = gridSize[0], options.grid.ny = gridSize[1];
   options.convention = convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
   options.threads = threads;
+  options.smoothing = smoothing;
+  options.smoothing.enabled = !noSmooth;
+  options.smoothing.contourFit = !noContourFit;
+  options.smoothing.junctions = !noJunctions;
   options.grid.reference = loaded->reference;
   options.onStage = [&](const std::string& stage, double seconds) { progress.done(stage, seconds); };
   progress.begin("surfaces");

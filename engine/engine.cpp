@@ -5,6 +5,7 @@
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
 #include "geometry/feature_surfaces.h"
+#include "geometry/smoothing.h"
 #include "gpu/context.h"
 #include "passes/classification.h"
 #include "passes/preview.h"
@@ -109,6 +110,10 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
   out.surfaces.mesh = assembleMesh(grid, cells.records, options.threads);
   cells.records = {};
   clock.lap("assembly");
+  if (options.smoothing.enabled) {
+    smoothMesh(out.surfaces.mesh, grid, &contours, options.smoothing, options.threads, options.grid.sliceTolerance);
+    clock.lap("smoothing");
+  }
   out.surfaces.features = extractFeatureSurfaces(out.surfaces.mesh, static_cast<int>(contours.features.size()), out.nesting,
                                                  options.convention);
   clock.lap("feature surfaces");

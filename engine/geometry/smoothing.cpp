@@ -34,6 +34,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <cstdint>
 #include <vector>
 
@@ -46,6 +48,7 @@ namespace {
 constexpr double kMargin = 0.02;  // least barycentric weight inside a carrier
 constexpr double kBending = 0.45;  // bi-Laplacian step at strength 1
 constexpr double kTension = 0.0875;  // Laplacian step at strength 1
+constexpr int kNormalPeriod = 4;     // sweeps between vertex normal updates
 
 enum class Role : std::uint8_t { Sheet, Curve, Fixed, Fitted };
 
@@ -207,8 +210,7 @@ Vec3 vertexNormal(const MultiLabelMesh& mesh, const Adjacency& adj, const std::v
 // kMargin): the vertex follows the surface's normal motion and ignores tangential drift,
 // which a nearest-point projection onto a slanted edge would turn into normal error. False
 // when the edge runs nearly inside that plane.
-bool slideAlongNormal(const Grid& grid, const Carrier& carrier, const Vec3& target, const Vec3& n, Vec3& out) {
-  const Vec3 a = cornerPosition(grid, carrier.corners[0]), b = cornerPosition(grid, carrier.corners[1]);
+bool slideAlongNormal(const Vec3& a, const Vec3& b, const Vec3& target, const Vec3& n, Vec3& out) {
   const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double en = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
   const double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2], nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
@@ -253,7 +255,18 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
   }
 
   // Umbrella operator U(v) = mean of neighbours - v; zero where a vertex has none.
-  std::vector<double> umbrella(3 * vertexCount, 0.0), next(cur);
+  std::vector<double> umbrella(3 * vertexCount, 0.0), next(cur), normals(3 * vertexCount, 0.0);
+  // The carrier edge's ends of each sheet vertex (NaN otherwise), decoded once.
+  std::vector<std::array<Vec3, 2>> edges(vertexCount);
+  parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const Carrier c = carrierOfKey(mesh.keys[v]);
+      if (adj.role[v] == Role::Sheet && c.count == 2)
+        edges[v] = {cornerPosition(grid, c.corners[0]), cornerPosition(grid, c.corners[1])};
+      else
+        edges[v][0][0] = std::numeric_limits<double>::quiet_NaN();
+    }
+  });
   const auto computeUmbrella = [&](const std::vector<double>& p, std::vector<double>& out) {
     parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
@@ -277,25 +290,35 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
   const double bending = kBending * strength, tension = kTension * strength;
   for (int it = 0; it < options.iterations; ++it) {
     computeUmbrella(cur, umbrella);
+    // Normals turn slowly; refreshing them every few sweeps saves most of a sweep's time.
+    if (it % kNormalPeriod == 0)
+      parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
+        for (std::size_t v = begin; v < end; ++v)
+          if (adj.role[v] == Role::Sheet) {
+            const Vec3 n = vertexNormal(mesh, adj, cur, v);
+            for (int k = 0; k < 3; ++k) normals[3 * v + k] = n[k];
+          }
+      });
     parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
       for (std::size_t v = begin; v < end; ++v) {
         const Role role = adj.role[v];
         if (role == Role::Fixed || role == Role::Fitted) continue;
         const std::uint32_t s = adj.start[v], e = adj.start[v + 1];
+        double sum[3] = {0, 0, 0};
+        for (std::uint32_t i = s; i < e; ++i) {
+          const double* u = &umbrella[3 * adj.neighbours[i]];
+          sum[0] += u[0], sum[1] += u[1], sum[2] += u[2];
+        }
         Vec3 target;
+        const double inv = 1.0 / (e - s);
         for (int k = 0; k < 3; ++k) {
-          double sum = 0;
-          for (std::uint32_t i = s; i < e; ++i) sum += umbrella[3 * adj.neighbours[i] + k];
           const double u = umbrella[3 * v + k];
-          target[k] = cur[3 * v + k] - bending * (sum / (e - s) - u) + tension * u;
+          target[k] = cur[3 * v + k] - bending * (sum[k] * inv - u) + tension * u;
         }
-        const Carrier carrier = carrierOfKey(mesh.keys[v]);
         Vec3 p;
-        if (role == Role::Sheet && carrier.count == 2 &&
-            slideAlongNormal(grid, carrier, target, vertexNormal(mesh, adj, cur, v), p)) {
-        } else {
-          p = projectIntoCarrier(grid, carrier, target);
-        }
+        const bool onEdge = role == Role::Sheet && !std::isnan(edges[v][0][0]);
+        if (!(onEdge && slideAlongNormal(edges[v][0], edges[v][1], target, {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]}, p)))
+          p = projectIntoCarrier(grid, carrierOfKey(mesh.keys[v]), target);
         for (int k = 0; k < 3; ++k) next[3 * v + k] = p[k];
       }
     });

@@ -20,6 +20,7 @@
 #include "scansurf/nesting.h"
 #include "scansurf/preview.h"
 #include "scansurf/result.h"
+#include "scansurf/smoothing.h"
 #include "scansurf/surfaces.h"
 
 namespace scansurf {
@@ -54,7 +55,9 @@ struct StageTime {
 struct BuildOptions {
   GridOptions grid;
   SurfaceConvention convention = SurfaceConvention::Enclosing;
-  int threads = 0;  // CPU threads for assembly; 0 = all
+  int threads = 0;  // CPU threads for assembly and smoothing; 0 = all
+  // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
+  SmoothingOptions smoothing;
   // Called after each stage of build() with its name and time (progress reports).
   std::function<void(const std::string& stage, double seconds)> onStage;
 };
