@@ -29,7 +29,7 @@ run_scansurf(0 "${MIM}/rt.dcm" --list-rois --roi "roi-[12]")
 expect_output("3 +ROI-3 +- +3 CLOSED_PLANAR +3 +60 \\.\\. 70 +no")
 
 # The file without a DICOM file header, with POINT ROIs skipped (one warning each).
-run_scansurf(0 "${SAMPLES}/pydicom-rtstruct.dcm" -o "${OUT}/pydicom")
+run_scansurf(0 "${SAMPLES}/pydicom-rtstruct.dcm" -o "${OUT}/pydicom" --voxel-size 4)
 expect_output("ROI \"Isocenter 1\" \\(#2\\): skipped 1 POINT contour\\(s\\)")
 expect_output("patient +1 +[0-9]+ +[0-9.]+ +1 +0 yes")
 
