@@ -289,6 +289,11 @@ int main(int argc, char** argv) {
     std::printf(" %s %.3f s;", t.stage.c_str(), t.seconds);
     total += t.seconds;
   }
-  std::printf(" total %.3f s\nwrote %zu files to %s\n", total, written->size(), outDir.c_str());
+  std::printf(" total %.3f s\nwrote %zu files", total, written->size());
+  if (written->size() <= 4)  // e.g. -o x.glb --preview x.png: name them
+    for (const fs::path& p : *written) std::printf(" %s", p.c_str());
+  else
+    std::printf(" to %s", outDir.c_str());
+  std::printf("\n");
   return 0;
 }
