@@ -235,7 +235,8 @@ int main(int argc, char** argv) {
                     {"grid_ny", static_cast<double>(options.grid.ny)},
                     {"threads", static_cast<double>(threads)},
                     {"draco", !noDraco},
-                    {"draco_bits", static_cast<double>(dracoBits)},
+                    {"draco_bits", static_cast<double>(dracoBits)},  // 0: from draco_max_error
+                    {"draco_max_error", dracoBits ? 0.0 : defaultQuantizationError(built->volume.grid)},
                     {"draco_level", static_cast<double>(dracoLevel)},
                     {"validation", validation}};
     r.deviceName = info.name, r.deviceType = info.type, r.driver = info.driver;
