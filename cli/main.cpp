@@ -205,6 +205,7 @@ int main(int argc, char** argv) {
   cli::Staging staging;
   auto perFeature = cli::writeSurfaceOutputs(staging, plan, *contours, built->surfaces, built->volume);
   if (!perFeature) return fail(perFeature.error());
+  built->warnings.insert(built->warnings.end(), perFeature->warnings.begin(), perFeature->warnings.end());
   lap("write");
   progress.done("write", timings.back().seconds);
   if (!preview.empty()) {
@@ -221,7 +222,8 @@ int main(int argc, char** argv) {
     if (!picture) return fail(picture.error());
     auto staged = staging.path(preview);
     if (!staged) return fail(staged.error());
-    if (auto ok = writePng(*staged, picture->width, picture->height, picture->rgba); !ok) return fail(ok.error());
+    if (auto ok = cli::named(writePng(*staged, picture->width, picture->height, picture->rgba), *staged, preview); !ok)
+      return fail(ok.error());
     lap("preview");
     progress.done("preview", timings.back().seconds);
   }
@@ -249,7 +251,7 @@ int main(int argc, char** argv) {
     for (std::size_t f = 0; f < contours->features.size(); ++f) {
       ReportFeature rf{contours->features[f].name, labelOfFeature(static_cast<int>(f)), colors[f],
                        computeMeshStats(built->surfaces.mesh.positions, built->surfaces.features[f].triangles), {}};
-      for (const fs::path& p : (*perFeature)[f]) rf.files.push_back(p.string());
+      for (const fs::path& p : perFeature->files[f]) rf.files.push_back(p.string());
       r.features.push_back(std::move(rf));
     }
     for (const StageTime& t : timings) r.timings.emplace_back(t.stage, t.seconds);
@@ -258,7 +260,7 @@ int main(int argc, char** argv) {
     r.warnings = built->warnings;
     auto staged = staging.path(report);
     if (!staged) return fail(staged.error());
-    if (auto ok = writeReportJson(*staged, r); !ok) return fail(ok.error());
+    if (auto ok = cli::named(writeReportJson(*staged, r), *staged, report); !ok) return fail(ok.error());
   }
   auto written = staging.commit();
   if (!written) return fail(written.error());

@@ -117,10 +117,20 @@ Result<std::vector<fs::path>> Staging::commit() {
   return written;
 }
 
-Result<std::vector<std::vector<fs::path>>> writeSurfaceOutputs(Staging& staging, const OutputPlan& plan, const ContourSet& contours,
-                                                               const Surfaces& surfaces, const LabelVolume& volume) {
+Result<void> named(Result<void> r, const fs::path& staged, const fs::path& target) {
+  if (r) return r;
+  std::string message = r.error().message;
+  for (std::size_t at; (at = message.find(staged.string())) != std::string::npos;)
+    message.replace(at, staged.string().size(), target.string());
+  return makeError(r.error().code, message);
+}
+
+Result<SurfaceOutputs> writeSurfaceOutputs(Staging& staging, const OutputPlan& plan, const ContourSet& contours,
+                                           const Surfaces& surfaces, const LabelVolume& volume) {
   const std::size_t featureCount = contours.features.size();
-  std::vector<std::vector<fs::path>> perFeature(featureCount);
+  SurfaceOutputs out;
+  out.files.resize(featureCount);
+  std::vector<std::vector<fs::path>>& perFeature = out.files;
   const std::vector<Rgb> colors = featureColors(contours);
   DracoOptions draco = plan.dracoOptions;
   if (draco.quantizationBits == 0 && draco.maxError <= 0) draco.maxError = defaultQuantizationError(volume.grid);
@@ -132,17 +142,28 @@ Result<std::vector<std::vector<fs::path>>> writeSurfaceOutputs(Staging& staging,
   for (std::size_t f = 0; f < featureCount; ++f) {
     const FeatureSurface& surface = surfaces.features[f];
     const std::string stem = fileStem(contours.features[f].name, used);
-    SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactSurface(surfaces.mesh, surface));
+    const bool needsCompact = wantsGlb || std::any_of(plan.formats.begin(), plan.formats.end(), [](MeshFormat m) {
+      return m != MeshFormat::Ply && m != MeshFormat::Glb;
+    });
+    CompactMesh mesh;
+    if (needsCompact) {
+      SCANSURF_ASSIGN_OR_RETURN(mesh, compactSurface(surfaces.mesh, surface));
+    }
     if (!plan.dir.empty()) {
       for (MeshFormat format : plan.formats) {
         if (format == MeshFormat::Glb) continue;
+        if (format != MeshFormat::Ply && surface.triangles.empty()) {
+          out.warnings.push_back("feature \"" + contours.features[f].name + "\" has no surface: no " + extensionOf(format) +
+                                 " written for it");
+          continue;
+        }
         const fs::path target = plan.dir / (stem + extensionOf(format));
         SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, staging.path(target));
         switch (format) {
-          case MeshFormat::Ply: SCANSURF_TRY(writeSurfacePly(staged, surfaces.mesh, surface)); break;
-          case MeshFormat::Drc: SCANSURF_TRY(writeDrc(staged, mesh, draco)); break;
-          case MeshFormat::Obj: SCANSURF_TRY(writeObj(staged, mesh, contours.features[f].name)); break;
-          case MeshFormat::Stl: SCANSURF_TRY(writeStl(staged, mesh)); break;
+          case MeshFormat::Ply: SCANSURF_TRY(named(writeSurfacePly(staged, surfaces.mesh, surface), staged, target)); break;
+          case MeshFormat::Drc: SCANSURF_TRY(named(writeDrc(staged, mesh, draco), staged, target)); break;
+          case MeshFormat::Obj: SCANSURF_TRY(named(writeObj(staged, mesh, contours.features[f].name), staged, target)); break;
+          case MeshFormat::Stl: SCANSURF_TRY(named(writeStl(staged, mesh), staged, target)); break;
           case MeshFormat::Glb: break;
         }
         perFeature[f].push_back(target);
@@ -152,7 +173,7 @@ Result<std::vector<std::vector<fs::path>>> writeSurfaceOutputs(Staging& staging,
   }
   if (wantsPly && plan.multilabel) {
     SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, staging.path(plan.dir / "multilabel.ply"));
-    SCANSURF_TRY(writeMultiLabelPly(staged, surfaces.mesh));
+    SCANSURF_TRY(named(writeMultiLabelPly(staged, surfaces.mesh), staged, plan.dir / "multilabel.ply"));
   }
   if (wantsGlb) {
     std::vector<GltfFeature> scene;
@@ -166,7 +187,7 @@ Result<std::vector<std::vector<fs::path>>> writeSurfaceOutputs(Staging& staging,
       targets.push_back(plan.dir / (plan.sceneName + ".glb"));
     for (const fs::path& target : targets) {
       SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, staging.path(target));
-      SCANSURF_TRY(writeGlb(staged, scene, options));
+      SCANSURF_TRY(named(writeGlb(staged, scene, options), staged, target));
       for (std::size_t f = 0; f < featureCount; ++f)
         if (surfaces.features[f].triangleCount() > 0) perFeature[f].push_back(target);
     }
@@ -176,13 +197,13 @@ Result<std::vector<std::vector<fs::path>>> writeSurfaceOutputs(Staging& staging,
     for (std::size_t f = 0; f < featureCount; ++f)
       table.push_back({labelOfFeature(static_cast<int>(f)), contours.features[f].name, colors[f]});
     SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, staging.path(plan.labelVolume));
-    SCANSURF_TRY(writeNrrd(staged, regularize(volume), table));
+    SCANSURF_TRY(named(writeNrrd(staged, regularize(volume), table), staged, plan.labelVolume));
     fs::path tablePath = plan.labelVolume;
     tablePath.replace_extension(".ctbl");
     SCANSURF_ASSIGN_OR_RETURN(const fs::path stagedTable, staging.path(tablePath));
-    SCANSURF_TRY(writeLabelTable(stagedTable, table));
+    SCANSURF_TRY(named(writeLabelTable(stagedTable, table), stagedTable, tablePath));
   }
-  return perFeature;
+  return out;
 }
 
 }  // namespace scansurf::cli

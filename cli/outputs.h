@@ -63,12 +63,20 @@ class Staging {
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // staged, target
 };
 
-// Writes the surfaces and the label volume of the plan into `staging`. Returns, per feature,
-// the final paths of the files holding its surface.
-Result<std::vector<std::vector<std::filesystem::path>>> writeSurfaceOutputs(Staging& staging, const OutputPlan& plan,
-                                                                            const ContourSet& contours,
-                                                                            const Surfaces& surfaces,
-                                                                            const LabelVolume& volume);
+// r, with any mention of the staged path replaced by the target's, so errors name the file the
+// user asked for.
+Result<void> named(Result<void> r, const std::filesystem::path& staged, const std::filesystem::path& target);
+
+struct SurfaceOutputs {
+  std::vector<std::vector<std::filesystem::path>> files;  // per feature: final paths holding its surface
+  std::vector<std::string> warnings;                      // e.g. a feature without a surface
+};
+
+// Writes the surfaces and the label volume of the plan into `staging`. A feature with no
+// triangles (contours too small for the grid) gets only its (empty) PLY: Draco, OBJ and STL
+// encoders refuse empty meshes; a warning says so. Errors name the final path.
+Result<SurfaceOutputs> writeSurfaceOutputs(Staging& staging, const OutputPlan& plan, const ContourSet& contours,
+                                           const Surfaces& surfaces, const LabelVolume& volume);
 
 // A file name from a feature name: letters, digits, '.', '-' and '_' kept, the rest '_';
 // made unique against `used` (and added to it).
