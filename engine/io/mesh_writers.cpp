@@ -22,28 +22,6 @@ Result<void> writeBuffer(const std::filesystem::path& path, const draco::Encoder
 
 }  // namespace
 
-Result<CompactMesh> compactSurface(const MultiLabelMesh& mesh, const FeatureSurface& surface) {
-  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> remap(mesh.vertexCount(), kUnused);
-  for (std::uint32_t v : surface.triangles) {
-    if (v >= remap.size())
-      return makeError(Errc::Internal, "surface of feature " + std::to_string(surface.feature) + " indexes vertex " +
-                                           std::to_string(v) + " beyond the mesh's " + std::to_string(remap.size()));
-    remap[v] = 0;
-  }
-  CompactMesh out;
-  std::uint32_t used = 0;
-  for (std::size_t v = 0; v < remap.size(); ++v) {
-    if (remap[v] == kUnused) continue;
-    remap[v] = used++;
-    out.positions.insert(out.positions.end(), mesh.positions.begin() + static_cast<std::ptrdiff_t>(3 * v),
-                         mesh.positions.begin() + static_cast<std::ptrdiff_t>(3 * v + 3));
-  }
-  out.triangles.reserve(surface.triangles.size());
-  for (std::uint32_t v : surface.triangles) out.triangles.push_back(remap[v]);
-  return out;
-}
-
 Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name) {
   std::unique_ptr<draco::Mesh> dm = toDracoMesh(mesh);
   dm->SetName(name);

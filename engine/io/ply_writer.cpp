@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/compact_mesh.h"
 #include "io/atomic_file.h"
 
 namespace scansurf {
@@ -57,18 +58,8 @@ const char* kUnitsComment = "comment units: the input contours' units (x, y in-p
 
 Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh,
                              const FeatureSurface& surface) {
-  // Compact the used vertices, keeping their mesh order.
-  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> remap(mesh.vertexCount(), kUnused);
-  for (std::uint32_t v : surface.triangles) {
-    if (v >= remap.size())
-      return makeError(Errc::Internal, "surface of feature " + std::to_string(surface.feature) + " indexes vertex " +
-                                           std::to_string(v) + " beyond the mesh's " + std::to_string(remap.size()));
-    remap[v] = 0;
-  }
-  std::uint32_t used = 0;
-  for (std::uint32_t& r : remap)
-    if (r != kUnused) r = used++;
+  SCANSURF_ASSIGN_OR_RETURN(const CompactMesh compact, compactSurface(mesh, surface));
+  const std::size_t used = compact.vertexCount();
   SCANSURF_TRY(checkIndexRange(path, used));
 
   SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
@@ -81,14 +72,13 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabel
       "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
       std::to_string(surface.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   out.bytes(header.data(), header.size());
-  for (std::size_t v = 0; v < remap.size(); ++v) {
-    if (remap[v] == kUnused) continue;
-    for (int a = 0; a < 3; ++a) out.value(mesh.positions[3 * v + a]);
+  for (float x : compact.positions) {
+    out.value(x);
     SCANSURF_TRY(out.maybeFlush());
   }
-  for (std::size_t t = 0; t < surface.triangleCount(); ++t) {
+  for (std::size_t t = 0; t < compact.triangleCount(); ++t) {
     out.value(std::uint8_t{3});
-    for (int c = 0; c < 3; ++c) out.value(static_cast<std::int32_t>(remap[surface.triangles[3 * t + c]]));
+    for (int c = 0; c < 3; ++c) out.value(static_cast<std::int32_t>(compact.triangles[3 * t + c]));
     SCANSURF_TRY(out.maybeFlush());
   }
   SCANSURF_TRY(out.flush());
