@@ -2,7 +2,7 @@
 //
 //   scansurf_bench generate OUTDIR [SET...]    writes OUTDIR/<set>.json and OUTDIR/<set>.dcm (RTSTRUCT)
 //                                              for the sets pelvis, head-neck, em-cells
-//   scansurf_bench run INPUT.json PIXELS [--repeat N]
+//   scansurf_bench run INPUT.json PIXELS [--repeat N] [--no-smooth]
 //
 // `run` times every stage of the method on one input (parse, nesting, grid, scan conversion,
 // classification, assembly, feature surfaces, smoothing when enabled, writing PLY), reports
@@ -73,7 +73,7 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
   return 0;
 }
 
-int run(const fs::path& input, int pixels, int repeat) {
+int run(const fs::path& input, int pixels, int repeat, bool smooth) {
   std::string json = "{";
   auto add = [&](const std::string& key, double value) {
     char buf[64];
@@ -95,13 +95,12 @@ int run(const fs::path& input, int pixels, int repeat) {
   }
 
   BuildOptions options;
-  // Square pixels, `pixels` along the longer side, as the Slicer route is given.
-  options.grid.nx = 0;
+  options.smoothing.enabled = smooth;  // as the command-line tool does by default
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {
-    GridOptions g;
-    auto probe = makeGrid(*contours, g);  // default grid to find the extent
+    // Square pixels, `pixels` along the longer side, as the Slicer route is given.
+    auto probe = makeGrid(*contours, GridOptions{});  // the default grid gives the extent
     if (!probe) {
       std::fprintf(stderr, "%s\n", probe.error().message.c_str());
       return 3;
@@ -179,9 +178,13 @@ int main(int argc, char** argv) {
   if (args.size() >= 2 && args[0] == "generate") return generate(args[1], {args.begin() + 2, args.end()});
   if (args.size() >= 3 && args[0] == "run") {
     int repeat = 1;
-    if (args.size() >= 5 && args[3] == "--repeat") repeat = std::stoi(args[4]);
-    return run(args[1], std::stoi(args[2]), repeat);
+    bool smooth = true;
+    for (std::size_t a = 3; a < args.size(); ++a) {
+      if (args[a] == "--repeat" && a + 1 < args.size()) repeat = std::stoi(args[++a]);
+      if (args[a] == "--no-smooth") smooth = false;
+    }
+    return run(args[1], std::stoi(args[2]), repeat, smooth);
   }
-  std::fprintf(stderr, "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N]\n");
+  std::fprintf(stderr, "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth]\n");
   return 2;
 }
