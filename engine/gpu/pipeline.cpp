@@ -71,7 +71,7 @@ Result<Owned<VkPipeline>> createRasterPipeline(const Context& ctx, const RasterP
   stages[1].pName = "main";
 
   VkVertexInputBindingDescription binding{0, desc.vertexStride, VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription attribute{0, 0, VK_FORMAT_R32G32_SFLOAT, 0};
+  VkVertexInputAttributeDescription attribute{0, 0, desc.vertexFormat, 0};
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   vertexInput.vertexBindingDescriptionCount = 1;
   vertexInput.pVertexBindingDescriptions = &binding;
@@ -92,13 +92,22 @@ Result<Owned<VkPipeline>> createRasterPipeline(const Context& ctx, const RasterP
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = desc.depthTest;
-  depth.depthWriteEnable = desc.depthTest;
-  depth.depthCompareOp = VK_COMPARE_OP_LESS;
+  depth.depthWriteEnable = desc.depthWrite;
+  depth.depthCompareOp = desc.depthCompare;
   depth.stencilTestEnable = desc.stencilTest;
   depth.front = desc.stencil;
   depth.back = desc.stencil;
   VkPipelineColorBlendAttachmentState blendAttachment{};
-  blendAttachment.colorWriteMask = desc.writeColor ? VK_COLOR_COMPONENT_R_BIT : 0;
+  blendAttachment.colorWriteMask = desc.colorWrite;
+  if (desc.alphaBlend) {
+    blendAttachment.blendEnable = VK_TRUE;
+    blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+    blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    blendAttachment.colorBlendOp = VK_BLEND_OP_ADD;
+    blendAttachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+    blendAttachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+    blendAttachment.alphaBlendOp = VK_BLEND_OP_ADD;
+  }
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = 1;
   blend.pAttachments = &blendAttachment;
@@ -110,8 +119,8 @@ Result<Owned<VkPipeline>> createRasterPipeline(const Context& ctx, const RasterP
   VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
   rendering.colorAttachmentCount = 1;
   rendering.pColorAttachmentFormats = &desc.colorFormat;
-  rendering.depthAttachmentFormat = desc.depthStencilFormat;
-  rendering.stencilAttachmentFormat = desc.depthStencilFormat;
+  rendering.depthAttachmentFormat = desc.depthFormat;
+  rendering.stencilAttachmentFormat = desc.stencilFormat;
 
   VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
   info.pNext = &rendering;

@@ -25,19 +25,24 @@ Result<Owned<VkPipelineLayout>> createPipelineLayout(const Context& ctx, std::sp
 Result<Owned<VkPipeline>> createComputePipeline(const Context& ctx, VkPipelineLayout layout, VkShaderModule module,
                                                 std::span<const std::uint32_t> specialization);
 
-// What the scan-conversion graphics pipelines vary in, named by intent.
+// What scansurf's graphics pipelines vary in, named by intent.
 struct RasterPipelineDesc {
   VkShaderModule vertex = VK_NULL_HANDLE;
   VkShaderModule fragment = VK_NULL_HANDLE;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkFormat colorFormat = VK_FORMAT_UNDEFINED;
-  VkFormat depthStencilFormat = VK_FORMAT_UNDEFINED;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;    // UNDEFINED: no depth attachment
+  VkFormat stencilFormat = VK_FORMAT_UNDEFINED;  // UNDEFINED: no stencil attachment
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN;
-  std::uint32_t vertexStride = 8;  // one vec2 per vertex
-  bool writeColor = false;
-  bool depthTest = false;  // LESS, with depth writes
-  VkStencilOpState stencil{};
+  VkFormat vertexFormat = VK_FORMAT_R32G32_SFLOAT;  // one attribute at location 0
+  std::uint32_t vertexStride = 8;
+  VkColorComponentFlags colorWrite = 0;  // 0: colour untouched (stencil-only passes)
+  bool alphaBlend = false;               // colour = src-alpha over dst; dst alpha kept
+  bool depthTest = false;
+  bool depthWrite = false;
+  VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
   bool stencilTest = false;
+  VkStencilOpState stencil{};
 };
 
 // Graphics pipeline for dynamic rendering with dynamic viewport and scissor; no culling.

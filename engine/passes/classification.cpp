@@ -7,13 +7,10 @@
 
 #include "classify_push.h"
 #include "gpu/check.h"
+#include "passes/shader_registry.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
-
-namespace scansurf::shaders {
-std::span<const std::uint32_t> spirv(std::string_view name);
-}
 
 namespace scansurf::passes {
 namespace {

@@ -9,14 +9,11 @@
 #include <string>
 
 #include "gpu/check.h"
+#include "passes/shader_registry.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "preview_push.h"
-
-namespace scansurf::shaders {
-std::span<const std::uint32_t> spirv(std::string_view name);
-}
 
 namespace scansurf {
 
@@ -63,80 +60,25 @@ void viewBasis(ViewPreset view, Vec3& forward, Vec3& up) {
   }
 }
 
-// Graphics pipeline for the preview: vec3 positions, RGBA output, depth LESS_OR_EQUAL.
+// Graphics pipeline for the preview: vec3 positions, RGBA output, depth LESS_OR_EQUAL, two-sided
+// (inner cavities stay visible); translucent surfaces blend and leave the depth buffer alone.
 Result<gpu::Owned<VkPipeline>> createPreviewPipeline(const gpu::Context& ctx, VkShaderModule vertex, VkShaderModule fragment,
                                                      VkPipelineLayout layout, bool translucent) {
-  VkPipelineShaderStageCreateInfo stages[2] = {};
-  stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-  stages[0].module = vertex;
-  stages[0].pName = "main";
-  stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-  stages[1].module = fragment;
-  stages[1].pName = "main";
-  VkVertexInputBindingDescription binding{0, 3 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription attribute{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0};
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  vertexInput.vertexBindingDescriptionCount = 1;
-  vertexInput.pVertexBindingDescriptions = &binding;
-  vertexInput.vertexAttributeDescriptionCount = 1;
-  vertexInput.pVertexAttributeDescriptions = &attribute;
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  viewport.viewportCount = 1;
-  viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;  // two-sided: inner cavities and cut views stay visible
-  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  depth.depthTestEnable = VK_TRUE;
-  depth.depthWriteEnable = translucent ? VK_FALSE : VK_TRUE;
-  depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
-  VkPipelineColorBlendAttachmentState blendAttachment{};
-  blendAttachment.colorWriteMask =
-      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  if (translucent) {
-    blendAttachment.blendEnable = VK_TRUE;
-    blendAttachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-    blendAttachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-    blendAttachment.colorBlendOp = VK_BLEND_OP_ADD;
-    blendAttachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;  // the picture stays opaque
-    blendAttachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-    blendAttachment.alphaBlendOp = VK_BLEND_OP_ADD;
-  }
-  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = 1;
-  blend.pAttachments = &blendAttachment;
-  const VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dynamic.dynamicStateCount = 2;
-  dynamic.pDynamicStates = dynamicStates;
-  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-  rendering.colorAttachmentCount = 1;
-  rendering.pColorAttachmentFormats = &kColorFormat;
-  rendering.depthAttachmentFormat = kDepthFormat;
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.pNext = &rendering;
-  info.stageCount = 2;
-  info.pStages = stages;
-  info.pVertexInputState = &vertexInput;
-  info.pInputAssemblyState = &assembly;
-  info.pViewportState = &viewport;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &multisample;
-  info.pDepthStencilState = &depth;
-  info.pColorBlendState = &blend;
-  info.pDynamicState = &dynamic;
-  info.layout = layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  SCANSURF_VK_TRY(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-  return gpu::Owned<VkPipeline>(pipeline, [d = ctx.device()](VkPipeline p) { vkDestroyPipeline(d, p, nullptr); });
+  gpu::RasterPipelineDesc desc;
+  desc.vertex = vertex;
+  desc.fragment = fragment;
+  desc.layout = layout;
+  desc.colorFormat = kColorFormat;
+  desc.depthFormat = kDepthFormat;
+  desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  desc.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+  desc.vertexStride = 3 * sizeof(float);
+  desc.colorWrite = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  desc.alphaBlend = translucent;
+  desc.depthTest = true;
+  desc.depthWrite = !translucent;
+  desc.depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+  return gpu::createRasterPipeline(ctx, desc);
 }
 
 }  // namespace

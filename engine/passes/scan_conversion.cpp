@@ -8,14 +8,11 @@
 
 #include "geometry/raster_rules.h"
 #include "gpu/check.h"
+#include "passes/shader_registry.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
 #include "scan_push.h"
-
-namespace scansurf::shaders {
-std::span<const std::uint32_t> spirv(std::string_view name);
-}
 
 namespace scansurf::passes {
 namespace {
@@ -77,21 +74,23 @@ Result<std::unique_ptr<ScanConverter>> ScanConverter::create(const gpu::Context&
   desc.fragment = s->fragment.get();
   desc.layout = s->layout.get();
   desc.colorFormat = kLabelFormat;
-  desc.depthStencilFormat = s->depthStencilFormat;
+  desc.depthFormat = s->depthStencilFormat;
+  desc.stencilFormat = s->depthStencilFormat;
   desc.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_FAN;
 
   // Fans toggle stencil bit 0: after all of a feature's contours, bit 0 is the even-odd parity.
   desc.stencilTest = true;
   desc.stencil = {VK_STENCIL_OP_KEEP, VK_STENCIL_OP_INVERT, VK_STENCIL_OP_INVERT, VK_COMPARE_OP_ALWAYS, 1u, 1u, 0u};
-  desc.writeColor = false;
+  desc.colorWrite = 0;
   desc.depthTest = false;
   SCANSURF_ASSIGN_OR_RETURN(s->stencilPipeline, gpu::createRasterPipeline(ctx, desc));
 
   // Cover: label where parity is odd and the feature is nearer (inner) than what is there;
   // the stencil is zeroed whether or not the depth test passes, ready for the next feature.
   desc.stencil = {VK_STENCIL_OP_KEEP, VK_STENCIL_OP_ZERO, VK_STENCIL_OP_ZERO, VK_COMPARE_OP_EQUAL, 1u, 0xFFu, 1u};
-  desc.writeColor = true;
+  desc.colorWrite = VK_COLOR_COMPONENT_R_BIT;
   desc.depthTest = true;
+  desc.depthWrite = true;
   SCANSURF_ASSIGN_OR_RETURN(s->coverPipeline, gpu::createRasterPipeline(ctx, desc));
   return std::unique_ptr<ScanConverter>(new ScanConverter(std::move(s)));
 }
