@@ -61,6 +61,20 @@ def main():
             s["total"] / raw, sc, o["floor_copy"], sc / o["floor_copy"],
             o["peak_rss_mib"] / (o["label_volume_mib"] + o["mesh_mib"]), o["peak_rss_mib"], s["peak_rss_mib"],
             o["feature_triangles"], s["triangles"]))
+    out.append("""
+## Reading the table
+
+- *floor*: one `memcpy` of a buffer the size of the label volume, the least any route must spend.
+- On this machine the "GPU" stages (scan conversion, classification) run on lavapipe, Mesa's
+  CPU implementation of Vulkan, sharing the same 2 cores; on a real GPU they are expected to
+  shrink by orders of magnitude while the CPU stages stay.
+- scansurf's surfaces have more triangles than flying edges': the separating surface is
+  extracted over six tetrahedra per voxel cube (what makes it consistent between abutting
+  labels, with no ambiguous cases), and smoothing (150 constrained Jacobi sweeps, on the CPU)
+  costs in proportion to them.
+- The Slicer route rasterizes and surfaces each structure on its own, so it grows with the
+  number of structures; scansurf renders all structures of a slice at once and extracts every
+  surface in one pass, so it grows with the surface area.""")
     print("\n".join(out))
 
 

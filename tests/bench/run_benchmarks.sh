@@ -44,4 +44,17 @@ for set in "${sets[@]}"; do
 done
 
 "$py" tests/bench/make_table.py "$results" "$(git rev-parse --short HEAD)" > docs/benchmarks.md
+
+# Where the time goes: a perf profile of scansurf on pelvis (when perf works on this machine).
+if command -v perf > /dev/null && [ -f "$work/pelvis.json" ] && perf stat -e task-clock true > /dev/null 2>&1; then
+  perf record -g -F 499 -o "$work/perf.data" "$build/tests/scansurf_bench" run "$work/pelvis.json" 512 > /dev/null 2>&1 || true
+  {
+    echo
+    echo "## Profile: scansurf on pelvis (perf record, self time by symbol, top 10)"
+    echo
+    echo '```'
+    perf report -i "$work/perf.data" --no-children --sort dso,symbol --stdio 2>/dev/null | grep -E '^ +[0-9]' | head -10 | cut -c1-170 | sed 's/ *$//'
+    echo '```'
+  } >> docs/benchmarks.md
+fi
 cat docs/benchmarks.md
