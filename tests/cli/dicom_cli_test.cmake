@@ -2,19 +2,7 @@
 # see its SOURCES.md): listing, ROI selection, the reference CT grid, exit codes and messages.
 # Run by ctest with -DSCANSURF=<exe> -DSAMPLES=<dir> -DOUT=<dir>.
 
-function(run_scansurf expected_code)
-  execute_process(COMMAND ${SCANSURF} ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  set(last_output "${out}${err}" PARENT_SCOPE)
-  if(NOT code EQUAL expected_code)
-    message(FATAL_ERROR "scansurf ${ARGN}: exit ${code}, expected ${expected_code}\n${out}${err}")
-  endif()
-endfunction()
-
-function(expect_output pattern)
-  if(NOT last_output MATCHES "${pattern}")
-    message(FATAL_ERROR "output does not match '${pattern}':\n${last_output}")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake")
 
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
