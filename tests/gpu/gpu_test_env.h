@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -21,6 +22,18 @@ class GpuTest : public ::testing::Test {
  protected:
   void SetUp() override;
   void TearDown() override;
+};
+
+// A GpuTest whose suite shares one validated Engine, created before its first test.
+class EngineTest : public GpuTest {
+ protected:
+  static void SetUpTestSuite() {
+    auto engine = Engine::create(validatedEngineOptions());
+    ASSERT_TRUE(engine) << engine.error().message;
+    engine_ = std::make_unique<Engine>(std::move(engine).value());
+  }
+  static void TearDownTestSuite() { engine_.reset(); }
+  static inline std::unique_ptr<Engine> engine_;
 };
 
 }  // namespace scansurf::test

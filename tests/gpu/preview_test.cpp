@@ -13,16 +13,7 @@
 namespace scansurf::test {
 namespace {
 
-class PreviewTest : public GpuTest {
- protected:
-  static void SetUpTestSuite() {
-    auto engine = Engine::create(validatedEngineOptions());
-    ASSERT_TRUE(engine) << engine.error().message;
-    engine_ = std::make_unique<Engine>(std::move(engine).value());
-  }
-  static void TearDownTestSuite() { engine_.reset(); }
-  static inline std::unique_ptr<Engine> engine_;
-};
+using PreviewTest = EngineTest;
 
 // Pixels whose hue is close to `c` (shading scales the colour, so compare directions).
 std::size_t pixelsOfColor(const PreviewImage& img, Rgb c) {

@@ -11,14 +11,8 @@
 namespace scansurf::test {
 namespace {
 
-class SurfacesTest : public GpuTest {
+class SurfacesTest : public EngineTest {
  protected:
-  static void SetUpTestSuite() {
-    auto engine = Engine::create(validatedEngineOptions());
-    ASSERT_TRUE(engine) << engine.error().message;
-    engine_ = std::make_unique<Engine>(std::move(engine).value());
-  }
-  static void TearDownTestSuite() { engine_.reset(); }
 
   static BuildResult build(const ContourSet& set, double voxelSize,
                            SurfaceConvention convention = SurfaceConvention::Enclosing) {
@@ -46,7 +40,6 @@ class SurfacesTest : public GpuTest {
   static std::set<std::uint32_t> vertices(const std::vector<std::uint32_t>& triangles) {
     return {triangles.begin(), triangles.end()};
   }
-  static inline std::unique_ptr<Engine> engine_;
 };
 
 TEST_F(SurfacesTest, SphereIsClosedGenusZeroWithinThreePercentOfAnalyticVolume) {
