@@ -25,6 +25,19 @@ endif()
 # The partition convention.
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/partition" --grid 128 96 --convention partition -q)
 
+# Smoothing options: --no-smooth really writes other (raw) surfaces; every option is accepted;
+# an out-of-range strength is a usage error.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/smoothed" --grid 96 64 -q)
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/raw" --grid 96 64 --no-smooth -q)
+file(SHA256 "${OUT}/smoothed/BODY.ply" smoothed_hash)
+file(SHA256 "${OUT}/raw/BODY.ply" raw_hash)
+if(smoothed_hash STREQUAL raw_hash)
+  message(FATAL_ERROR "--no-smooth wrote the same surface as the default smoothing")
+endif()
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/options" --grid 96 64 -q --smooth-iterations 5
+             --smooth-strength 0.5 --no-contour-fit --no-junction-smoothing)
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength 1.5)
+
 # Bad input: exit 3, naming the file, feature, slice and contour; nothing written, and an
 # existing output left as it was.
 file(MAKE_DIRECTORY "${OUT}/bad")
