@@ -202,6 +202,12 @@ int main(int argc, char** argv) {
   timings.insert(timings.end(), built->timings.begin(), built->timings.end());
   t0 = Clock::now();
 
+  // Each feature's statistics, once, for the report and the summary (when either is wanted).
+  std::vector<MeshStats> stats;
+  if (!quiet || !report.empty())
+    for (const FeatureSurface& f : built->surfaces.features)
+      stats.push_back(computeMeshStats(built->surfaces.mesh.positions, f.triangles));
+
   cli::Staging staging;
   auto perFeature = cli::writeSurfaceOutputs(staging, plan, *contours, built->surfaces, built->volume);
   if (!perFeature) return fail(perFeature.error());
@@ -249,8 +255,7 @@ int main(int argc, char** argv) {
     r.meshTriangles = built->surfaces.mesh.triangleCount();
     const std::vector<Rgb> colors = featureColors(*contours);
     for (std::size_t f = 0; f < contours->features.size(); ++f) {
-      ReportFeature rf{contours->features[f].name, labelOfFeature(static_cast<int>(f)), colors[f],
-                       computeMeshStats(built->surfaces.mesh.positions, built->surfaces.features[f].triangles), {}};
+      ReportFeature rf{contours->features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}};
       for (const fs::path& p : perFeature->files[f]) rf.files.push_back(p.string());
       r.features.push_back(std::move(rf));
     }
@@ -262,12 +267,13 @@ int main(int argc, char** argv) {
     if (!staged) return fail(staged.error());
     if (auto ok = cli::named(writeReportJson(*staged, r), *staged, report); !ok) return fail(ok.error());
   }
+  // With --validation, a validation message means the device's results are suspect: write nothing.
+  if (engine->validationMessageCount() > 0)
+    return fail({Errc::Vulkan, std::to_string(engine->validationMessageCount()) + " Vulkan validation message(s); see above"});
   auto written = staging.commit();
   if (!written) return fail(written.error());
   progress.finish(0);
 
-  if (engine->validationMessageCount() > 0)
-    return fail({Errc::Vulkan, std::to_string(engine->validationMessageCount()) + " Vulkan validation message(s); see above"});
   for (const std::string& w : built->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
   if (quiet) return 0;
 
@@ -282,7 +288,7 @@ int main(int argc, char** argv) {
   std::printf("  %-20s %6s %10s %14s %10s %6s %s\n", "feature", "label", "triangles", ("volume " + set.units + "3").c_str(),
               "components", "genus", "closed");
   for (std::size_t f = 0; f < set.features.size(); ++f) {
-    const MeshStats s = computeMeshStats(built->surfaces.mesh.positions, built->surfaces.features[f].triangles);
+    const MeshStats& s = stats[f];
     std::printf("  %-20s %6d %10zu %14.1f %10d %6d %s\n", set.features[f].name.c_str(), labelOfFeature(static_cast<int>(f)),
                 s.triangles, s.volume, s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO");
   }
