@@ -138,17 +138,12 @@ Result<SurfaceOutputs> writeSurfaceOutputs(Staging& staging, const OutputPlan& p
   const bool wantsGlb = !plan.glbFile.empty() || std::find(plan.formats.begin(), plan.formats.end(), MeshFormat::Glb) != plan.formats.end();
   const bool wantsPly = !plan.dir.empty() && std::find(plan.formats.begin(), plan.formats.end(), MeshFormat::Ply) != plan.formats.end();
   std::vector<CompactMesh> compact;  // kept for the GLB scene
+  SurfaceCompactor compactor(surfaces.mesh);
   std::vector<std::string> used{"multilabel", plan.sceneName};
   for (std::size_t f = 0; f < featureCount; ++f) {
     const FeatureSurface& surface = surfaces.features[f];
     const std::string stem = fileStem(contours.features[f].name, used);
-    const bool needsCompact = wantsGlb || std::any_of(plan.formats.begin(), plan.formats.end(), [](MeshFormat m) {
-      return m != MeshFormat::Ply && m != MeshFormat::Glb;
-    });
-    CompactMesh mesh;
-    if (needsCompact) {
-      SCANSURF_ASSIGN_OR_RETURN(mesh, compactSurface(surfaces.mesh, surface));
-    }
+    SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surface));
     if (!plan.dir.empty()) {
       for (MeshFormat format : plan.formats) {
         if (format == MeshFormat::Glb) continue;
@@ -160,7 +155,7 @@ Result<SurfaceOutputs> writeSurfaceOutputs(Staging& staging, const OutputPlan& p
         const fs::path target = plan.dir / (stem + extensionOf(format));
         SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, staging.path(target));
         switch (format) {
-          case MeshFormat::Ply: SCANSURF_TRY(named(writeSurfacePly(staged, surfaces.mesh, surface), staged, target)); break;
+          case MeshFormat::Ply: SCANSURF_TRY(named(writeSurfacePly(staged, mesh, static_cast<int>(f)), staged, target)); break;
           case MeshFormat::Drc: SCANSURF_TRY(named(writeDrc(staged, mesh, draco), staged, target)); break;
           case MeshFormat::Obj: SCANSURF_TRY(named(writeObj(staged, mesh, contours.features[f].name), staged, target)); break;
           case MeshFormat::Stl: SCANSURF_TRY(named(writeStl(staged, mesh), staged, target)); break;

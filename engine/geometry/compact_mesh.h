@@ -19,10 +19,23 @@ struct CompactMesh {
   std::size_t triangleCount() const { return triangles.size() / 3; }
 };
 
-// Extracts the surface's vertices, keeping their order in the shared mesh. Costs
-// O(k log k) in the surface's own size k, not in the shared mesh's, so writing thousands of
-// small features stays linear overall. Errors: Errc::Internal when the surface indexes a
-// vertex beyond the mesh.
+// Compacts the surfaces of one shared mesh, one after another. Holds one index per mesh
+// vertex, set up once, so each surface then costs O(k + u log u) for k indices and u distinct
+// vertices: compacting thousands of small features stays linear overall.
+class SurfaceCompactor {
+ public:
+  explicit SurfaceCompactor(const MultiLabelMesh& mesh);
+  // The surface's vertices in their shared-mesh order. Errors: Errc::Internal when the
+  // surface indexes a vertex beyond the mesh.
+  Result<CompactMesh> compact(const FeatureSurface& surface);
+
+ private:
+  const MultiLabelMesh& mesh_;
+  std::vector<std::uint32_t> remap_;  // kUnused except while a surface is being compacted
+  std::vector<std::uint32_t> used_;
+};
+
+// One surface on its own (O(mesh vertices) set-up; to compact many, reuse a SurfaceCompactor).
 Result<CompactMesh> compactSurface(const MultiLabelMesh& mesh, const FeatureSurface& surface);
 
 }  // namespace scansurf

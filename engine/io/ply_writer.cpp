@@ -59,6 +59,10 @@ const char* kUnitsComment = "comment units: the input contours' units (x, y in-p
 Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh,
                              const FeatureSurface& surface) {
   SCANSURF_ASSIGN_OR_RETURN(const CompactMesh compact, compactSurface(mesh, surface));
+  return writeSurfacePly(path, compact, surface.feature);
+}
+
+Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMesh& compact, int feature) {
   const std::size_t used = compact.vertexCount();
   SCANSURF_TRY(checkIndexRange(path, used));
 
@@ -66,11 +70,11 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabel
   LittleEndianWriter out(file);
   const std::string header =
       "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
-      std::to_string(surface.feature) + " (label " + std::to_string(surface.feature + 1) +
+      std::to_string(feature) + " (label " + std::to_string(feature + 1) +
       "), faces wound counter-clockwise seen from outside\n" + kUnitsComment + "element vertex " +
       std::to_string(used) +
       "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-      std::to_string(surface.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+      std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   out.bytes(header.data(), header.size());
   for (float x : compact.positions) {
     out.value(x);

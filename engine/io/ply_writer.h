@@ -3,6 +3,7 @@
 
 #include <filesystem>
 
+#include "geometry/compact_mesh.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"
 
@@ -13,6 +14,9 @@ namespace scansurf {
 // The file is replaced atomically. Errors: Errc::Io naming the path.
 Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh,
                              const FeatureSurface& surface);
+// The same from a surface already compacted (geometry/compact_mesh.h); `feature` names it in
+// the header.
+Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMesh& surface, int feature);
 
 // Writes the whole multi-label mesh: every vertex, and each face with `ushort label_inside,
 // ushort label_outside` (the labels a < b; the face's normal points from a's region into b's;

@@ -120,11 +120,16 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth) {
   const fs::path outDir = fs::temp_directory_path() / ("scansurf-bench-" + std::to_string(::getpid()));
   fs::create_directories(outDir);
   t0 = Clock::now();
-  for (std::size_t f = 0; f < best.surfaces.features.size(); ++f)
-    if (auto ok = writeSurfacePly(outDir / ("f" + std::to_string(f) + ".ply"), best.surfaces.mesh, best.surfaces.features[f]); !ok) {
+  SurfaceCompactor compactor(best.surfaces.mesh);
+  for (std::size_t f = 0; f < best.surfaces.features.size(); ++f) {
+    auto compact = compactor.compact(best.surfaces.features[f]);
+    auto ok = compact ? writeSurfacePly(outDir / ("f" + std::to_string(f) + ".ply"), *compact, static_cast<int>(f))
+                      : Result<void>(std::move(compact).takeError());
+    if (!ok) {
       std::fprintf(stderr, "%s\n", ok.error().message.c_str());
       return 4;
     }
+  }
   const double write = seconds(t0, Clock::now());
   fs::remove_all(outDir);
 
