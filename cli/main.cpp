@@ -17,6 +17,7 @@
 #include "dicom_input.h"
 #include "outputs.h"
 #include "progress.h"
+#include "summary.h"
 #include "io/report_json.h"
 #include "io/png_writer.h"
 #include "scansurf/palette.h"
@@ -34,8 +35,6 @@ int fail(const Error& error) {
   std::fprintf(stderr, "scansurf: error: %s\n", error.message.c_str());
   return exitCode(error.code);
 }
-
-const char* conventionName(SurfaceConvention c) { return c == SurfaceConvention::Enclosing ? "enclosing" : "partition"; }
 
 }  // namespace
 
@@ -233,36 +232,24 @@ int main(int argc, char** argv) {
     lap("preview");
     progress.done("preview", timings.back().seconds);
   }
+  cli::RunFacts facts{input, &*contours, &*built, &info, options.convention, std::move(stats), timings};
   if (!report.empty()) {
-    RunReport r;
-    r.input = input;
-    r.units = contours->units;
-    r.parameters = {{"convention", conventionName(options.convention)},
-                    {"voxel_size", voxelSize},
-                    {"grid_nx", static_cast<double>(options.grid.nx)},
-                    {"grid_ny", static_cast<double>(options.grid.ny)},
-                    {"threads", static_cast<double>(threads)},
-                    {"draco", !noDraco},
-                    {"draco_bits", static_cast<double>(dracoBits)},  // 0: from draco_max_error
-                    {"draco_max_error", dracoBits ? 0.0 : defaultQuantizationError(built->volume.grid)},
-                    {"draco_level", static_cast<double>(dracoLevel)},
-                    {"validation", validation}};
-    r.deviceName = info.name, r.deviceType = info.type, r.driver = info.driver;
-    r.grid = built->volume.grid;
-    for (int f : built->nesting.order) r.nestingOrder.push_back(contours->features[static_cast<std::size_t>(f)].name);
-    r.userOrder = built->nesting.userOrder;
-    r.meshVertices = built->surfaces.mesh.vertexCount();
-    r.meshTriangles = built->surfaces.mesh.triangleCount();
-    const std::vector<Rgb> colors = featureColors(*contours);
-    for (std::size_t f = 0; f < contours->features.size(); ++f) {
-      ReportFeature rf{contours->features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}};
-      for (const fs::path& p : perFeature->files[f]) rf.files.push_back(p.string());
-      r.features.push_back(std::move(rf));
-    }
-    for (const StageTime& t : timings) r.timings.emplace_back(t.stage, t.seconds);
-    for (const fs::path& p : staging.targets()) r.outputs.push_back(p.string());
-    r.outputs.push_back(report);
-    r.warnings = built->warnings;
+    std::vector<fs::path> outputs = staging.targets();
+    outputs.push_back(report);
+    const RunReport r = cli::makeRunReport(
+        facts,
+        {{"convention", cli::conventionName(options.convention)},
+         {"voxel_size", voxelSize},
+         {"grid_nx", static_cast<double>(options.grid.nx)},
+         {"grid_ny", static_cast<double>(options.grid.ny)},
+         {"threads", static_cast<double>(threads)},
+         {"smoothing", options.smoothing.enabled},
+         {"draco", !noDraco},
+         {"draco_bits", static_cast<double>(dracoBits)},  // 0: from draco_max_error
+         {"draco_max_error", dracoBits ? 0.0 : defaultQuantizationError(built->volume.grid)},
+         {"draco_level", static_cast<double>(dracoLevel)},
+         {"validation", validation}},
+        perFeature->files, outputs);
     auto staged = staging.path(report);
     if (!staged) return fail(staged.error());
     if (auto ok = cli::named(writeReportJson(*staged, r), *staged, report); !ok) return fail(ok.error());
@@ -277,32 +264,6 @@ int main(int argc, char** argv) {
   for (const std::string& w : built->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
   if (quiet) return 0;
 
-  const Grid& g = built->volume.grid;
-  const ContourSet& set = *contours;
-  std::printf("grid: %d x %d x %d voxels (%g x %g %s pixels, %d slices, 1-voxel background border)\n", g.nx, g.ny, g.nz,
-              g.spacingX, g.spacingY, set.units.c_str(), g.nz - 2);
-  std::printf("nesting order (%s, innermost first):", built->nesting.userOrder ? "from input" : "computed");
-  for (int f : built->nesting.order) std::printf(" %s", set.features[static_cast<std::size_t>(f)].name.c_str());
-  std::printf("\nsurfaces (%s convention): %zu vertices, %zu triangles in the multi-label mesh\n", conventionName(options.convention),
-              built->surfaces.mesh.vertexCount(), built->surfaces.mesh.triangleCount());
-  std::printf("  %-20s %6s %10s %14s %10s %6s %s\n", "feature", "label", "triangles", ("volume " + set.units + "3").c_str(),
-              "components", "genus", "closed");
-  for (std::size_t f = 0; f < set.features.size(); ++f) {
-    const MeshStats& s = stats[f];
-    std::printf("  %-20s %6d %10zu %14.1f %10d %6d %s\n", set.features[f].name.c_str(), labelOfFeature(static_cast<int>(f)),
-                s.triangles, s.volume, s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO");
-  }
-  double total = 0;
-  std::printf("time:");
-  for (const StageTime& t : timings) {
-    std::printf(" %s %.3f s;", t.stage.c_str(), t.seconds);
-    total += t.seconds;
-  }
-  std::printf(" total %.3f s\nwrote %zu files", total, written->size());
-  if (written->size() <= 4)  // e.g. -o x.glb --preview x.png: name them
-    for (const fs::path& p : *written) std::printf(" %s", p.c_str());
-  else
-    std::printf(" to %s", outDir.c_str());
-  std::printf("\n");
+  cli::printSummary(facts, *written, outDir);
   return 0;
 }
