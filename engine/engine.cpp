@@ -5,6 +5,7 @@
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
 #include "geometry/feature_surfaces.h"
+#include "geometry/validate.h"
 #include "geometry/smoothing.h"
 #include "gpu/context.h"
 #include "passes/classification.h"
@@ -117,6 +118,12 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
   out.surfaces.features = extractFeatureSurfaces(out.surfaces.mesh, static_cast<int>(contours.features.size()), out.nesting,
                                                  options.convention);
   clock.lap("feature surfaces");
+  // A feature without a surface deserves a word: it has no slices, is too small for the grid,
+  // or (partition convention) features of higher priority cover all of it.
+  for (std::size_t f = 0; f < out.surfaces.features.size(); ++f)
+    if (out.surfaces.features[f].triangles.empty())
+      out.warnings.push_back(describeFeature(contours, static_cast<int>(f)) +
+                             ": no surface (no slices, smaller than a pixel, or covered by features of higher priority)");
   return out;
 }
 

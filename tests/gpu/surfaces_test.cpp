@@ -124,6 +124,27 @@ TEST_F(SurfacesTest, AbuttingFeaturesShareEveryInterfaceVertex) {
   EXPECT_NEAR(sum, unionStats.volume, 1e-9 * unionStats.volume);
 }
 
+// A feature left without a surface is reported by name, never dropped in silence.
+TEST_F(SurfacesTest, FeaturesWithoutASurfaceAreReported) {
+  ContourSet set = sphereContours(5, 1.0);
+  set.features.push_back(set.features[0]);  // the same shape again: the first one wins it
+  set.features[1].name = "twin";
+  set.features.push_back({"empty", {}, {}});  // no slices at all
+  const BuildResult partition = build(set, 0.5, SurfaceConvention::Partition);
+  ASSERT_EQ(partition.surfaces.features.size(), 3u);
+  EXPECT_GT(partition.surfaces.features[0].triangleCount(), 0u);
+  EXPECT_EQ(partition.surfaces.features[1].triangleCount(), 0u);
+  EXPECT_EQ(partition.surfaces.features[2].triangleCount(), 0u);
+  auto mentions = [&](const std::string& name) {
+    for (const std::string& w : partition.warnings)
+      if (w.find("\"" + name + "\"") != std::string::npos && w.find("no surface") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(mentions("twin"));
+  EXPECT_TRUE(mentions("empty"));
+  EXPECT_FALSE(mentions("sphere"));
+}
+
 TEST_F(SurfacesTest, BundledPhantomBuildsClosedSurfaces) {
   auto set = readContoursJson(SCANSURF_EXAMPLES "/phantom.json");
   ASSERT_TRUE(set) << set.error().message;
