@@ -35,11 +35,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <cstdint>
 #include <vector>
 
 #include "core/parallel.h"
+#include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
 
 namespace scansurf {
@@ -53,6 +53,8 @@ constexpr int kNormalPeriod = 4;     // sweeps between vertex normal updates
 enum class Role : std::uint8_t { Sheet, Curve, Fixed, Fitted };
 
 using Vec3 = std::array<double, 3>;
+// x, y, z and an unused lane: one SIMD register (GCC and Clang vector extension).
+using Float4 = float __attribute__((vector_size(16)));
 
 Vec3 cornerPosition(const Grid& grid, const int c[3]) {
   return {grid.originX + grid.spacingX * c[0], grid.originY + grid.spacingY * c[1],
@@ -100,21 +102,32 @@ Vec3 projectIntoCarrier(const Grid& grid, const Carrier& carrier, const Vec3& p)
   return out;
 }
 
+// Per vertex, one byte: its Role in the low bits, and for a sheet vertex whether it slides
+// along its carrier edge (kOnEdge) and whether its link is not one cycle (kPinched).
+constexpr std::uint8_t kRoleMask = 3, kOnEdge = 4, kPinched = 8;
+constexpr std::uint8_t kSlides = 16;             // slides along its normal until the next refresh
+constexpr std::uint8_t kStepX = 32, kStepY = 64;  // its carrier edge runs along x, along y
+Role roleOf(std::uint8_t kind) { return static_cast<Role>(kind & kRoleMask); }
+
 struct Adjacency {
-  std::vector<Role> role;
+  std::vector<std::uint8_t> kind;    // Role | kOnEdge | kPinched
   std::vector<std::uint32_t> start;  // size V + 1, into neighbours
+  // A sheet vertex's neighbours in the order of its link cycle (each triangle (v, a, b) of v,
+  // counter-clockwise, is a consecutive a, b, the last neighbour followed by the first), so
+  // its area-weighted normal is the sum of cross(a - v, b - v) over consecutive pairs; a curve
+  // vertex's two curve neighbours.
   std::vector<std::uint32_t> neighbours;
   std::vector<Label> labels;  // 2 per vertex: the pair of its first triangle
-  std::vector<std::uint32_t> triStart, triList;  // incident triangles per vertex
+  // Sheet vertices whose link is not one cycle (kPinched; rare): {v, a, b} per triangle
+  // (v, a, b), sorted by v, for their normals.
+  std::vector<std::array<std::uint32_t, 3>> pinchedLinks;
 };
 
 Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads) {
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
   Adjacency adj;
-  std::vector<std::uint32_t>& triStart = adj.triStart;
-  std::vector<std::uint32_t>& triList = adj.triList;
-  triStart.assign(vertexCount + 1, 0);
-  triList.resize(3 * triangleCount);
+  // Incident triangles per vertex, only while building.
+  std::vector<std::uint32_t> triStart(vertexCount + 1, 0), triList(3 * triangleCount);
   for (std::uint32_t v : mesh.triangles) ++triStart[v + 1];
   for (std::size_t v = 0; v < vertexCount; ++v) triStart[v + 1] += triStart[v];
   {
@@ -122,14 +135,20 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
     for (std::size_t t = 0; t < triangleCount; ++t)
       for (int c = 0; c < 3; ++c) triList[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
   }
-  adj.role.assign(vertexCount, Role::Fixed);
+  adj.kind.assign(vertexCount, static_cast<std::uint8_t>(Role::Fixed));
   adj.labels.assign(2 * vertexCount, 0);
-  std::vector<std::uint32_t> count(vertexCount, 0);
+  adj.start.assign(vertexCount + 1, 0);  // counts first (at v + 1), then offsets
 
-  // The neighbours of v (sheet or curve), written to out when not null; returns their count.
-  const auto classify = [&](std::size_t v, std::vector<std::pair<std::uint32_t, std::uint32_t>>& scratch,
-                            std::uint32_t* out) -> std::uint32_t {
-    scratch.clear();
+  struct Scratch {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (neighbour, label pair)
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> link;   // (a, b) of each triangle (v, a, b)
+    std::vector<std::array<std::uint32_t, 3>> pinched;
+  };
+  // The neighbours of v (sheet or curve), written to out (room for capacity) when not null;
+  // returns their count.
+  const auto classify = [&](std::size_t v, Scratch& scratch, std::uint32_t* out, std::uint32_t capacity) -> std::uint32_t {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges = scratch.edges;
+    edges.clear();
     bool onePair = true;
     std::uint32_t firstPair = 0;
     for (std::uint32_t i = triStart[v]; i < triStart[v + 1]; ++i) {
@@ -138,40 +157,70 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
       if (i == triStart[v]) firstPair = pair;
       onePair &= pair == firstPair;
       for (int c = 0; c < 3; ++c)
-        if (mesh.triangles[3 * t + c] != v) scratch.push_back({mesh.triangles[3 * t + c], pair});
+        if (mesh.triangles[3 * t + c] != v) edges.push_back({mesh.triangles[3 * t + c], pair});
     }
-    std::sort(scratch.begin(), scratch.end());
+    std::sort(edges.begin(), edges.end());
     std::uint32_t all = 0, curve = 0;
     std::uint32_t curveNeighbours[2] = {0, 0};
-    for (std::size_t i = 0; i < scratch.size();) {
+    for (std::size_t i = 0; i < edges.size();) {
       std::size_t e = i;
-      while (e < scratch.size() && scratch[e].first == scratch[i].first) ++e;
-      const bool junctionEdge = e - i != 2 || scratch[i].second != scratch[e - 1].second;
-      if (out && onePair && all < count[v]) out[all] = scratch[i].first;
+      while (e < edges.size() && edges[e].first == edges[i].first) ++e;
+      const bool junctionEdge = e - i != 2 || edges[i].second != edges[e - 1].second;
+      if (out && onePair && all < capacity) out[all] = edges[i].first;
       ++all;
       if (junctionEdge) {
-        if (curve < 2) curveNeighbours[curve] = scratch[i].first;
+        if (curve < 2) curveNeighbours[curve] = edges[i].first;
         ++curve;
       }
       i = e;
     }
     if (onePair && curve == 0) {
-      adj.role[v] = Role::Sheet;
+      adj.kind[v] = static_cast<std::uint8_t>(Role::Sheet);
+      if (out) {
+        // out holds the neighbours sorted; reorder them along the link cycle from the least.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
+        link.clear();
+        for (std::uint32_t i = triStart[v]; i < triStart[v + 1]; ++i) {
+          const std::uint32_t* t = &mesh.triangles[3 * triList[i]];
+          const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+          link.push_back({t[(c + 1) % 3], t[(c + 2) % 3]});
+        }
+        std::sort(link.begin(), link.end());
+        bool cycle = link.size() == all;
+        for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == out[i];  // each neighbour once a start
+        std::uint32_t steps = 0;
+        if (cycle) {
+          std::uint32_t a = out[0];
+          do {
+            edges[steps].first = a;  // reuse as the ordered list
+            const std::size_t i = static_cast<std::size_t>(std::lower_bound(out, out + all, a) - out);
+            a = link[i].second;
+            ++steps;
+          } while (a != out[0] && steps < all && std::binary_search(out, out + all, a));
+          cycle = a == out[0] && steps == all;
+        }
+        if (cycle) {
+          for (std::uint32_t i = 0; i < all; ++i) out[i] = edges[i].first;
+        } else {
+          adj.kind[v] |= kPinched;
+          for (const auto& [a, b] : link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
+        }
+      }
       return all;
     }
     if (junctions && curve == 2) {
-      adj.role[v] = Role::Curve;
+      adj.kind[v] = static_cast<std::uint8_t>(Role::Curve);
       if (out) out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
       return 2;
     }
-    adj.role[v] = Role::Fixed;
+    adj.kind[v] = static_cast<std::uint8_t>(Role::Fixed);
     return 0;
   };
 
   parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> scratch;
+    Scratch scratch;
     for (std::size_t v = begin; v < end; ++v) {
-      count[v] = classify(v, scratch, nullptr);
+      adj.start[v + 1] = classify(v, scratch, nullptr, 0);
       if (triStart[v] < triStart[v + 1]) {
         const std::uint32_t t = triList[triStart[v]];
         adj.labels[2 * v] = mesh.labels[2 * t];
@@ -179,46 +228,31 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
       }
     }
   });
-  adj.start.assign(vertexCount + 1, 0);
-  for (std::size_t v = 0; v < vertexCount; ++v) adj.start[v + 1] = adj.start[v] + count[v];
+  for (std::size_t v = 0; v < vertexCount; ++v) adj.start[v + 1] += adj.start[v];
   adj.neighbours.resize(adj.start.back());
-  parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> scratch;
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> pinched(static_cast<std::size_t>(chunkCount(vertexCount, threads)));
+  parallelChunks(vertexCount, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    Scratch scratch;
     for (std::size_t v = begin; v < end; ++v)
-      if (count[v] > 0) classify(v, scratch, adj.neighbours.data() + adj.start[v]);
+      if (adj.start[v] < adj.start[v + 1])
+        classify(v, scratch, adj.neighbours.data() + adj.start[v], adj.start[v + 1] - adj.start[v]);
+    pinched[static_cast<std::size_t>(chunk)] = std::move(scratch.pinched);
   });
+  for (const auto& p : pinched) adj.pinchedLinks.insert(adj.pinchedLinks.end(), p.begin(), p.end());
   return adj;
 }
 
-// The area-weighted normal of v's triangles (all of one label pair for a sheet vertex).
-Vec3 vertexNormal(const MultiLabelMesh& mesh, const Adjacency& adj, const std::vector<double>& p, std::size_t v) {
-  Vec3 n{0, 0, 0};
-  for (std::uint32_t i = adj.triStart[v]; i < adj.triStart[v + 1]; ++i) {
-    const std::uint32_t* t = &mesh.triangles[3 * adj.triList[i]];
-    const double* a = &p[3 * t[0]];
-    const double* b = &p[3 * t[1]];
-    const double* c = &p[3 * t[2]];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    n[0] += u[1] * w[2] - u[2] * w[1];
-    n[1] += u[2] * w[0] - u[0] * w[2];
-    n[2] += u[0] * w[1] - u[1] * w[0];
+// The ends of the grid edge whose midpoint is the vertex with this key (as carrierOfKey's
+// corners, for a key with residues 0 and 6 only).
+void edgeOfKey(const Grid& grid, std::uint64_t key, Vec3& a, Vec3& b) {
+  const std::uint64_t c[3] = {key & kKeyMask, (key >> kKeyBits) & kKeyMask, (key >> (2 * kKeyBits)) & kKeyMask};
+  int lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = static_cast<int>(c[k] / 12);
+    hi[k] = lo[k] + (c[k] % 12 != 0 ? 1 : 0);
   }
-  return n;
-}
-
-// Where the plane through target with normal n cuts the carrier edge (weights clamped to
-// kMargin): the vertex follows the surface's normal motion and ignores tangential drift,
-// which a nearest-point projection onto a slanted edge would turn into normal error. False
-// when the edge runs nearly inside that plane.
-bool slideAlongNormal(const Vec3& a, const Vec3& b, const Vec3& target, const Vec3& n, Vec3& out) {
-  const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double en = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
-  const double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2], nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-  if (en * en < 0.01 * ee * nn) return false;
-  const double t = std::clamp(((target[0] - a[0]) * n[0] + (target[1] - a[1]) * n[1] + (target[2] - a[2]) * n[2]) / en,
-                              kMargin, 1 - kMargin);
-  for (int k = 0; k < 3; ++k) out[k] = a[k] + t * e[k];
-  return true;
+  a = cornerPosition(grid, lo);
+  b = cornerPosition(grid, hi);
 }
 
 }  // namespace
@@ -230,8 +264,7 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return report;
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
 
-  std::vector<double> cur(3 * vertexCount);
-  for (std::size_t i = 0; i < cur.size(); ++i) cur[i] = mesh.positions[i];
+  // Fitted vertices go to their contour crossing and stay.
   if (options.contourFit && contours) {
     const std::vector<double> t = fitContourCrossings(grid, *contours, mesh.keys, adj.labels, sliceTolerance, threads);
     for (std::size_t v = 0; v < vertexCount; ++v) {
@@ -239,14 +272,21 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
       const Carrier c = carrierOfKey(mesh.keys[v]);
       const double tc = std::clamp(t[v], kMargin, 1 - kMargin);
       const Vec3 a = cornerPosition(grid, c.corners[0]), b = cornerPosition(grid, c.corners[1]);
-      for (int k = 0; k < 3; ++k) cur[3 * v + k] = a[k] + tc * (b[k] - a[k]);
-      adj.role[v] = Role::Fitted;
+      for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
+      adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
     }
   }
+  std::vector<Label>().swap(adj.labels);
   for (std::size_t v = 0; v < vertexCount; ++v) {
-    if (adj.role[v] != Role::Fixed && adj.role[v] != Role::Fitted && carrierOfKey(mesh.keys[v]).count < 2)
-      adj.role[v] = Role::Fixed;
-    switch (adj.role[v]) {
+    const Role role = roleOf(adj.kind[v]);
+    if (role == Role::Sheet || role == Role::Curve) {
+      const int count = carrierOfKey(mesh.keys[v]).count;
+      if (count < 2)
+        adj.kind[v] = static_cast<std::uint8_t>(Role::Fixed);
+      else if (role == Role::Sheet && count == 2)
+        adj.kind[v] |= kOnEdge;
+    }
+    switch (roleOf(adj.kind[v])) {
       case Role::Sheet: ++report.sheet; break;
       case Role::Curve: ++report.curve; break;
       case Role::Fixed: ++report.fixed; break;
@@ -254,77 +294,156 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
     }
   }
 
-  // Umbrella operator U(v) = mean of neighbours - v; zero where a vertex has none.
-  std::vector<double> umbrella(3 * vertexCount, 0.0), next(cur), normals(3 * vertexCount, 0.0);
-  // The carrier edge's ends of each sheet vertex (NaN otherwise), decoded once.
-  std::vector<std::array<Vec3, 2>> edges(vertexCount);
+  // Working copies in float, one 16-byte lane group per vertex (x, y, z, t) so that a gather
+  // and a sum are one vector operation each. Every update is computed from small differences
+  // (neighbour - vertex, position along the carrier edge), so float loses nothing beyond the
+  // final rounding to float that the mesh stores anyway.
+  std::vector<Float4> cur(vertexCount);
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    cur[v] = Float4{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2], 0.0f};
+  std::vector<float>().swap(mesh.positions);  // rebuilt at the end; its memory serves the sweeps
+  // A sheet vertex on its carrier edge a -> b is a + t (b - a), t in its position's last lane:
+  // edgeStart holds a and (b - a).z, kStepX and kStepY say whether b - a has x, y components
+  // (one grid spacing), and slope, while the vertex slides along the normal n, holds
+  // n / ((b - a) . n) (below). Zero for other vertices.
+  std::vector<Float4> edgeStart(vertexCount, Float4{0, 0, 0, 0});
+  std::vector<Float4> slope(vertexCount, Float4{0, 0, 0, 0});
+  const float stepX = static_cast<float>(grid.spacingX), stepY = static_cast<float>(grid.spacingY);
+  const auto edgeVectorOf = [&](std::uint8_t kind, const Float4& a) {
+    return Float4{(kind & kStepX) ? stepX : 0.0f, (kind & kStepY) ? stepY : 0.0f, a[3], 0.0f};
+  };
+  std::uint8_t* kinds = adj.kind.data();
+  const std::uint32_t* start = adj.start.data();
+  const std::uint32_t* neighbours = adj.neighbours.data();
+  const std::uint64_t* keys = mesh.keys.data();
   parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      const Carrier c = carrierOfKey(mesh.keys[v]);
-      if (adj.role[v] == Role::Sheet && c.count == 2)
-        edges[v] = {cornerPosition(grid, c.corners[0]), cornerPosition(grid, c.corners[1])};
-      else
-        edges[v][0][0] = std::numeric_limits<double>::quiet_NaN();
-    }
-  });
-  const auto computeUmbrella = [&](const std::vector<double>& p, std::vector<double>& out) {
-    parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) {
-        const std::uint32_t s = adj.start[v], e = adj.start[v + 1];
-        if (s == e) {
-          out[3 * v] = out[3 * v + 1] = out[3 * v + 2] = 0;
-          continue;
-        }
-        double sum[3] = {0, 0, 0};
-        for (std::uint32_t i = s; i < e; ++i)
-          for (int k = 0; k < 3; ++k) sum[k] += p[3 * adj.neighbours[i] + k];
-        for (int k = 0; k < 3; ++k) out[3 * v + k] = sum[k] / (e - s) - p[3 * v + k];
+    for (std::size_t v = begin; v < end; ++v)
+      if (kinds[v] & kOnEdge) {
+        Vec3 a, b;
+        edgeOfKey(grid, keys[v], a, b);
+        double de = 0, ee = 0;
+        for (int k = 0; k < 3; ++k) de += (cur[v][k] - a[k]) * (b[k] - a[k]), ee += (b[k] - a[k]) * (b[k] - a[k]);
+        edgeStart[v] = Float4{static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(b[2] - a[2])};
+        cur[v][3] = static_cast<float>(de / ee);
+        if (b[0] != a[0]) kinds[v] |= kStepX;
+        if (b[1] != a[1]) kinds[v] |= kStepY;
       }
-    });
+  });
+  std::vector<Float4> next(cur);  // fixed and fitted vertices hold the same value in both buffers
+  // Umbrella operator U(v) = mean of neighbours - v (last lane unused); zero where a vertex has
+  // none.
+  std::vector<Float4> umbrella(vertexCount, Float4{0, 0, 0, 0});
+  // The area-weighted normal of sheet vertex v: the sum of cross(a - v, b - v) over its
+  // triangles (v, a, b), from its link cycle or, for a pinched vertex, its triangles.
+  const auto normalOf = [&](const Float4* p, std::size_t v) {
+    Vec3 n{0, 0, 0};
+    const auto add = [&](std::uint32_t a, std::uint32_t b) {
+      const Float4 da = p[a] - p[v], db = p[b] - p[v];
+      const double u[3] = {da[0], da[1], da[2]}, w[3] = {db[0], db[1], db[2]};
+      n[0] += u[1] * w[2] - u[2] * w[1];
+      n[1] += u[2] * w[0] - u[0] * w[2];
+      n[2] += u[0] * w[1] - u[1] * w[0];
+    };
+    if (kinds[v] & kPinched) {
+      auto l = std::lower_bound(adj.pinchedLinks.begin(), adj.pinchedLinks.end(), static_cast<std::uint32_t>(v),
+                                [](const std::array<std::uint32_t, 3>& x, std::uint32_t y) { return x[0] < y; });
+      for (; l != adj.pinchedLinks.end() && (*l)[0] == v; ++l) add((*l)[1], (*l)[2]);
+    } else {
+      const std::uint32_t s = start[v], e = start[v + 1];
+      for (std::uint32_t i = s; i < e; ++i) add(neighbours[i], neighbours[i + 1 == e ? s : i + 1]);
+    }
+    return n;
   };
   // Each sweep moves a vertex by strength * (kTension * U - kBending * U^2), then into its
   // carrier. Bending alone is stable below 0.5 for uniform weights (eigenvalues of U^2 <= 4)
   // and would extrapolate a cap past the last contour by the chord slope of the rings below;
   // a little tension balances that (measured on spheres and tori, see smoothing_test.cpp).
+  //
+  // A sheet vertex on a carrier edge e = b - a then goes where the plane through its target
+  // with normal n cuts the edge (t clamped to [kMargin, 1 - kMargin]): it follows the
+  // surface's normal motion and ignores tangential drift, which a nearest-point projection
+  // onto a slanted edge would turn into normal error. With the target p + d and p = a + t e,
+  // that cut is t + d . n / (e . n), so the slope n / (e . n) is all a sweep needs. Where the
+  // edge runs nearly inside the tangent plane (e.n^2 < 0.01 |e|^2 |n|^2), and for every other
+  // vertex, the target's nearest point of the carrier.
   const double strength = std::clamp(options.strength, 0.0, 1.0);
-  const double bending = kBending * strength, tension = kTension * strength;
+  const float bending = static_cast<float>(kBending * strength), tension = static_cast<float>(kTension * strength);
   for (int it = 0; it < options.iterations; ++it) {
-    computeUmbrella(cur, umbrella);
     // Normals turn slowly; refreshing them every few sweeps saves most of a sweep's time.
-    if (it % kNormalPeriod == 0)
-      parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-        for (std::size_t v = begin; v < end; ++v)
-          if (adj.role[v] == Role::Sheet) {
-            const Vec3 n = vertexNormal(mesh, adj, cur, v);
-            for (int k = 0; k < 3; ++k) normals[3 * v + k] = n[k];
-          }
-      });
-    parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) {
-        const Role role = adj.role[v];
-        if (role == Role::Fixed || role == Role::Fitted) continue;
-        const std::uint32_t s = adj.start[v], e = adj.start[v + 1];
-        double sum[3] = {0, 0, 0};
-        for (std::uint32_t i = s; i < e; ++i) {
-          const double* u = &umbrella[3 * adj.neighbours[i]];
-          sum[0] += u[0], sum[1] += u[1], sum[2] += u[2];
+    const bool refreshNormals = it % kNormalPeriod == 0;
+    const Float4* p = cur.data();
+    Float4* u = umbrella.data();
+    Float4* q = next.data();
+    const auto umbrellaOf = [&](std::size_t v) {
+      const std::uint32_t s = start[v], e = start[v + 1];
+      if (s == e) return;  // its umbrella stays 0
+      const Float4 pv = p[v];
+      Float4 sum{0, 0, 0, 0};
+      for (std::uint32_t i = s; i < e; ++i) sum += p[neighbours[i]] - pv;
+      u[v] = sum / static_cast<float>(e - s);
+      if (refreshNormals && (kinds[v] & kOnEdge)) {
+        const Vec3 n = normalOf(p, v);
+        const Float4 ev = edgeVectorOf(kinds[v], edgeStart[v]);
+        const double ed[3] = {ev[0], ev[1], ev[2]};
+        const double en = ed[0] * n[0] + ed[1] * n[1] + ed[2] * n[2];
+        const double ee = ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2], nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if (en * en < 0.01 * ee * nn) {
+          kinds[v] &= static_cast<std::uint8_t>(~kSlides);
+        } else {
+          kinds[v] |= kSlides;
+          slope[v] = Float4{static_cast<float>(n[0] / en), static_cast<float>(n[1] / en), static_cast<float>(n[2] / en), 0.0f};
         }
-        Vec3 target;
-        const double inv = 1.0 / (e - s);
-        for (int k = 0; k < 3; ++k) {
-          const double u = umbrella[3 * v + k];
-          target[k] = cur[3 * v + k] - bending * (sum[k] * inv - u) + tension * u;
-        }
-        Vec3 p;
-        const bool onEdge = role == Role::Sheet && !std::isnan(edges[v][0][0]);
-        if (!(onEdge && slideAlongNormal(edges[v][0], edges[v][1], target, {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]}, p)))
-          p = projectIntoCarrier(grid, carrierOfKey(mesh.keys[v]), target);
-        for (int k = 0; k < 3; ++k) next[3 * v + k] = p[k];
       }
+    };
+    const auto update = [&](std::size_t v) {
+      const std::uint8_t kind = kinds[v];
+      const Role role = roleOf(kind);
+      if (role == Role::Fixed || role == Role::Fitted) return;
+      const std::uint32_t s = start[v], e = start[v + 1];
+      Float4 sum{0, 0, 0, 0};
+      for (std::uint32_t i = s; i < e; ++i) sum += u[neighbours[i]];
+      const Float4 uv = u[v];
+      const Float4 d = tension * uv - bending * (sum / static_cast<float>(e - s) - uv);  // target - p
+      if (kind & kOnEdge) {
+        const Float4 a = edgeStart[v], ev = edgeVectorOf(kind, a);
+        const float along = p[v][3];
+        float t;
+        if (kind & kSlides) {
+          const Float4 m = d * slope[v];
+          t = std::clamp(along + (m[0] + m[1] + m[2]), static_cast<float>(kMargin), static_cast<float>(1 - kMargin));
+        } else {
+          // The nearest point of the edge, weights clamped to kMargin (projectIntoCarrier).
+          const Float4 de = d * ev, ee = ev * ev;
+          const double w1 = along + (de[0] + de[1] + de[2]) / static_cast<double>(ee[0] + ee[1] + ee[2]);
+          const double w0 = std::max(1 - w1, kMargin), w1c = std::max(w1, kMargin);
+          t = static_cast<float>(w1c / (w0 + w1c));
+        }
+        Float4 out = a + t * ev;
+        out[3] = t;
+        q[v] = out;
+        return;
+      }
+      const Float4 pv = p[v];
+      const Vec3 out = projectIntoCarrier(grid, carrierOfKey(keys[v]), {pv[0] + static_cast<double>(d[0]),
+                                                                       pv[1] + static_cast<double>(d[1]),
+                                                                       pv[2] + static_cast<double>(d[2])});
+      q[v] = Float4{static_cast<float>(out[0]), static_cast<float>(out[1]), static_cast<float>(out[2]), 0.0f};
+    };
+    parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) umbrellaOf(v);
     });
-    cur.swap(next);  // fixed and fitted vertices hold the same value in both buffers
+    parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) update(v);
+    });
+    cur.swap(next);
   }
-  for (std::size_t i = 0; i < cur.size(); ++i) mesh.positions[i] = static_cast<float>(cur[i]);
+  std::vector<Float4>().swap(next);
+  std::vector<Float4>().swap(umbrella);
+  std::vector<Float4>().swap(slope);
+  std::vector<Float4>().swap(edgeStart);
+  mesh.positions.resize(3 * vertexCount);
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = cur[v][k];
   return report;
 }
 
