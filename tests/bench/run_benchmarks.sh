@@ -53,7 +53,8 @@ if command -v perf > /dev/null && [ -f "$work/pelvis.json" ] && perf stat -e tas
     echo "## Profile: scansurf on pelvis (perf record, self time by symbol, top 10)"
     echo
     echo '```'
-    perf report -i "$work/perf.data" --no-children --sort dso,symbol --stdio 2>/dev/null | grep -E '^ +[0-9]' | head -10 | cut -c1-170 | sed 's/ *$//'
+    perf report -i "$work/perf.data" --no-children --sort dso,symbol --stdio > "$work/perf.txt" 2> /dev/null || true
+    grep -E '^ +[0-9]' "$work/perf.txt" | sed -n '1,10p' | cut -c1-170 | sed 's/ *$//'
     echo '```'
   } >> docs/benchmarks.md
 fi
