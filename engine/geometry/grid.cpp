@@ -23,6 +23,28 @@ struct Axis {
   double spacing = 1;
 };
 
+// The grid of two in-plane axes over the slice planes (sorted, non-empty), with one
+// background layer below and above at the neighbouring spacing (a single plane: the larger
+// pixel spacing).
+Grid gridFromAxes(const Axis& ax, const Axis& ay, const std::vector<double>& planes) {
+  Grid grid;
+  grid.nx = ax.n;
+  grid.ny = ay.n;
+  grid.originX = ax.origin;
+  grid.originY = ay.origin;
+  grid.spacingX = ax.spacing;
+  grid.spacingY = ay.spacing;
+  const std::size_t m = planes.size();
+  const double below = m > 1 ? planes[1] - planes[0] : std::max(ax.spacing, ay.spacing);
+  const double above = m > 1 ? planes[m - 1] - planes[m - 2] : std::max(ax.spacing, ay.spacing);
+  grid.layerZ.reserve(m + 2);
+  grid.layerZ.push_back(planes.front() - below);
+  grid.layerZ.insert(grid.layerZ.end(), planes.begin(), planes.end());
+  grid.layerZ.push_back(planes.back() + above);
+  grid.nz = static_cast<int>(grid.layerZ.size());
+  return grid;
+}
+
 // Square-pixel axis: ceil(extent/s)+1 interior centres centred on [lo, hi], plus a
 // background pixel each side.
 Result<Axis> axisFromSpacing(double lo, double hi, double s, const char* name) {
@@ -91,22 +113,7 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
   };
   SCANSURF_ASSIGN_OR_RETURN(const Axis ax, extend(box.minX, box.maxX, ref.originX, ref.spacingX, ref.nx, "x"));
   SCANSURF_ASSIGN_OR_RETURN(const Axis ay, extend(box.minY, box.maxY, ref.originY, ref.spacingY, ref.ny, "y"));
-  Grid grid;
-  grid.nx = ax.n;
-  grid.ny = ay.n;
-  grid.originX = ax.origin;
-  grid.originY = ay.origin;
-  grid.spacingX = ax.spacing;
-  grid.spacingY = ay.spacing;
-  const auto& z = ref.sliceZ;
-  const std::size_t m = z.size();
-  const double below = m > 1 ? z[1] - z[0] : std::max(ax.spacing, ay.spacing);
-  const double above = m > 1 ? z[m - 1] - z[m - 2] : std::max(ax.spacing, ay.spacing);
-  grid.layerZ.push_back(z.front() - below);
-  grid.layerZ.insert(grid.layerZ.end(), z.begin(), z.end());
-  grid.layerZ.push_back(z.back() + above);
-  grid.nz = static_cast<int>(grid.layerZ.size());
-  return grid;
+  return gridFromAxes(ax, ay, ref.sliceZ);
 }
 
 }  // namespace
@@ -155,22 +162,7 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
     SCANSURF_ASSIGN_OR_RETURN(ay, axisFromSpacing(box.minY, box.maxY, s, "y"));
   }
 
-  Grid grid;
-  grid.nx = ax.n;
-  grid.ny = ay.n;
-  grid.originX = ax.origin;
-  grid.originY = ay.origin;
-  grid.spacingX = ax.spacing;
-  grid.spacingY = ay.spacing;
-  const std::size_t m = planes.size();
-  const double below = m > 1 ? planes[1] - planes[0] : std::max(ax.spacing, ay.spacing);
-  const double above = m > 1 ? planes[m - 1] - planes[m - 2] : std::max(ax.spacing, ay.spacing);
-  grid.layerZ.reserve(m + 2);
-  grid.layerZ.push_back(planes.front() - below);
-  grid.layerZ.insert(grid.layerZ.end(), planes.begin(), planes.end());
-  grid.layerZ.push_back(planes.back() + above);
-  grid.nz = static_cast<int>(grid.layerZ.size());
-  return grid;
+  return gridFromAxes(ax, ay, planes);
 }
 
 int layerOfZ(const Grid& grid, double z, double tolerance) {
