@@ -35,6 +35,7 @@
 #include "scansurf/palette.h"
 #include "support/reference_rasterizer.h"
 #include "support/shapes.h"
+#include "support/scratch_dir_test.h"
 
 namespace scansurf {
 namespace {
@@ -75,20 +76,7 @@ const Built& nested() {
   return b;
 }
 
-class OutputFormatsTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("scansurf-out-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::size_t fileCount() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-  }
-  fs::path dir_;
-};
+using OutputFormatsTest = test::ScratchDirTest;
 
 std::string readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

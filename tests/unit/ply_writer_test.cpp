@@ -13,28 +13,14 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "support/scratch_dir_test.h"
 
 namespace scansurf {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A scratch directory per test, removed afterwards.
-class PlyTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("scansurf-ply-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::size_t fileCount() const {
-    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
-  }
-  fs::path dir_;
-};
+using PlyTest = test::ScratchDirTest;
 
 // The tiny reader: binary little-endian PLY with float xyz, a uchar/int face list and
 // optional ushort face properties.

@@ -16,6 +16,7 @@
 #include "geometry/feature_surfaces.h"
 #include "io/ct_series.h"
 #include "io/rtstruct_reader.h"
+#include "support/scratch_dir_test.h"
 #include "scansurf/grid.h"
 #include "scansurf/nesting.h"
 #include "support/reference_rasterizer.h"
@@ -33,15 +34,8 @@ using test::TestRtStruct;
 
 std::vector<Point2> square(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
 
-class Dicom : public ::testing::Test {
+class Dicom : public test::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("scansurf_dicom_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path write(const TestRtStruct& rt, const std::string& name = "rt.dcm") {
     const fs::path p = dir_ / name;
