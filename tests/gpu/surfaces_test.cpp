@@ -124,6 +124,24 @@ TEST_F(SurfacesTest, AbuttingFeaturesShareEveryInterfaceVertex) {
   EXPECT_NEAR(sum, unionStats.volume, 1e-9 * unionStats.volume);
 }
 
+// The stages one by one (scanConvert, then extract) give exactly what build() gives.
+TEST_F(SurfacesTest, StageByStageEqualsBuild) {
+  const ContourSet set = nestedSpheresContours(12, 5, 2.0);
+  const BuildResult built = build(set, 1.0, SurfaceConvention::Partition);
+  auto volume = engine_->scanConvert(set, built.volume.grid, built.nesting.order);
+  ASSERT_TRUE(volume) << volume.error().message;
+  EXPECT_EQ(volume->labels, built.volume.labels);
+  auto surfaces = engine_->extract(*volume, built.nesting, static_cast<int>(set.features.size()),
+                                   SurfaceConvention::Partition);
+  ASSERT_TRUE(surfaces) << surfaces.error().message;
+  EXPECT_EQ(surfaces->mesh.positions, built.surfaces.mesh.positions);
+  EXPECT_EQ(surfaces->mesh.triangles, built.surfaces.mesh.triangles);
+  EXPECT_EQ(surfaces->mesh.labels, built.surfaces.mesh.labels);
+  ASSERT_EQ(surfaces->features.size(), built.surfaces.features.size());
+  for (std::size_t f = 0; f < surfaces->features.size(); ++f)
+    EXPECT_EQ(surfaces->features[f].triangles, built.surfaces.features[f].triangles);
+}
+
 // A feature left without a surface is reported by name, never dropped in silence.
 TEST_F(SurfacesTest, FeaturesWithoutASurfaceAreReported) {
   ContourSet set = sphereContours(5, 1.0);
