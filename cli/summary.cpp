@@ -2,40 +2,12 @@
 
 #include <cstdio>
 
-#include "scansurf/palette.h"
 
 namespace fs = std::filesystem;
 
 namespace scansurf::cli {
 
 const char* conventionName(SurfaceConvention c) { return c == SurfaceConvention::Enclosing ? "enclosing" : "partition"; }
-
-RunReport makeRunReport(const RunFacts& facts,
-                        std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> parameters,
-                        const std::vector<std::vector<fs::path>>& files, const std::vector<fs::path>& outputs) {
-  const ContourSet& contours = *facts.contours;
-  const BuildResult& built = *facts.built;
-  RunReport r;
-  r.input = facts.input;
-  r.units = contours.units;
-  r.parameters = std::move(parameters);
-  r.deviceName = facts.device->name, r.deviceType = facts.device->type, r.driver = facts.device->driver;
-  r.grid = built.volume.grid;
-  for (int f : built.nesting.order) r.nestingOrder.push_back(contours.features[static_cast<std::size_t>(f)].name);
-  r.userOrder = built.nesting.userOrder;
-  r.meshVertices = built.surfaces.mesh.vertexCount();
-  r.meshTriangles = built.surfaces.mesh.triangleCount();
-  const std::vector<Rgb> colors = featureColors(contours);
-  for (std::size_t f = 0; f < contours.features.size(); ++f) {
-    ReportFeature rf{contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], facts.stats[f], {}};
-    for (const fs::path& p : files[f]) rf.files.push_back(p.string());
-    r.features.push_back(std::move(rf));
-  }
-  for (const StageTime& t : facts.timings) r.timings.emplace_back(t.stage, t.seconds);
-  for (const fs::path& p : outputs) r.outputs.push_back(p.string());
-  r.warnings = built.warnings;
-  return r;
-}
 
 void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, const std::string& outDir) {
   const ContourSet& set = *facts.contours;

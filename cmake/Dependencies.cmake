@@ -2,24 +2,15 @@
 find_package(Threads REQUIRED)
 find_package(Vulkan REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
-find_package(CLI11 REQUIRED)
-find_package(glm REQUIRED)
-find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
-# Draco (libdraco-dev): mesh compression and its glTF encoder. Debian ships a CMake config
-# with draco::draco (shared) and draco::draco_static; pkg-config is the fallback.
-find_package(draco CONFIG QUIET)
-if(TARGET draco::draco)
-  add_library(scansurf_draco INTERFACE)
-  target_link_libraries(scansurf_draco INTERFACE draco::draco)
-elseif(TARGET draco::draco_static)
-  add_library(scansurf_draco INTERFACE)
-  target_link_libraries(scansurf_draco INTERFACE draco::draco_static)
-else()
-  find_package(PkgConfig REQUIRED)
-  pkg_check_modules(DRACO REQUIRED IMPORTED_TARGET draco)
-  add_library(scansurf_draco INTERFACE)
-  target_link_libraries(scansurf_draco INTERFACE PkgConfig::DRACO)
+if(SCANSURF_BUILD_CLI)
+  find_package(CLI11 REQUIRED)
 endif()
+find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
+# Draco (libdraco-dev): mesh compression and its glTF encoder; Debian ships a CMake config
+# with draco::draco (cmake/scansurfConfig.cmake.in finds it again for consumers).
+find_package(draco CONFIG REQUIRED)
+add_library(scansurf_draco INTERFACE)
+target_link_libraries(scansurf_draco INTERFACE draco::draco)
 # Draco's scene and glTF headers include Eigen (libeigen3-dev).
 find_package(Eigen3 REQUIRED NO_MODULE)
 target_link_libraries(scansurf_draco INTERFACE Eigen3::Eigen)

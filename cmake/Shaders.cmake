@@ -30,21 +30,22 @@ function(scansurf_add_shaders)
 #include <cstdint>
 #include <span>
 #include <string_view>
-#include <stdexcept>
-#include <string>
 ${decls}
 namespace scansurf::shaders {
-std::span<const uint32_t> spirv(std::string_view name) {
+std::span<const uint32_t> spirv(std::string_view name) noexcept {
   struct Entry { std::string_view name; std::span<const uint32_t> code; };
   static const Entry kEntries[] = {
 ${entries}  };
   for (const Entry& e : kEntries)
     if (e.name == name) return e.code;
-  throw std::logic_error(\"scansurf: no embedded shader named \" + std::string(name));
+  return {};  // not embedded: the caller reports it (a build error, never thrown)
 }
 }  // namespace scansurf::shaders
 ")
-  add_library(${ARG_TARGET} STATIC "${registry}" ${generated})
+  # Object files only: they are compiled into the one scansurf library.
+  add_library(${ARG_TARGET} OBJECT "${registry}" ${generated})
+  set_target_properties(${ARG_TARGET} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_compile_features(${ARG_TARGET} PRIVATE cxx_std_20)
   target_include_directories(${ARG_TARGET} PRIVATE "${CMAKE_CURRENT_BINARY_DIR}")
-  target_include_directories(${ARG_TARGET} INTERFACE "${CMAKE_CURRENT_SOURCE_DIR}")
+  target_include_directories(${ARG_TARGET} INTERFACE "$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}>")
 endfunction()

@@ -1,12 +1,15 @@
+// scansurf: the engine, the one pipeline path behind build() and the stage calls
+// (Lee et al., "Scanline Surfacing"; Nielson & Franke 1997).
 #include "scansurf/engine.h"
 
 #include <chrono>
 
+#include "core/guard.h"
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
 #include "geometry/feature_surfaces.h"
-#include "geometry/validate.h"
 #include "geometry/smoothing.h"
+#include "geometry/validate.h"
 #include "gpu/context.h"
 #include "passes/classification.h"
 #include "passes/preview.h"
@@ -20,10 +23,30 @@ struct Engine::Impl {
   std::unique_ptr<passes::ScanConverter> scanConverter;  // created on first use
   std::unique_ptr<passes::Classifier> classifier;
   std::unique_ptr<passes::PreviewRenderer> previewRenderer;
+
+  Result<passes::ScanConverter*> scanner() {
+    if (!scanConverter) {
+      SCANSURF_ASSIGN_OR_RETURN(scanConverter, passes::ScanConverter::create(*context));
+    }
+    return scanConverter.get();
+  }
+  Result<passes::Classifier*> classify() {
+    if (!classifier) {
+      SCANSURF_ASSIGN_OR_RETURN(classifier, passes::Classifier::create(*context));
+    }
+    return classifier.get();
+  }
+  Result<passes::PreviewRenderer*> preview() {
+    if (!previewRenderer) {
+      SCANSURF_ASSIGN_OR_RETURN(previewRenderer, passes::PreviewRenderer::create(*context));
+    }
+    return previewRenderer.get();
+  }
 };
 
 namespace {
 
+// Times each stage into `out` and reports it through options.onStage.
 class StageClock {
  public:
   StageClock(std::vector<StageTime>& out, const BuildOptions& options)
@@ -41,6 +64,58 @@ class StageClock {
   std::chrono::steady_clock::time_point start_;
 };
 
+std::string describeGrid(const Grid& grid) {
+  return std::to_string(grid.nx) + " x " + std::to_string(grid.ny) + " x " + std::to_string(grid.nz) + " voxels";
+}
+
+Result<void> checkNesting(const Nesting& nesting) {
+  if (nesting.parent.empty()) return makeError(Errc::InvalidArgument, "extract: the nesting names no feature (Nesting::parent is empty)");
+  if (nesting.parent.size() > static_cast<std::size_t>(kMaxFeatures))
+    return makeError(Errc::InvalidArgument, "extract: more than " + std::to_string(kMaxFeatures) + " features");
+  return {};
+}
+
+// Classification records to feature surfaces: assembly, smoothing, feature extraction.
+Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
+                           const ContourSet* contours, StageClock& clock) {
+  Surfaces surfaces;
+  surfaces.convention = options.convention;
+  surfaces.mesh = assembleMesh(grid, cells, options.threads);
+  cells = {};
+  clock.lap("assembly");
+  if (options.smoothing.enabled) {
+    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance);
+    clock.lap("smoothing");
+  }
+  surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
+  clock.lap("feature surfaces");
+  return surfaces;
+}
+
+// A feature without a surface deserves a word: it has no slices, is too small for the grid,
+// or (partition convention) features of higher priority cover all of it.
+void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces, std::vector<std::string>& warnings) {
+  for (std::size_t f = 0; f < surfaces.features.size(); ++f)
+    if (surfaces.features[f].triangles.empty())
+      warnings.push_back(describeFeature(contours, static_cast<int>(f)) +
+                         ": no surface (no slices, smaller than a pixel, or covered by features of higher priority)");
+}
+
+// Stage 2 from host or device labels (LabelVolume or DeviceLabelVolume).
+template <typename Volume>
+Result<Surfaces> extractFrom(Engine::Impl& impl, const Volume& volume, const Nesting& nesting, const BuildOptions& options,
+                             const ContourSet* contours) {
+  return guarded("surface extraction on " + describeGrid(volume.grid), [&]() -> Result<Surfaces> {
+    SCANSURF_TRY(checkNesting(nesting));
+    std::vector<StageTime> timings;
+    StageClock clock(timings, options);
+    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
+    clock.lap("classification");
+    return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock);
+  });
+}
+
 }  // namespace
 
 Engine::Engine(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -49,82 +124,68 @@ Engine& Engine::operator=(Engine&&) noexcept = default;
 Engine::~Engine() = default;
 
 Result<Engine> Engine::create(const EngineOptions& options) {
-  auto impl = std::make_unique<Impl>();
-  SCANSURF_ASSIGN_OR_RETURN(impl->context, gpu::Context::create(options));
-  return Engine(std::move(impl));
+  return guarded("creating the Vulkan device", [&]() -> Result<Engine> {
+    auto impl = std::make_unique<Impl>();
+    SCANSURF_ASSIGN_OR_RETURN(impl->context, gpu::Context::create(options));
+    return Engine(std::move(impl));
+  });
 }
 
 Result<Engine> Engine::adopt(const ExternalVulkan& vulkan, const EngineOptions& options) {
-  auto impl = std::make_unique<Impl>();
-  SCANSURF_ASSIGN_OR_RETURN(impl->context, gpu::Context::adopt(vulkan, options));
-  return Engine(std::move(impl));
+  return guarded("adopting the application's Vulkan device", [&]() -> Result<Engine> {
+    auto impl = std::make_unique<Impl>();
+    SCANSURF_ASSIGN_OR_RETURN(impl->context, gpu::Context::adopt(vulkan, options));
+    return Engine(std::move(impl));
+  });
 }
 
 const DeviceInfo& Engine::device() const { return impl_->context->info(); }
 std::uint64_t Engine::validationMessageCount() const { return impl_->context->validationMessageCount(); }
 
-Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order) {
-  if (!impl_->scanConverter) {
-    SCANSURF_ASSIGN_OR_RETURN(impl_->scanConverter, passes::ScanConverter::create(*impl_->context));
-  }
-  return impl_->scanConverter->run(contours, grid, order);
+Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nesting& nesting, const Grid& grid,
+                                        const BuildOptions& options) {
+  return guarded("scan conversion on " + describeGrid(grid), [&]() -> Result<LabelVolume> {
+    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
+    return scanner->run(contours, grid, nesting.order, options.grid.sliceTolerance);
+  });
 }
 
-Result<ClassifiedCells> Engine::classify(const LabelVolume& volume) {
-  if (!impl_->classifier) {
-    SCANSURF_ASSIGN_OR_RETURN(impl_->classifier, passes::Classifier::create(*impl_->context));
-  }
-  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> records, impl_->classifier->run(volume));
-  return ClassifiedCells{std::move(records)};
+Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
+                                 const ContourSet* contours) {
+  return extractFrom(*impl_, volume, nesting, options, contours);
 }
 
-Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, int featureCount,
-                                 SurfaceConvention convention, int threads) {
-  SCANSURF_ASSIGN_OR_RETURN(ClassifiedCells cells, classify(volume));
-  Surfaces surfaces;
-  surfaces.convention = convention;
-  surfaces.mesh = assembleMesh(volume.grid, cells.records, threads);
-  surfaces.features = extractFeatureSurfaces(surfaces.mesh, featureCount, nesting, convention);
-  return surfaces;
+Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
+                                 const ContourSet* contours) {
+  return extractFrom(*impl_, volume, nesting, options, contours);
 }
 
 Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const PreviewOptions& options) {
-  if (!impl_->previewRenderer) {
-    SCANSURF_ASSIGN_OR_RETURN(impl_->previewRenderer, passes::PreviewRenderer::create(*impl_->context));
-  }
-  return impl_->previewRenderer->render(surfaces, options);
+  return guarded("rendering the preview", [&]() -> Result<PreviewImage> {
+    SCANSURF_ASSIGN_OR_RETURN(passes::PreviewRenderer * renderer, impl_->preview());
+    return renderer->render(surfaces, options);
+  });
 }
 
 Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions& options) {
-  BuildResult out;
-  StageClock clock(out.timings, options);
-  out.nesting = computeNesting(contours);
-  clock.lap("nesting");
-  SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
-  out.warnings = findUncoveredContours(contours, grid);
-  clock.lap("grid");
-  SCANSURF_ASSIGN_OR_RETURN(out.volume, scanConvert(contours, grid, out.nesting.order));
-  clock.lap("scan conversion");
-  SCANSURF_ASSIGN_OR_RETURN(ClassifiedCells cells, classify(out.volume));
-  clock.lap("classification");
-  out.surfaces.convention = options.convention;
-  out.surfaces.mesh = assembleMesh(grid, cells.records, options.threads);
-  cells.records = {};
-  clock.lap("assembly");
-  if (options.smoothing.enabled) {
-    smoothMesh(out.surfaces.mesh, grid, &contours, options.smoothing, options.threads, options.grid.sliceTolerance);
-    clock.lap("smoothing");
-  }
-  out.surfaces.features = extractFeatureSurfaces(out.surfaces.mesh, static_cast<int>(contours.features.size()), out.nesting,
-                                                 options.convention);
-  clock.lap("feature surfaces");
-  // A feature without a surface deserves a word: it has no slices, is too small for the grid,
-  // or (partition convention) features of higher priority cover all of it.
-  for (std::size_t f = 0; f < out.surfaces.features.size(); ++f)
-    if (out.surfaces.features[f].triangles.empty())
-      out.warnings.push_back(describeFeature(contours, static_cast<int>(f)) +
-                             ": no surface (no slices, smaller than a pixel, or covered by features of higher priority)");
-  return out;
+  return guarded("building the surfaces of " + contours.source, [&]() -> Result<BuildResult> {
+    BuildResult out;
+    StageClock clock(out.timings, options);
+    out.nesting = computeNesting(contours, options.grid.sliceTolerance);
+    clock.lap("nesting");
+    SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
+    out.warnings = findUncoveredContours(contours, grid);
+    clock.lap("grid");
+    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
+    SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, options.grid.sliceTolerance));
+    clock.lap("scan conversion");
+    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl_->classify());
+    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(out.volume));
+    clock.lap("classification");
+    out.surfaces = surfacesFromCells(std::move(cells), grid, out.nesting, options, &contours, clock);
+    warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);
+    return out;
+  });
 }
 
 }  // namespace scansurf

@@ -8,8 +8,10 @@
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;
 
-layout(std430, binding = 0) readonly buffer Labels { uint words[]; } labels;  // 16-bit labels, two per word
-layout(std430, binding = 1) buffer Counter { uint count; } counter;
+layout(std430, binding = 0) readonly buffer Labels { uint words[]; } labels;  // 16-bit labels two per word, or 32-bit
+// count: records appended; largestLabel: the largest 32-bit label seen above 65535 (0: none),
+// which the host reports (records hold 16-bit labels).
+layout(std430, binding = 1) buffer Counter { uint count; uint largestLabel; } counter;
 layout(std430, binding = 2) writeonly buffer Cases { CellCase records[]; } cases;
 
 // Corners of the six tetrahedra; same order as kCellTets in engine/geometry/cell_cases.h.
@@ -17,6 +19,11 @@ const uint kTets[24] = uint[24](0, 1, 3, 7,  0, 1, 5, 7,  0, 2, 3, 7,  0, 2, 6, 
 
 uint labelAt(uint i, uint j, uint k) {
   const uint n = i + push.nx * (j + push.ny * k);
+  if (push.labelBits == 32u) {
+    const uint label = labels.words[n];
+    if (label > 0xFFFFu) atomicMax(counter.largestLabel, label);
+    return label & 0xFFFFu;
+  }
   return (labels.words[n >> 1] >> ((n & 1u) * 16u)) & 0xFFFFu;
 }
 

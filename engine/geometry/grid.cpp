@@ -132,6 +132,8 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
     if (haveSize || haveCounts) return badOption("set either a reference grid or a voxel size / nx and ny, not both");
     return gridOnReference(contours, *options.reference, tol);
   }
+  // The lattice the contours were drawn on, unless the options choose a grid of their own.
+  if (contours.reference && !haveSize && !haveCounts) return gridOnReference(contours, *contours.reference, tol);
 
   std::vector<double> zs;
   for (const Feature& f : contours.features)

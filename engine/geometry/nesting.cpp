@@ -19,10 +19,12 @@ struct FeatureInfo {
   std::vector<double> z;         // slice planes, sorted (validated input)
   std::vector<Box2> sliceBoxes;  // per slice
   double area = 0;               // summed even-odd area over slices, the size used for ties
+  double tolerance = 0;          // slice z values closer than this are one plane
 };
 
-FeatureInfo describe(const Feature& feature) {
+FeatureInfo describe(const Feature& feature, double tolerance) {
   FeatureInfo info;
+  info.tolerance = tolerance;
   for (const FeatureSlice& slice : feature.slices) {
     info.z.push_back(slice.z);
     info.sliceBoxes.push_back(boundingBox(slice.contours));
@@ -39,7 +41,7 @@ FeatureInfo describe(const Feature& feature) {
 // The slice of `info` within tolerance of z, or -1.
 int sliceAt(const FeatureInfo& info, double z) {
   for (std::size_t s = 0; s < info.z.size(); ++s)
-    if (std::abs(info.z[s] - z) <= kDefaultSliceTolerance) return static_cast<int>(s);
+    if (std::abs(info.z[s] - z) <= info.tolerance) return static_cast<int>(s);
   return -1;
 }
 
@@ -50,8 +52,7 @@ bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature&
               const FeatureInfo& innerInfo) {
   if (inner.slices.empty()) return false;
   if (!outerInfo.box.contains(innerInfo.box)) return false;
-  if (innerInfo.zMin < outerInfo.zMin - kDefaultSliceTolerance ||
-      innerInfo.zMax > outerInfo.zMax + kDefaultSliceTolerance)
+  if (innerInfo.zMin < outerInfo.zMin - outerInfo.tolerance || innerInfo.zMax > outerInfo.zMax + outerInfo.tolerance)
     return false;
   const Box2& box = outerInfo.box;
   const double boundaryTolerance = 1e-9 * std::max({1.0, box.width(), box.height(), std::abs(box.minX),
@@ -72,11 +73,11 @@ bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature&
 
 }  // namespace
 
-Nesting computeNesting(const ContourSet& contours) {
+Nesting computeNesting(const ContourSet& contours, double sliceTolerance) {
   const int n = static_cast<int>(contours.features.size());
   std::vector<FeatureInfo> info;
   info.reserve(n);
-  for (const Feature& f : contours.features) info.push_back(describe(f));
+  for (const Feature& f : contours.features) info.push_back(describe(f, sliceTolerance));
 
   // A total order on (area, index): a container must rank above what it contains. This breaks
   // mutual containment of identical features by index and keeps the relation acyclic even for
@@ -138,6 +139,17 @@ bool isInside(const Nesting& nesting, int inner, int outer) {
   for (int steps = 0; f >= 0 && steps < n; ++steps, f = nesting.parent[f])
     if (f == outer) return true;
   return false;
+}
+
+}  // namespace scansurf
+
+namespace scansurf {
+
+Nesting flatNesting(int featureCount) {
+  Nesting nesting;
+  for (int f = 0; f < featureCount; ++f) nesting.order.push_back(f);
+  nesting.parent.assign(static_cast<std::size_t>(std::max(featureCount, 0)), -1);
+  return nesting;
 }
 
 }  // namespace scansurf

@@ -70,6 +70,47 @@ std::string rejection(VkPhysicalDevice device) {
   return {};
 }
 
+// A selector of digits names a device by index (compared as text: no number to overflow).
+bool selectorIsIndex(const std::string& selector) {
+  return !selector.empty() && std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+// Why the application's queue family cannot run scansurf, or empty.
+std::string queueFamilyRejection(VkPhysicalDevice device, std::uint32_t family) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  if (family >= count)
+    return "queueFamilyIndex " + std::to_string(family) + " is not a queue family of the device (it has " +
+           std::to_string(count) + ")";
+  std::string missing;
+  if (!(families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT)) missing += " graphics";
+  if (!(families[family].queueFlags & VK_QUEUE_COMPUTE_BIT)) missing += " compute";
+  return missing.empty() ? std::string() : "queue family " + std::to_string(family) + " lacks" + missing;
+}
+
+// Why the features the application enabled (a VkDeviceCreateInfo pNext chain) do not suffice,
+// or empty. Both the core 1.3 struct and the extension structs count.
+std::string enabledFeatureRejection(const void* chain) {
+  bool dynamicRendering = false, synchronization2 = false;
+  for (auto* s = static_cast<const VkBaseInStructure*>(chain); s; s = s->pNext) {
+    if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES) {
+      const auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
+      dynamicRendering |= f->dynamicRendering == VK_TRUE;
+      synchronization2 |= f->synchronization2 == VK_TRUE;
+    } else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES) {
+      dynamicRendering |= reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)->dynamicRendering == VK_TRUE;
+    } else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES) {
+      synchronization2 |= reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)->synchronization2 == VK_TRUE;
+    }
+  }
+  std::string missing;
+  if (!dynamicRendering) missing += " dynamicRendering";
+  if (!synchronization2) missing += " synchronization2";
+  return missing.empty() ? std::string() : "the device was created without the feature(s)" + missing;
+}
+
 bool hasLayer(const char* name) {
   std::uint32_t count = 0;
   vkEnumerateInstanceLayerProperties(&count, nullptr);
@@ -171,8 +212,8 @@ Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
               (why.empty() ? "" : ": unusable, " + why);
     bool matches = true;
     if (!selector.empty()) {
-      const bool isIndex = std::all_of(selector.begin(), selector.end(), [](unsigned char c) { return std::isdigit(c); });
-      matches = isIndex ? std::stoul(selector) == i : lower(props.deviceName).find(lower(selector)) != std::string::npos;
+      matches = selectorIsIndex(selector) ? selector == std::to_string(i)
+                                          : lower(props.deviceName).find(lower(selector)) != std::string::npos;
     }
     if (!matches || !why.empty()) continue;
     if (typeRank(props.deviceType) > bestRank) {
@@ -211,8 +252,10 @@ Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
 Result<std::unique_ptr<Context>> Context::adopt(const ExternalVulkan& vulkan, const EngineOptions& options) {
   if (!vulkan.instance || !vulkan.physicalDevice || !vulkan.device || !vulkan.queue)
     return makeError(Errc::InvalidArgument, "ExternalVulkan: instance, physicalDevice, device and queue are all required");
-  if (const std::string why = rejection(vulkan.physicalDevice); !why.empty())
-    return makeError(Errc::NoDevice, "the application's Vulkan device cannot run scansurf: " + why);
+  std::string why = rejection(vulkan.physicalDevice);
+  if (why.empty()) why = queueFamilyRejection(vulkan.physicalDevice, vulkan.queueFamilyIndex);
+  if (why.empty() && vulkan.enabledFeatures) why = enabledFeatureRejection(vulkan.enabledFeatures);
+  if (!why.empty()) return makeError(Errc::NoDevice, "the application's Vulkan device cannot run scansurf: " + why);
   std::unique_ptr<Context> ctx(new Context());
   ctx->onValidationMessage_ = options.onValidationMessage;
   ctx->instance_ = vulkan.instance;
@@ -246,7 +289,9 @@ Result<void> Context::finishSetup() {
 }
 
 Context::~Context() {
-  if (device_) vkDeviceWaitIdle(device_);
+  // Every submission was waited for on its own fence, so nothing of ours is in flight. A
+  // borrowed device is never waited on as a whole: the application may be using it.
+  if (ownedDevice_) vkDeviceWaitIdle(device_);
   commandPool_.reset();
   ownedDevice_.reset();
   messenger_.reset();

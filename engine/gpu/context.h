@@ -12,7 +12,7 @@
 #include <string_view>
 
 #include "gpu/handle.h"
-#include "scansurf/engine.h"
+#include "scansurf/device.h"
 #include "scansurf/result.h"
 #include "scansurf/vulkan_interop.h"
 

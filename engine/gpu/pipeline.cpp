@@ -5,6 +5,7 @@
 namespace scansurf::gpu {
 
 Result<Owned<VkShaderModule>> createShaderModule(const Context& ctx, std::span<const std::uint32_t> spirv) {
+  if (spirv.empty()) return makeError(Errc::Internal, "a shader is missing from this build (empty SPIR-V)");
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = spirv.size_bytes();
   info.pCode = spirv.data();

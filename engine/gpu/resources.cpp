@@ -15,7 +15,7 @@ Result<Owned<VkDeviceMemory>> allocate(const Context& ctx, const VkMemoryRequire
   VkDeviceMemory memory = VK_NULL_HANDLE;
   const VkResult r = vkAllocateMemory(ctx.device(), &info, nullptr, &memory);
   if (r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY)
-    return makeError(Errc::Vulkan, "out of GPU memory allocating " + std::to_string(req.size >> 20) + " MiB");
+    return makeError(Errc::OutOfMemory, "out of GPU memory allocating " + std::to_string(req.size >> 20) + " MiB");
   SCANSURF_VK_TRY(r);
   *typeOut = type;
   return Owned<VkDeviceMemory>(memory, [d = ctx.device()](VkDeviceMemory m) { vkFreeMemory(d, m, nullptr); });

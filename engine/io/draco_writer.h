@@ -7,6 +7,7 @@
 
 #include "io/mesh_writers.h"
 #include "scansurf/grid.h"
+#include "scansurf/outputs.h"
 #include "scansurf/result.h"
 
 namespace draco {
@@ -14,21 +15,6 @@ class Mesh;
 }
 
 namespace scansurf {
-
-struct DracoOptions {
-  // Position quantization bits (1..30); 0 = the fewest bits whose error stays below maxError.
-  int quantizationBits = 0;
-  // Largest allowed position error per axis, input units; used when quantizationBits is 0.
-  // 0 = Draco's default of 11 bits.
-  double maxError = 0;
-  int compressionLevel = 7;  // 0 (fastest) .. 10 (smallest)
-};
-
-// The default error bound for a grid: 1/25 of its smallest voxel edge (in-plane spacing or
-// the smallest layer gap). Surface vertices lie at least 1/12 of a voxel edge apart along
-// some axis, so at this bound no two vertices quantize to the same point; it is also well
-// below the tenth of a voxel users asked for.
-double defaultQuantizationError(const Grid& grid);
 
 // The position quantization bits Draco will use for `mesh` under `options`: Draco quantizes
 // the largest extent of the bounding box into 2^bits - 1 steps, so the error is at most

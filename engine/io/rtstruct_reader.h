@@ -12,23 +12,10 @@
 #include <vector>
 
 #include "scansurf/contours.h"
+#include "scansurf/input.h"
 #include "scansurf/result.h"
 
 namespace scansurf {
-
-// One ROI of the structure set as the file holds it (for --list-rois and reports).
-struct RoiInfo {
-  int number = 0;               // ROI Number (3006,0022)
-  std::string name;             // ROI Name (3006,0026)
-  std::string interpretedType;  // RT ROI Interpreted Type (3006,00A4), e.g. EXTERNAL, ORGAN; may be empty
-  std::optional<Rgb> color;     // ROI Display Color (3006,002A)
-  std::map<std::string, int> contoursByType;  // Contour Geometric Type -> count
-  int slices = 0;               // distinct planes of its CLOSED_PLANAR contours
-  double zMin = 0;              // z range of all its contour points (mm); valid when any
-  double zMax = 0;
-  bool selected = true;         // matched by the ROI patterns
-  int feature = -1;             // index in RtStructure::contours.features, or -1
-};
 
 struct RtStructOptions {
   // Glob patterns (*, ?, [...], case-insensitive) selecting ROIs by name; empty = every ROI.

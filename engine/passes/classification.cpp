@@ -62,73 +62,153 @@ Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) 
   return std::unique_ptr<Classifier>(new Classifier(std::move(s)));
 }
 
-Result<std::vector<CellCase>> Classifier::run(const LabelVolume& volume) {
-  const gpu::Context& ctx = *state_->ctx;
-  const Grid& grid = volume.grid;
-  if (grid.nx < 2 || grid.ny < 2 || grid.nz < 2) return std::vector<CellCase>{};
+// Where the labels come from: the host (copied into a mapped upload buffer per slab) or a
+// buffer on the device (copied on the device per slab).
+struct Classifier::Source {
+  const Grid& grid;
+  const LabelVolume* host = nullptr;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceSize offset = 0;
+  std::uint32_t bits = 16;
+
+  std::size_t layerBytes() const {
+    return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8);
+  }
+};
+
+namespace {
+
+// How the volume is cut into slabs of cell layers that fit one storage buffer.
+struct SlabPlan {
+  std::size_t layerBytes = 0;
+  int totalCellLayers = 0;
+  int slabCellLayers = 0;
+  std::size_t maxRecords = 0;
+};
+
+Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_t layerBytes, std::size_t slabBudget) {
   if (cellCount(grid) > 0xFFFFFFFFull)
     return makeError(Errc::InvalidArgument, "classification: more than 2^32 cells; use a coarser grid");
-
   const std::size_t maxRange = ctx.limits().maxStorageBufferRange;
-  const std::size_t layerBytes = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * sizeof(Label);
-  const std::size_t labelBudget = std::min(state_->slabBudget, maxRange);
+  const std::size_t labelBudget = std::min(slabBudget, maxRange);
   if (2 * layerBytes + 4 > labelBudget)
     return makeError(Errc::InvalidArgument, "classification: two layers of " + std::to_string(grid.nx) + " x " +
                                                 std::to_string(grid.ny) + " labels exceed the storage buffer limit");
-  const int totalCellLayers = grid.nz - 1;
-  const int slabCellLayers = std::max(1, std::min(totalCellLayers, static_cast<int>((labelBudget - 4) / layerBytes) - 1));
-  const std::size_t maxRecords = maxRange / sizeof(CellCase);
+  SlabPlan plan;
+  plan.layerBytes = layerBytes;
+  plan.totalCellLayers = grid.nz - 1;
+  plan.slabCellLayers = std::max(1, std::min(plan.totalCellLayers, static_cast<int>((labelBudget - 4) / layerBytes) - 1));
+  plan.maxRecords = maxRange / sizeof(CellCase);
+  return plan;
+}
 
+void bindBuffers(const gpu::Context& ctx, VkDescriptorSet set, const gpu::Buffer& labels, const gpu::Buffer& counter,
+                 const gpu::Buffer& cases) {
+  const VkDescriptorBufferInfo infos[3] = {{labels.handle(), 0, VK_WHOLE_SIZE},
+                                           {counter.handle(), 0, VK_WHOLE_SIZE},
+                                           {cases.handle(), 0, VK_WHOLE_SIZE}};
+  VkWriteDescriptorSet writes[3];
+  for (std::uint32_t b = 0; b < 3; ++b) {
+    writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[b].dstSet = set;
+    writes[b].dstBinding = b;
+    writes[b].descriptorCount = 1;
+    writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].pBufferInfo = &infos[b];
+  }
+  vkUpdateDescriptorSets(ctx.device(), 3, writes, 0, nullptr);
+}
+
+// Host labels: written straight into the mapped slab buffer before recording.
+// Device labels: a copy recorded ahead of the dispatch (the first after a barrier on every
+// earlier write to the application's buffer).
+void fillSlab(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::Buffer& labels, int firstLayer,
+              int layers) {
+  const std::size_t bytes = source.layerBytes() * static_cast<std::size_t>(layers + 1);
+  const std::size_t start = source.layerBytes() * static_cast<std::size_t>(firstLayer);
+  if (source.host) {
+    std::memcpy(labels.mapped(), reinterpret_cast<const std::uint8_t*>(source.host->labels.data()) + start, bytes);
+    return;
+  }
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy region{source.offset + start, 0, bytes};
+  vkCmdCopyBuffer(cmd, source.buffer, labels.handle(), 1, &region);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+}  // namespace
+
+Result<std::vector<CellCase>> Classifier::run(const LabelVolume& volume) {
+  if (volume.labels.size() != volume.grid.voxelCount())
+    return makeError(Errc::InvalidArgument, "classification: the label volume holds " + std::to_string(volume.labels.size()) +
+                                                " labels for " + std::to_string(volume.grid.voxelCount()) + " voxels");
+  Source source{volume.grid};
+  source.host = &volume;
+  return classify(source);
+}
+
+Result<std::vector<CellCase>> Classifier::run(const DeviceLabelVolume& volume) {
+  if (volume.buffer == VK_NULL_HANDLE) return makeError(Errc::InvalidArgument, "DeviceLabelVolume: no buffer");
+  if (volume.bitsPerLabel != 16 && volume.bitsPerLabel != 32)
+    return makeError(Errc::InvalidArgument, "DeviceLabelVolume: bitsPerLabel is " + std::to_string(volume.bitsPerLabel) +
+                                                "; 16 and 32 are supported");
+  if (volume.grid.nx < 0 || volume.grid.ny < 0 || volume.grid.nz < 0 ||
+      volume.grid.layerZ.size() != static_cast<std::size_t>(volume.grid.nz))
+    return makeError(Errc::InvalidArgument, "DeviceLabelVolume: the grid needs nz layer z values and non-negative sizes");
+  Source source{volume.grid};
+  source.buffer = volume.buffer;
+  source.offset = volume.offset;
+  source.bits = volume.bitsPerLabel;
+  return classify(source);
+}
+
+Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
+  const gpu::Context& ctx = *state_->ctx;
+  const Grid& grid = source.grid;
+  if (grid.nx < 2 || grid.ny < 2 || grid.nz < 2) return std::vector<CellCase>{};
+  SCANSURF_ASSIGN_OR_RETURN(const SlabPlan plan, planSlabs(ctx, grid, source.layerBytes(), state_->slabBudget));
+
+  const VkDeviceSize labelBytes = (plan.layerBytes * static_cast<std::size_t>(plan.slabCellLayers + 1) + 3) / 4 * 4;
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels,
-                            gpu::Buffer::create(ctx, (layerBytes * static_cast<std::size_t>(slabCellLayers + 1) + 3) / 4 * 4,
-                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
+                            source.host ? gpu::Buffer::create(ctx, labelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload)
+                                        : gpu::Buffer::create(ctx, labelBytes,
+                                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                              gpu::MemoryDomain::Device));
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer counter,
-                            gpu::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            gpu::Buffer::create(ctx, 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                 gpu::MemoryDomain::Readback));
   // Start with room for a surface through a few percent of the cells; grow on overflow.
   const std::size_t slabCells = static_cast<std::size_t>(grid.nx - 1) * static_cast<std::size_t>(grid.ny - 1) *
-                                static_cast<std::size_t>(slabCellLayers);
-  std::size_t capacity = std::clamp<std::size_t>(slabCells / 16, 4096, maxRecords);
+                                static_cast<std::size_t>(plan.slabCellLayers);
+  std::size_t capacity = std::clamp<std::size_t>(slabCells / 16, 4096, plan.maxRecords);
   gpu::Buffer cases;
   bool casesBound = false;
 
   std::vector<CellCase> result;
   state_->lastSlabs = 0;
   int first = 0;
-  int layers = slabCellLayers;
-  while (first < totalCellLayers) {
-    layers = std::min(layers, totalCellLayers - first);
+  int layers = plan.slabCellLayers;
+  while (first < plan.totalCellLayers) {
+    layers = std::min(layers, plan.totalCellLayers - first);
     if (!casesBound) {
       SCANSURF_ASSIGN_OR_RETURN(cases, gpu::Buffer::create(ctx, capacity * sizeof(CellCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                            gpu::MemoryDomain::Readback));
-      const VkDescriptorBufferInfo infos[3] = {{labels.handle(), 0, VK_WHOLE_SIZE},
-                                               {counter.handle(), 0, VK_WHOLE_SIZE},
-                                               {cases.handle(), 0, VK_WHOLE_SIZE}};
-      VkWriteDescriptorSet writes[3];
-      for (std::uint32_t b = 0; b < 3; ++b) {
-        writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[b].dstSet = state_->set;
-        writes[b].dstBinding = b;
-        writes[b].descriptorCount = 1;
-        writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[b].pBufferInfo = &infos[b];
-      }
-      vkUpdateDescriptorSets(ctx.device(), 3, writes, 0, nullptr);
+      bindBuffers(ctx, state_->set, labels, counter, cases);
       casesBound = true;
     }
-    std::memcpy(labels.mapped(), volume.labels.data() + grid.index(0, 0, first),
-                layerBytes * static_cast<std::size_t>(layers + 1));
-
     SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
     VkCommandBuffer cmd = commands.cmd();
-    vkCmdFillBuffer(cmd, counter.handle(), 0, 4, 0);
+    fillSlab(cmd, source, labels, first, layers);
+    vkCmdFillBuffer(cmd, counter.handle(), 0, 8, 0);
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->pipeline.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
     const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
-                                    static_cast<std::uint32_t>(layers), static_cast<std::uint32_t>(first),
-                                    static_cast<std::uint32_t>(capacity)};
+                                    static_cast<std::uint32_t>(layers),  static_cast<std::uint32_t>(first),
+                                    static_cast<std::uint32_t>(capacity), source.bits};
     vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
                   (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));
@@ -136,13 +216,18 @@ Result<std::vector<CellCase>> Classifier::run(const LabelVolume& volume) {
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     SCANSURF_TRY(commands.submitAndWait());
     SCANSURF_TRY(counter.invalidate());
-    std::uint32_t count = 0;
-    std::memcpy(&count, counter.mapped(), sizeof(count));
+    std::uint32_t counts[2] = {0, 0};
+    std::memcpy(counts, counter.mapped(), sizeof(counts));
+    if (counts[1] != 0)
+      return makeError(Errc::InvalidInput, "DeviceLabelVolume: label " + std::to_string(counts[1]) +
+                                               " in layers " + std::to_string(first) + ".." + std::to_string(first + layers) +
+                                               " exceeds the largest label, 65535");
+    const std::uint32_t count = counts[0];
 
     if (count > capacity) {
       // Too many records for the buffer: grow it, or halve the slab when at the limit.
-      if (capacity < maxRecords) {
-        capacity = std::min<std::size_t>(maxRecords, static_cast<std::size_t>(count) + count / 4);
+      if (capacity < plan.maxRecords) {
+        capacity = std::min<std::size_t>(plan.maxRecords, static_cast<std::size_t>(count) + count / 4);
         casesBound = false;
       } else if (layers > 1) {
         layers /= 2;

@@ -9,6 +9,8 @@
 
 #include "geometry/cell_cases.h"
 #include "gpu/context.h"
+#include "scansurf/label_volume.h"
+#include "scansurf/vulkan_interop.h"
 
 namespace scansurf::passes {
 
@@ -20,14 +22,20 @@ class Classifier {
   // Records of every cell holding a surface, sorted by cell index; identical to
   // classifyCellsReference(volume).
   Result<std::vector<CellCase>> run(const LabelVolume& volume);
+  // The same from labels already in a buffer on this device (16- or 32-bit, x fastest; see
+  // DeviceLabelVolume in scansurf/vulkan_interop.h): each slab is copied on the device, never
+  // through the host. A 32-bit label above 65535 is Errc::InvalidInput.
+  Result<std::vector<CellCase>> run(const DeviceLabelVolume& volume);
 
   // Bytes of labels one slab may upload; smaller forces more slabs (tests use it).
   void setSlabBudget(std::size_t bytes);
   int lastSlabCount() const;
 
   struct State;
+  struct Source;
 
  private:
+  Result<std::vector<CellCase>> classify(const Source& source);
   explicit Classifier(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
 };

@@ -8,8 +8,8 @@
 
 namespace scansurf::shaders {
 
-// The SPIR-V of the shader file `name` (e.g. "classify.comp"); throws std::logic_error for a
-// name that is not embedded (a build error, not a user error).
-std::span<const std::uint32_t> spirv(std::string_view name);
+// The SPIR-V of the shader file `name` (e.g. "classify.comp"); empty for a name that is not
+// embedded (a build error: gpu::createShaderModule then returns Errc::Internal). Never throws.
+std::span<const std::uint32_t> spirv(std::string_view name) noexcept;
 
 }  // namespace scansurf::shaders

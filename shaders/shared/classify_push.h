@@ -10,8 +10,9 @@ struct ClassifyPush {
   std::uint32_t cellLayers;      // cell layers in this dispatch (label layers - 1)
   std::uint32_t firstCellLayer;  // global index of the first cell layer of the slab
   std::uint32_t capacity;        // records the output buffer holds
+  std::uint32_t labelBits;       // 16: two labels per word; 32: one label per word
 };
-static_assert(sizeof(ClassifyPush) == 20, "ClassifyPush must match the GLSL push-constant block");
+static_assert(sizeof(ClassifyPush) == 24, "ClassifyPush must match the GLSL push-constant block");
 }  // namespace scansurf::shared
 #else
 layout(push_constant) uniform ClassifyPush {
@@ -20,6 +21,7 @@ layout(push_constant) uniform ClassifyPush {
   uint cellLayers;
   uint firstCellLayer;
   uint capacity;
+  uint labelBits;
 } push;
 #endif
 

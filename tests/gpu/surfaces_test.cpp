@@ -124,22 +124,57 @@ TEST_F(SurfacesTest, AbuttingFeaturesShareEveryInterfaceVertex) {
   EXPECT_NEAR(sum, unionStats.volume, 1e-9 * unionStats.volume);
 }
 
-// The stages one by one (scanConvert, then extract) give exactly what build() gives.
+// The stages one by one (nesting, grid, scanConvert, extract) give exactly what build()
+// gives, smoothing included.
 TEST_F(SurfacesTest, StageByStageEqualsBuild) {
   const ContourSet set = nestedSpheresContours(12, 5, 2.0);
-  const BuildResult built = build(set, 1.0, SurfaceConvention::Partition);
-  auto volume = engine_->scanConvert(set, built.volume.grid, built.nesting.order);
+  BuildOptions options;
+  options.grid.voxelSize = 1.0;
+  options.convention = SurfaceConvention::Partition;
+  options.smoothing.enabled = true;
+  options.smoothing.iterations = 20;
+  auto built = engine_->build(set, options);
+  ASSERT_TRUE(built) << built.error().message;
+  const Nesting nesting = computeNesting(set, options.grid.sliceTolerance);
+  auto grid = makeGrid(set, options.grid);
+  ASSERT_TRUE(grid) << grid.error().message;
+  auto volume = engine_->scanConvert(set, nesting, *grid, options);
   ASSERT_TRUE(volume) << volume.error().message;
-  EXPECT_EQ(volume->labels, built.volume.labels);
-  auto surfaces = engine_->extract(*volume, built.nesting, static_cast<int>(set.features.size()),
-                                   SurfaceConvention::Partition);
+  EXPECT_EQ(volume->labels, built->volume.labels);
+  auto surfaces = engine_->extract(*volume, nesting, options, &set);
   ASSERT_TRUE(surfaces) << surfaces.error().message;
-  EXPECT_EQ(surfaces->mesh.positions, built.surfaces.mesh.positions);
-  EXPECT_EQ(surfaces->mesh.triangles, built.surfaces.mesh.triangles);
-  EXPECT_EQ(surfaces->mesh.labels, built.surfaces.mesh.labels);
-  ASSERT_EQ(surfaces->features.size(), built.surfaces.features.size());
+  EXPECT_EQ(surfaces->mesh.positions, built->surfaces.mesh.positions);
+  EXPECT_EQ(surfaces->mesh.triangles, built->surfaces.mesh.triangles);
+  EXPECT_EQ(surfaces->mesh.labels, built->surfaces.mesh.labels);
+  ASSERT_EQ(surfaces->features.size(), built->surfaces.features.size());
   for (std::size_t f = 0; f < surfaces->features.size(); ++f)
-    EXPECT_EQ(surfaces->features[f].triangles, built.surfaces.features[f].triangles);
+    EXPECT_EQ(surfaces->features[f].triangles, built->surfaces.features[f].triangles);
+  // Smoothing ran in both: the positions left the half-voxel lattice.
+  auto raw = engine_->extract(*volume, nesting, BuildOptions{options.grid, options.convention}, &set);
+  ASSERT_TRUE(raw) << raw.error().message;
+  EXPECT_NE(raw->mesh.positions, surfaces->mesh.positions);
+}
+
+// GridOptions::sliceTolerance reaches nesting and scan conversion, not only the grid: two
+// features drawn 0.05 apart with a tolerance of 0.1 are on one plane (issue 13's regression).
+TEST_F(SurfacesTest, SliceToleranceReachesEveryStage) {
+  ContourSet set = sphereContours(5, 1.0);
+  Feature b = set.features[0];
+  b.name = "b";
+  for (FeatureSlice& slice : b.slices) {
+    slice.z += 0.05;
+    for (Contour& c : slice.contours)
+      for (Point2& p : c.points) p.x += 20;  // beside the sphere
+  }
+  set.features.push_back(b);
+  BuildOptions options;
+  options.grid.voxelSize = 0.5;
+  options.grid.sliceTolerance = 0.1;
+  auto built = engine_->build(set, options);
+  ASSERT_TRUE(built) << built.error().message;
+  const MeshStats a = stats(*built, 0), moved = stats(*built, 1);
+  EXPECT_TRUE(moved.closed && moved.manifold && moved.oriented);
+  EXPECT_NEAR(moved.volume, a.volume, 1e-6 * a.volume) << "both spheres on the same layers";
 }
 
 // A feature left without a surface is reported by name, never dropped in silence.

@@ -30,7 +30,8 @@
 #include "io/mesh_writers.h"
 #include "io/nrrd_writer.h"
 #include "io/png_writer.h"
-#include "io/report_json.h"
+#include "scansurf/report.h"
+#include "scansurf/version.h"
 #include "scansurf/nesting.h"
 #include "scansurf/palette.h"
 #include "support/reference_rasterizer.h"
@@ -454,9 +455,10 @@ TEST_F(OutputFormatsTest, ReportJsonCarriesStatisticsParametersAndTimings) {
   r.features.push_back({"outer", 1, {1, 2, 3}, computeMeshStats(b.meshes[0].positions, b.meshes[0].triangles), {"x.ply"}});
   r.timings = {{"assembly", 0.25}, {"write", 0.5}};
   const fs::path path = dir_ / "report.json";
-  ASSERT_TRUE(writeReportJson(path, r));
+  ASSERT_TRUE(writeReport(path, r));
   const nlohmann::json j = nlohmann::json::parse(readFile(path));
   EXPECT_EQ(j["format"], "scansurf-report");
+  EXPECT_EQ(j["generator"], std::string("scansurf ") + version());
   EXPECT_EQ(j["parameters"]["convention"], "enclosing");
   EXPECT_EQ(j["parameters"]["draco"], true);
   EXPECT_EQ(j["device"]["name"], "test device");

@@ -35,12 +35,31 @@ struct Feature {
   std::vector<FeatureSlice> slices;
 };
 
+// An explicit voxel lattice to lie on, e.g. the CT series the contours were drawn on: pixel
+// (i, j) of slice k is centred at (originX + i*spacingX, originY + j*spacingY, sliceZ[k]).
+struct GridReference {
+  double originX = 0;
+  double originY = 0;
+  double spacingX = 1;
+  double spacingY = 1;
+  int nx = 0;
+  int ny = 0;
+  std::vector<double> sliceZ;  // strictly increasing
+};
+
 struct ContourSet {
   std::string source;        // file name or description, used in error messages
   std::string units = "mm";  // length unit of every coordinate
   std::vector<Feature> features;
   // Nesting order, innermost first, as feature indices; empty = compute it (nestingOrder()).
   std::vector<int> order;
+  // The image lattice the contours were drawn on, when the reader was given it (RTSTRUCT with
+  // a reference CT): build() then puts the label volume on it (BuildOptions::grid).
+  std::optional<GridReference> reference;
+  // What the reader skipped or doubted (skipped contour types, empty ROIs) and what it read
+  // (one line each), for a run log. Not used by the method.
+  std::vector<std::string> warnings;
+  std::vector<std::string> notes;
 };
 
 // Tolerance (in input units) below which two slice z values are the same plane.

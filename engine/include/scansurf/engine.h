@@ -2,19 +2,28 @@
 // surfaces (Lee et al., "Scanline Surfacing"; Nielson & Franke 1997).
 //
 //   auto engine = scansurf::Engine::create({});
-//   auto built = engine->build(contours, {});      // nesting, scan conversion, surfaces
+//   auto built = engine->build(contours, {});      // nesting, grid, scan conversion, surfaces
 //
+// The same, stage by stage (exactly what build() gives, smoothing included):
+//   auto nesting = scansurf::computeNesting(contours, options.grid.sliceTolerance);
+//   auto grid = scansurf::makeGrid(contours, options.grid);
+//   auto volume = engine->scanConvert(contours, nesting, *grid, options);
+//   auto surfaces = engine->extract(*volume, nesting, options, &contours);
+//
+// Threads: an Engine is used by one thread at a time (calls on one Engine are not
+// synchronized); distinct Engines may run concurrently, also on one borrowed device as long
+// as the application gives each its own queue. Free functions are thread-safe.
+// Errors: every call returns Result<T>; nothing throws across this API.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "cell_case.h"  // shaders/shared, also compiled as GLSL
 #include "scansurf/contours.h"
+#include "scansurf/device.h"
 #include "scansurf/grid.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"
@@ -25,26 +34,8 @@
 
 namespace scansurf {
 
-struct ExternalVulkan;  // scansurf/vulkan_interop.h
-
-struct EngineOptions {
-  // Which device: an index into the list of devices, or part of its name (case-insensitive).
-  // Empty: the SCANSURF_DEVICE environment variable, else the best device
-  // (discrete > integrated > virtual > CPU).
-  std::string device;
-  // Enable VK_LAYER_KHRONOS_validation. Also on when SCANSURF_VALIDATION=1.
-  bool validation = false;
-  // Receives every validation message; default: printed to stderr.
-  std::function<void(std::string_view)> onValidationMessage;
-};
-
-struct DeviceInfo {
-  std::string name;
-  std::string type;  // "discrete", "integrated", "virtual", "cpu" or "other"
-  std::string driver;
-  std::uint32_t apiVersion = 0;
-  bool borrowed = false;  // the application's device (Engine::adopt)
-};
+struct ExternalVulkan;     // scansurf/vulkan_interop.h
+struct DeviceLabelVolume;  // scansurf/vulkan_interop.h
 
 // The time one stage took.
 struct StageTime {
@@ -52,13 +43,17 @@ struct StageTime {
   double seconds = 0;
 };
 
+// Everything that shapes a run, for build() and for each stage call alike.
 struct BuildOptions {
+  // The voxel grid (makeGrid); grid.sliceTolerance also decides which slices are one plane in
+  // nesting, scan conversion and smoothing. When grid sets no voxel size, counts or reference,
+  // the contour set's own reference lattice (ContourSet::reference, e.g. its CT) is used.
   GridOptions grid;
   SurfaceConvention convention = SurfaceConvention::Enclosing;
-  int threads = 0;  // CPU threads for assembly and smoothing; 0 = all
+  int threads = 0;  // CPU threads for assembly and smoothing; 0 = all (or SCANSURF_THREADS)
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
-  // Called after each stage of build() with its name and time (progress reports).
+  // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
 };
 
@@ -70,16 +65,14 @@ struct BuildResult {
   std::vector<StageTime> timings;
 };
 
-// Per-cell case data of the tetrahedral classification (CellCase: shaders/shared/cell_case.h).
-struct ClassifiedCells {
-  std::vector<CellCase> records;  // sorted by cell
-};
-
 class Engine {
  public:
-  // Creates an instance and device of its own.
+  // Creates a Vulkan instance and device of its own. Errors: Errc::NoDevice (no usable device,
+  // each rejected device listed with the reason), Errc::Vulkan.
   static Result<Engine> create(const EngineOptions& options);
-  // Borrows the application's device (see vulkan_interop.h).
+  // Borrows the application's device (see vulkan_interop.h for the requirements, which are
+  // checked: Errc::NoDevice says what is missing). scansurf never waits on the device as a
+  // whole, only on its own fences.
   static Result<Engine> adopt(const ExternalVulkan& vulkan, const EngineOptions& options = {});
 
   Engine(Engine&&) noexcept;
@@ -90,18 +83,28 @@ class Engine {
   // Validation messages received so far (0 when validation is off).
   std::uint64_t validationMessageCount() const;
 
-  // Scan converts every slice of a validated contour set into a label volume on `grid`;
-  // order is the nesting order (innermost first; Nesting::order). Label of feature i = i+1.
-  Result<LabelVolume> scanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order);
-  // Classifies every tetrahedron of the volume on the GPU: case data of occupied cells.
-  Result<ClassifiedCells> classify(const LabelVolume& volume);
-  // Classification, then CPU assembly of the multi-label mesh and the feature surfaces.
-  Result<Surfaces> extract(const LabelVolume& volume, const Nesting& nesting, int featureCount,
-                           SurfaceConvention convention, int threads = 0);
-  // The whole method: nesting, grid, scan conversion, classification, assembly.
+  // The whole method: nesting, grid, scan conversion, classification, assembly, smoothing
+  // (when options.smoothing.enabled) and the feature surfaces. `contours` must be validated
+  // (readContours does it). Coordinates and volumes in the contours' units.
   Result<BuildResult> build(const ContourSet& contours, const BuildOptions& options);
-  // Renders the feature surfaces offscreen on this device (passes/preview.h): shaded, each
-  // feature in options.colors, an orthographic camera fitted to them from options.view.
+
+  // Stage 1 on the device: scan converts every slice of a validated contour set into a label
+  // volume on `grid` (makeGrid(contours, options.grid)), inner features first by
+  // nesting.order. Label of feature i = i + 1; padding layers stay background.
+  Result<LabelVolume> scanConvert(const ContourSet& contours, const Nesting& nesting, const Grid& grid,
+                                  const BuildOptions& options);
+  // Stage 2: classification on the device, then assembly, smoothing (options.smoothing) and
+  // the feature surfaces on the CPU. nesting.parent.size() is the number of features.
+  // `contours` (the set scan converted into `volume`, or null) enables contour fitting.
+  Result<Surfaces> extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
+                           const ContourSet* contours = nullptr);
+  // Stage 2 from labels the application already holds in a VkBuffer on the adopted device
+  // (vulkan_interop.h): no readback, no upload. Same result as the host overload.
+  Result<Surfaces> extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
+                           const ContourSet* contours = nullptr);
+
+  // Renders the feature surfaces offscreen on this device: shaded, each feature in
+  // options.colors, an orthographic camera fitted to them from options.view.
   Result<PreviewImage> renderPreview(const Surfaces& surfaces, const PreviewOptions& options);
 
   struct Impl;

@@ -10,18 +10,6 @@
 
 namespace scansurf {
 
-// An explicit voxel lattice to lie on, e.g. a CT series' (engine/io/ct_series.h): pixel
-// (i, j) of slice k is centred at (originX + i*spacingX, originY + j*spacingY, sliceZ[k]).
-struct GridReference {
-  double originX = 0;
-  double originY = 0;
-  double spacingX = 1;
-  double spacingY = 1;
-  int nx = 0;
-  int ny = 0;
-  std::vector<double> sliceZ;  // strictly increasing
-};
-
 // How the user chooses the in-plane grid. Set voxelSize, or nx and ny, or neither, or a
 // reference.
 struct GridOptions {
@@ -65,7 +53,9 @@ struct Grid {
   }
 };
 
-// Builds the grid for a validated contour set: the slice planes (merged within
+// Builds the grid for a validated contour set. With options.reference, or else the contour
+// set's own reference (ContourSet::reference) when the options set no voxel size or counts,
+// the grid lies on that lattice. Otherwise: the slice planes (merged within
 // options.sliceTolerance) become layers 1..nz-2, padded by one layer on each side at the
 // neighbouring slice spacing. Errors: options out of range, or a degenerate extent.
 Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options);

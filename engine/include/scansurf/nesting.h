@@ -18,9 +18,14 @@ struct Nesting {
   bool userOrder = false;  // order came from the input's "order"
 };
 
-// Computes containment and the nesting order of a validated contour set. The order is
-// acyclic and deterministic; contours.order, when not empty, is used as the order instead.
-Nesting computeNesting(const ContourSet& contours);
+// Computes containment and the nesting order of a validated contour set; slices closer than
+// sliceTolerance (input units) are one plane. The order is acyclic and deterministic;
+// contours.order, when not empty, is used as the order instead.
+Nesting computeNesting(const ContourSet& contours, double sliceTolerance = kDefaultSliceTolerance);
+
+// The nesting of `featureCount` features none of which contains another, in index order: for
+// label volumes made elsewhere (Engine::extract) where containment is not known.
+Nesting flatNesting(int featureCount);
 
 // True when feature `inner` is contained in `outer` (directly or through parents).
 bool isInside(const Nesting& nesting, int inner, int outer);

@@ -16,7 +16,22 @@ enum class Errc {
   NoDevice = 4,         // no usable Vulkan device
   Vulkan = 5,           // a Vulkan call failed
   Internal = 6,         // a broken invariant: a bug in scansurf
+  OutOfMemory = 7,      // a host or device allocation failed; the message names what and how much
 };
+
+// A short lower-case name of the category ("invalid argument", "out of memory", ...).
+inline const char* errcName(Errc code) noexcept {
+  switch (code) {
+    case Errc::InvalidArgument: return "invalid argument";
+    case Errc::InvalidInput: return "invalid input";
+    case Errc::Io: return "I/O error";
+    case Errc::NoDevice: return "no usable Vulkan device";
+    case Errc::Vulkan: return "Vulkan error";
+    case Errc::Internal: return "internal error";
+    case Errc::OutOfMemory: return "out of memory";
+  }
+  return "error";
+}
 
 struct Error {
   Errc code = Errc::Internal;

@@ -1,16 +1,52 @@
-#include "io/report_json.h"
+// scansurf: the run report (scansurf/report.h).
+#include "scansurf/report.h"
 
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
+#include "scansurf/palette.h"
+#include "scansurf/version.h"
 
 namespace scansurf {
 
-Result<void> writeReportJson(const std::filesystem::path& path, const RunReport& report) {
+namespace fs = std::filesystem;
+
+RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device, ReportContext context,
+                     std::vector<MeshStats> stats) {
+  RunReport r;
+  r.generator = std::string("scansurf ") + version();
+  r.input = std::move(context.input);
+  r.units = contours.units;
+  r.parameters = std::move(context.parameters);
+  r.deviceName = device.name, r.deviceType = device.type, r.driver = device.driver;
+  r.grid = built.volume.grid;
+  for (int f : built.nesting.order) r.nestingOrder.push_back(contours.features[static_cast<std::size_t>(f)].name);
+  r.userOrder = built.nesting.userOrder;
+  r.meshVertices = built.surfaces.mesh.vertexCount();
+  r.meshTriangles = built.surfaces.mesh.triangleCount();
+  if (stats.size() != built.surfaces.features.size()) {
+    stats.clear();
+    for (const FeatureSurface& f : built.surfaces.features) stats.push_back(computeMeshStats(built.surfaces.mesh.positions, f.triangles));
+  }
+  const std::vector<Rgb> colors = featureColors(contours);
+  for (std::size_t f = 0; f < contours.features.size() && f < stats.size(); ++f) {
+    ReportFeature rf{contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}};
+    if (f < context.files.size())
+      for (const fs::path& p : context.files[f]) rf.files.push_back(p.string());
+    r.features.push_back(std::move(rf));
+  }
+  for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
+  for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
+  r.warnings = built.warnings;
+  return r;
+}
+
+Result<void> writeReport(const std::filesystem::path& path, const RunReport& report) {
   using nlohmann::ordered_json;
   ordered_json j;
   j["format"] = "scansurf-report";
   j["version"] = 1;
+  j["generator"] = report.generator.empty() ? std::string("scansurf ") + version() : report.generator;
   j["input"] = report.input;
   j["units"] = report.units;
   ordered_json params = ordered_json::object();

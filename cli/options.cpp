@@ -1,0 +1,150 @@
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+
+#include "scansurf/version.h"
+
+namespace scansurf::cli {
+namespace {
+
+constexpr const char* kFooter =
+    "Outputs: OUTDIR/<feature>.ply (one closed surface per feature, outward), OUTDIR/multilabel.ply\n"
+    "(every separating surface, each face with its two labels; label = feature index + 1); other formats\n"
+    "with --format (glb: one scene OUTDIR/<input name>.glb); -o NAME.glb writes one Draco-compressed glTF scene instead.\n"
+    "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal,\n"
+    "8 out of memory.\n"
+    "Environment: SCANSURF_DEVICE (device index or name), SCANSURF_VALIDATION=1, SCANSURF_THREADS.";
+
+// Local flags the struct does not hold directly.
+struct Flags {
+  std::vector<int> grid;
+  std::string convention = "enclosing";
+  bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
+  std::string reference;
+};
+
+void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
+  app.add_option("input", o.input, "contour set: JSON (docs/input-format.md) or DICOM RTSTRUCT")->required()->check(CLI::ExistingFile);
+  app.add_option("-o,--output", o.output, "output directory (created if missing) or NAME.glb; required unless --list-rois");
+  auto* voxel = app.add_option("--voxel-size", o.build.grid.voxelSize,
+                               "in-plane pixel size, input units (default: 256 pixels along the longer side)")
+                    ->check(CLI::PositiveNumber);
+  app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border")
+      ->expected(2)
+      ->check(CLI::Range(3, 1 << 20))
+      ->excludes(voxel);
+  app.add_option("--convention", f.convention,
+                 "enclosing: each surface around all its contours enclose, nested features included; "
+                 "partition: the boundary of the region each feature owns")
+      ->check(CLI::IsMember({"enclosing", "partition"}))
+      ->capture_default_str();
+  app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
+  app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
+  app.add_option("--threads", o.build.threads, "CPU threads for assembly and smoothing (default: all)")->check(CLI::Range(0, 1024));
+  app.add_flag("-q,--quiet", o.quiet, "print errors and warnings only");
+  app.add_flag("--json-progress", o.jsonProgress, "progress as JSON lines on stderr, for scripts");
+}
+
+void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
+  SmoothingOptions& s = o.build.smoothing;
+  app.add_flag("--no-smooth", f.noSmooth, "write the raw (staircase) separating surfaces, without smoothing");
+  app.add_option("--smooth-iterations", s.iterations, "smoothing sweeps")->check(CLI::Range(1, 100000))->capture_default_str();
+  app.add_option("--smooth-strength", s.strength, "step of each smoothing sweep, in (0, 1]")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            return end != text.c_str() && *end == '\0' && v > 0 && v <= 1 ? std::string() : "must be a number in (0, 1]";
+          },
+          "(0, 1]"))
+      ->capture_default_str();
+  app.add_flag("--no-contour-fit", f.noContourFit, "do not place contour-plane vertices on the original contours");
+  app.add_flag("--no-junction-smoothing", f.noJunctions, "keep vertices where three or more structures meet in place");
+}
+
+void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
+  app.add_option("--roi", o.read.roiPatterns, "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
+      ->expected(1)
+      ->take_all();
+  app.add_flag("--list-rois", o.listRois, "RTSTRUCT: list the file's ROIs and exit");
+  app.add_option("--reference", f.reference, "RTSTRUCT: folder of a CT series; the label volume lies on its voxel grid");
+}
+
+void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
+  DracoOptions& draco = o.scene.dracoOptions;
+  app.add_option("--format", o.formats, "per-feature formats in OUTDIR: ply (default, with multilabel.ply), drc, obj, stl, "
+                                        "glb (one scene OUTDIR/<input name>.glb); comma-separated")
+      ->delimiter(',');
+  app.add_flag("--no-draco", f.noDraco, "GLB without KHR_draco_mesh_compression (plain float accessors)");
+  app.add_option("--draco-bits", draco.quantizationBits, "Draco position quantization bits (default: error below 1/25 voxel)")
+      ->check(CLI::Range(1, 30));
+  app.add_option("--draco-level", draco.compressionLevel, "Draco compression level, 0 fastest .. 10 smallest")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
+  app.add_option("--label-volume", o.labelVolume, "write the label volume as NRRD (.nrrd; *.seg.nrrd opens as a Slicer "
+                                                  "segmentation) plus its label table (.ctbl)");
+  app.add_option("--report", o.report, "write a JSON report: per-feature statistics, parameters, device, timings");
+  app.add_option("--preview", o.preview, "render a picture of the surfaces on the Vulkan device (.png)");
+  app.add_option("--view", o.view, "preview camera")
+      ->check(CLI::IsMember({"oblique", "front", "back", "left", "right", "top", "bottom"}))
+      ->capture_default_str();
+  app.add_option("--preview-size", o.previewSize, "W H: preview size in pixels (default 960 720)")
+      ->expected(2)
+      ->check(CLI::Range(1, 16384));
+}
+
+// Moves the flags into the options struct.
+void apply(const Flags& f, CliOptions& o) {
+  if (f.grid.size() == 2) o.build.grid.nx = f.grid[0], o.build.grid.ny = f.grid[1];
+  o.build.convention = f.convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
+  o.build.smoothing.enabled = !f.noSmooth;
+  o.build.smoothing.contourFit = !f.noContourFit;
+  o.build.smoothing.junctions = !f.noJunctions;
+  o.scene.draco = !f.noDraco;
+  o.read.referenceSeries = f.reference;
+}
+
+}  // namespace
+
+ParsedCommandLine parseCommandLine(int argc, char** argv) {
+  CLI::App app{"scansurf: separating surfaces from planar contours (scanline surfacing on Vulkan)"};
+  app.footer(kFooter);
+  app.set_version_flag("--version", std::string("scansurf ") + version());
+  ParsedCommandLine parsed;
+  Flags flags;
+  addGeneral(app, parsed.options, flags);
+  addSmoothing(app, parsed.options, flags);
+  addDicom(app, parsed.options, flags);
+  addOutputs(app, parsed.options, flags);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    parsed.exitCode = code == 0 ? 0 : 2;
+    return parsed;
+  }
+  apply(flags, parsed.options);
+  parsed.run = true;
+  return parsed;
+}
+
+std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> reportParameters(const CliOptions& o,
+                                                                                              const Grid& grid) {
+  const BuildOptions& b = o.build;
+  const DracoOptions& d = o.scene.dracoOptions;
+  return {{"convention", b.convention == SurfaceConvention::Enclosing ? "enclosing" : "partition"},
+          {"voxel_size", b.grid.voxelSize},
+          {"grid_nx", static_cast<double>(b.grid.nx)},
+          {"grid_ny", static_cast<double>(b.grid.ny)},
+          {"threads", static_cast<double>(b.threads)},
+          {"smoothing", b.smoothing.enabled},
+          {"draco", o.scene.draco},
+          {"draco_bits", static_cast<double>(d.quantizationBits)},  // 0: from draco_max_error
+          {"draco_max_error", d.quantizationBits ? 0.0 : defaultQuantizationError(grid)},
+          {"draco_level", static_cast<double>(d.compressionLevel)},
+          {"validation", o.engine.validation}};
+}
+
+}  // namespace scansurf::cli

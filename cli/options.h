@@ -1,0 +1,47 @@
+// scansurf CLI: the command line, parsed into one struct (CLI11 does the parsing; no number
+// parsing here can throw).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "scansurf/engine.h"
+#include "scansurf/input.h"
+#include "scansurf/outputs.h"
+#include "scansurf/preview.h"
+
+namespace scansurf::cli {
+
+struct CliOptions {
+  std::string input;
+  std::string output;  // a directory, or NAME.glb
+  bool listRois = false;
+  bool quiet = false;
+  bool jsonProgress = false;
+  EngineOptions engine;
+  BuildOptions build;  // smoothing on unless --no-smooth
+  ReadOptions read;
+  std::vector<std::string> formats;  // --format, before parsing into MeshFormat
+  SceneOptions scene;
+  std::string labelVolume, report, preview;
+  std::string view = "oblique";
+  std::vector<unsigned> previewSize;
+};
+
+// What parseCommandLine decided: run with `options`, or exit at once with `exitCode` (help,
+// --version, or a usage error, already printed).
+struct ParsedCommandLine {
+  bool run = false;
+  int exitCode = 0;
+  CliOptions options;
+};
+
+ParsedCommandLine parseCommandLine(int argc, char** argv);
+
+// The options that shaped the run, for the report.
+std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> reportParameters(const CliOptions& options,
+                                                                                              const Grid& grid);
+
+}  // namespace scansurf::cli

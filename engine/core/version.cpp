@@ -1,0 +1,7 @@
+#include "scansurf/version.h"
+
+namespace scansurf {
+
+const char* version() noexcept { return SCANSURF_VERSION_STRING; }
+
+}  // namespace scansurf

@@ -1,0 +1,123 @@
+// scansurf: writing surfaces, scenes, label volumes and pictures, one file at a time or every
+// output of a run at once (all or nothing).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scansurf/contours.h"
+#include "scansurf/label_volume.h"
+#include "scansurf/preview.h"
+#include "scansurf/result.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf {
+
+// Per-feature surface formats (one file per feature) and the scene of every feature.
+enum class MeshFormat { Ply, Drc, Obj, Stl, Glb };
+
+// "ply", "drc", "obj", "stl", "glb" (case-insensitive, a leading '.' allowed); else an
+// Errc::InvalidArgument error naming the known formats.
+Result<MeshFormat> parseMeshFormat(std::string_view name);
+const char* extensionOf(MeshFormat format);  // ".ply", ...
+
+struct DracoOptions {
+  // Position quantization bits (1..30); 0 = the fewest bits whose error stays below maxError.
+  int quantizationBits = 0;
+  // Largest allowed position error per axis, input units; used when quantizationBits is 0.
+  // 0 = Draco's default of 11 bits.
+  double maxError = 0;
+  int compressionLevel = 7;  // 0 (fastest) .. 10 (smallest)
+};
+
+// The default Draco error bound for a grid: 1/25 of its smallest voxel edge, so no two
+// surface vertices (at least 1/12 voxel apart) quantize to one point.
+double defaultQuantizationError(const Grid& grid);
+
+struct SceneOptions {
+  bool draco = true;  // KHR_draco_mesh_compression; false: plain float32 accessors
+  DracoOptions dracoOptions;
+};
+
+// Every single-file writer below stages its file beside the target and renames it into place,
+// so a failure never leaves a partial file; errors are Errc::Io naming the path (Errc::Internal
+// when an encoder refuses the mesh).
+
+// One feature's closed surface in `format` (not Glb). Positions in input units; PLY exact
+// floats, Draco quantized by `draco`, OBJ with 6 decimals, STL float32 with unit normals.
+// Draco, OBJ and STL refuse an empty surface (Errc::InvalidArgument); PLY writes it empty.
+Result<void> writeSurface(const std::filesystem::path& path, const Surfaces& surfaces, int feature, MeshFormat format,
+                          const ContourSet& contours, const DracoOptions& draco = {});
+// Every separating surface in one binary PLY, each face with label_inside / label_outside.
+Result<void> writeMultiLabelMesh(const std::filesystem::path& path, const Surfaces& surfaces);
+// One binary glTF scene (.glb): a named, coloured node per feature with a surface.
+Result<void> writeScene(const std::filesystem::path& path, const ContourSet& contours, const Surfaces& surfaces,
+                        const SceneOptions& options = {});
+// The label volume as gzip NRRD (3D Slicer segment keys; *.seg.nrrd opens as a segmentation)
+// and its label table (3D Slicer colour table) at `path` with the extension .ctbl.
+Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume);
+// An RGBA picture as PNG.
+Result<void> writePreview(const std::filesystem::path& path, const PreviewImage& image);
+
+// Everything a run writes. Paths are final destinations.
+struct OutputPlan {
+  std::filesystem::path dir;        // per-feature files and multilabel.ply; empty = none
+  std::vector<MeshFormat> formats;  // in dir: Glb = one scene dir/<sceneName>.glb, others per feature
+  std::string sceneName = "surfaces";
+  std::filesystem::path glbFile;    // a scene at this exact path; empty = none
+  bool multilabel = true;           // dir/multilabel.ply when Ply is among the formats
+  SceneOptions scene;               // GLB (dracoOptions also for .drc; maxError from the grid when 0)
+  std::filesystem::path labelVolume;  // .nrrd (+ .ctbl beside it); empty = none
+  std::filesystem::path report;       // .json; empty = none
+  std::filesystem::path preview;      // .png; empty = none
+};
+
+// Checks, before any work, that every output of the plan can be written: directories exist or
+// can be created and accept files, extensions are known, no two outputs share a path.
+// Errors: Errc::InvalidArgument (unknown extension, clash), Errc::Io naming the path.
+Result<void> checkOutputs(const OutputPlan& plan);
+
+// Files written into staging folders beside their destinations (one per directory) and moved
+// into place by commit(), so a failed run leaves nothing partial and replaces no existing
+// file. Destroyed without commit(), it removes everything staged.
+class OutputStaging {
+ public:
+  OutputStaging() = default;
+  OutputStaging(const OutputStaging&) = delete;
+  OutputStaging& operator=(const OutputStaging&) = delete;
+  ~OutputStaging();
+
+  // Calls write(stagedPath) for the file that will end up at `target`; an error from it names
+  // `target`, not the staging path. Errors: Errc::InvalidArgument when `target` was already
+  // staged, Errc::Io, or write's error.
+  Result<void> stage(const std::filesystem::path& target,
+                     const std::function<Result<void>(const std::filesystem::path& staged)>& write);
+  // Moves every staged file into place; returns the final paths in staging order.
+  Result<std::vector<std::filesystem::path>> commit();
+  // The final paths staged so far.
+  std::vector<std::filesystem::path> targets() const;
+
+ private:
+  Result<std::filesystem::path> reserve(const std::filesystem::path& target);
+  std::vector<std::filesystem::path> dirs_;
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // staged, target
+};
+
+struct SurfaceOutputs {
+  std::vector<std::vector<std::filesystem::path>> files;  // per feature: final paths holding its surface
+  std::vector<std::string> warnings;                      // e.g. a feature without a surface
+};
+
+// Stages the surfaces, scene and label volume of the plan (not its report or preview). A
+// feature with no triangles gets only its (empty) PLY, with a warning.
+Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
+                                           const Surfaces& surfaces, const LabelVolume& volume);
+
+// A file name from a feature name: letters, digits, '.', '-' and '_' kept, the rest '_';
+// made unique against `used` (and added to it).
+std::string fileStem(const std::string& name, std::vector<std::string>& used);
+
+}  // namespace scansurf

@@ -1,0 +1,65 @@
+// scansurf: the machine-readable report of a run (format "scansurf-report"): per-feature
+// statistics, the run's parameters, device, grid, nesting order, stage timings and outputs.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "scansurf/contours.h"
+#include "scansurf/device.h"
+#include "scansurf/engine.h"
+#include "scansurf/grid.h"
+#include "scansurf/result.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf {
+
+struct ReportFeature {
+  std::string name;
+  int label = 0;
+  Rgb color{};
+  MeshStats stats;
+  std::vector<std::string> files;  // outputs holding this feature's surface
+};
+
+using ReportValue = std::variant<bool, double, std::string>;
+
+struct RunReport {
+  std::string generator;  // "scansurf <version>"
+  std::string input;
+  std::string units = "mm";
+  std::vector<std::pair<std::string, ReportValue>> parameters;
+  std::string deviceName, deviceType, driver;
+  Grid grid;
+  std::vector<std::string> nestingOrder;  // feature names, innermost first
+  bool userOrder = false;
+  std::size_t meshVertices = 0, meshTriangles = 0;
+  std::vector<ReportFeature> features;
+  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  std::vector<std::string> warnings;
+  std::vector<std::string> outputs;
+};
+
+// What makeReport needs beyond the run's results.
+struct ReportContext {
+  std::string input;                                            // the input as the user named it
+  std::vector<std::pair<std::string, ReportValue>> parameters;  // the options that shaped the run
+  std::vector<StageTime> timings;                               // every stage, in order
+  std::vector<std::vector<std::filesystem::path>> files;        // per feature: files with its surface (may be empty)
+  std::vector<std::filesystem::path> outputs;                   // every file the run writes
+};
+
+// The report of a build: statistics of every feature surface (computeMeshStats), the grid,
+// nesting order, device, warnings; `stats` may hold them already (one per feature), else they
+// are computed.
+RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device,
+                     ReportContext context, std::vector<MeshStats> stats = {});
+
+// Writes the report as JSON (format "scansurf-report", version 1): areas in units², volumes in
+// units³, times in seconds. Staged and renamed. Errors: Errc::Io naming the path.
+Result<void> writeReport(const std::filesystem::path& path, const RunReport& report);
+
+}  // namespace scansurf

@@ -1,0 +1,279 @@
+// scansurf: every output of a run, one file at a time or all or nothing (scansurf/outputs.h).
+#include "scansurf/outputs.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "geometry/compact_mesh.h"
+#include "io/atomic_file.h"
+#include "io/draco_writer.h"
+#include "io/png_writer.h"
+#include "io/gltf_writer.h"
+#include "io/mesh_writers.h"
+#include "io/nrrd_writer.h"
+#include "io/ply_writer.h"
+#include "scansurf/palette.h"
+
+namespace fs = std::filesystem;
+
+namespace scansurf {
+
+std::string fileStem(const std::string& name, std::vector<std::string>& used) {
+  std::string stem;
+  for (unsigned char c : name) stem += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
+  if (stem.empty() || stem.front() == '.') stem = "feature" + stem;
+  std::string unique = stem;
+  for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n) unique = stem + "_" + std::to_string(n);
+  used.push_back(unique);
+  return unique;
+}
+
+Result<MeshFormat> parseMeshFormat(std::string_view name) {
+  std::string n;
+  for (unsigned char c : name) n += static_cast<char>(std::tolower(c));
+  if (!n.empty() && n.front() == '.') n.erase(0, 1);
+  for (MeshFormat f : {MeshFormat::Ply, MeshFormat::Drc, MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Glb})
+    if ("." + n == extensionOf(f)) return f;
+  return makeError(Errc::InvalidArgument, "unknown output format \"" + std::string(name) + "\" (known: ply, drc, obj, stl, glb)");
+}
+
+const char* extensionOf(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Ply: return ".ply";
+    case MeshFormat::Drc: return ".drc";
+    case MeshFormat::Obj: return ".obj";
+    case MeshFormat::Stl: return ".stl";
+    case MeshFormat::Glb: return ".glb";
+  }
+  return "";
+}
+
+namespace {
+
+bool hasExtension(const fs::path& path, const std::string& ext) {
+  std::string e = path.extension().string();
+  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e == ext;
+}
+
+Result<void> checkFile(const fs::path& path, const char* what, const std::string& ext, std::vector<fs::path>& seen) {
+  if (path.empty()) return {};
+  if (!hasExtension(path, ext))
+    return makeError(Errc::InvalidArgument, std::string(what) + " '" + path.string() + "': unknown format (expected a " + ext +
+                                                " file)");
+  const fs::path full = fs::absolute(path).lexically_normal();
+  if (std::find(seen.begin(), seen.end(), full) != seen.end())
+    return makeError(Errc::InvalidArgument, "two outputs would be written to '" + path.string() + "'");
+  seen.push_back(full);
+  if (fs::is_directory(path)) return makeError(Errc::Io, std::string(what) + " '" + path.string() + "' is a directory");
+  return ensureWritableDirectory(path.has_parent_path() ? path.parent_path() : fs::path("."));
+}
+
+}  // namespace
+
+Result<void> checkOutputs(const OutputPlan& plan) {
+  std::vector<fs::path> seen;
+  if (!plan.dir.empty()) SCANSURF_TRY(ensureWritableDirectory(plan.dir));
+  SCANSURF_TRY(checkFile(plan.glbFile, "GLB output", ".glb", seen));
+  SCANSURF_TRY(checkFile(plan.labelVolume, "label volume", ".nrrd", seen));
+  SCANSURF_TRY(checkFile(plan.report, "report", ".json", seen));
+  SCANSURF_TRY(checkFile(plan.preview, "preview", ".png", seen));
+  return {};
+}
+
+OutputStaging::~OutputStaging() {
+  std::error_code ignored;
+  for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
+}
+
+Result<fs::path> OutputStaging::reserve(const fs::path& target) {
+  for (const auto& [staged, t] : files_)
+    if (t == target) return makeError(Errc::InvalidArgument, "two outputs would be written to '" + target.string() + "'");
+  const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const fs::path dir = parent / (".scansurf-staging-" + std::to_string(::getpid()));
+  if (std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    if (!fs::create_directory(dir, ec)) return makeError(Errc::Io, "cannot create " + dir.string() + ": " + ec.message());
+    dirs_.push_back(dir);
+  }
+  fs::path staged = dir / (std::to_string(files_.size()) + "-" + target.filename().string());
+  files_.emplace_back(staged, target);
+  return staged;
+}
+
+Result<void> OutputStaging::stage(const fs::path& target, const std::function<Result<void>(const fs::path& staged)>& write) {
+  SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, reserve(target));
+  Result<void> written = write(staged);
+  if (written) return written;
+  // Name the file the user asked for, not the staging path.
+  std::string message = written.error().message;
+  for (std::size_t at; (at = message.find(staged.string())) != std::string::npos;)
+    message.replace(at, staged.string().size(), target.string());
+  return makeError(written.error().code, message);
+}
+
+std::vector<fs::path> OutputStaging::targets() const {
+  std::vector<fs::path> out;
+  for (const auto& f : files_) out.push_back(f.second);
+  return out;
+}
+
+Result<std::vector<fs::path>> OutputStaging::commit() {
+  std::vector<fs::path> written;
+  std::error_code ec;
+  for (const auto& [staged, target] : files_) {
+    fs::rename(staged, target, ec);
+    if (ec)
+      return makeError(Errc::Io, "cannot move " + target.filename().string() + " into place at '" + target.string() + "': " +
+                                     ec.message());
+    written.push_back(target);
+  }
+  return written;
+}
+
+namespace {
+
+std::vector<GltfFeature> sceneFeatures(const ContourSet& contours, const std::vector<CompactMesh>& meshes) {
+  const std::vector<Rgb> colors = featureColors(contours);
+  std::vector<GltfFeature> scene;
+  for (std::size_t f = 0; f < meshes.size(); ++f) scene.push_back({contours.features[f].name, colors[f], &meshes[f]});
+  return scene;
+}
+
+std::vector<LabelEntry> labelTable(const ContourSet& contours) {
+  const std::vector<Rgb> colors = featureColors(contours);
+  std::vector<LabelEntry> table;
+  for (std::size_t f = 0; f < contours.features.size(); ++f)
+    table.push_back({labelOfFeature(static_cast<int>(f)), contours.features[f].name, colors[f]});
+  return table;
+}
+
+Result<void> writeCompact(const fs::path& path, const CompactMesh& mesh, int feature, MeshFormat format,
+                          const std::string& name, const DracoOptions& draco) {
+  if (format != MeshFormat::Ply && mesh.triangles.empty())
+    return makeError(Errc::InvalidArgument, "feature \"" + name + "\" has no surface: " + extensionOf(format) +
+                                                " cannot hold an empty mesh (" + path.string() + ")");
+  switch (format) {
+    case MeshFormat::Ply: return writeSurfacePly(path, mesh, feature);
+    case MeshFormat::Drc: return writeDrc(path, mesh, draco);
+    case MeshFormat::Obj: return writeObj(path, mesh, name);
+    case MeshFormat::Stl: return writeStl(path, mesh);
+    case MeshFormat::Glb: break;
+  }
+  return makeError(Errc::InvalidArgument, "writeSurface writes one feature; a GLB scene is writeScene's (" + path.string() + ")");
+}
+
+DracoOptions dracoFor(const DracoOptions& options, const Grid& grid) {
+  DracoOptions draco = options;
+  if (draco.quantizationBits == 0 && draco.maxError <= 0) draco.maxError = defaultQuantizationError(grid);
+  return draco;
+}
+
+bool has(const std::vector<MeshFormat>& formats, MeshFormat f) {
+  return std::find(formats.begin(), formats.end(), f) != formats.end();
+}
+
+// The per-feature files of one feature in the plan's directory.
+Result<void> stageFeatureFiles(OutputStaging& staging, const OutputPlan& plan, const CompactMesh& mesh, int feature,
+                               const std::string& name, const std::string& stem, const DracoOptions& draco,
+                               SurfaceOutputs& out) {
+  for (MeshFormat format : plan.formats) {
+    if (format == MeshFormat::Glb) continue;
+    if (format != MeshFormat::Ply && mesh.triangles.empty()) {
+      out.warnings.push_back("feature \"" + name + "\" has no surface: no " + extensionOf(format) + " written for it");
+      continue;
+    }
+    const fs::path target = plan.dir / (stem + extensionOf(format));
+    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeCompact(p, mesh, feature, format, name, draco); }));
+    out.files[static_cast<std::size_t>(feature)].push_back(target);
+  }
+  return {};
+}
+
+std::vector<fs::path> sceneTargets(const OutputPlan& plan) {
+  std::vector<fs::path> targets;
+  if (!plan.glbFile.empty()) targets.push_back(plan.glbFile);
+  if (!plan.dir.empty() && has(plan.formats, MeshFormat::Glb)) targets.push_back(plan.dir / (plan.sceneName + ".glb"));
+  return targets;
+}
+
+}  // namespace
+
+Result<void> writeSurface(const fs::path& path, const Surfaces& surfaces, int feature, MeshFormat format,
+                          const ContourSet& contours, const DracoOptions& draco) {
+  if (feature < 0 || static_cast<std::size_t>(feature) >= surfaces.features.size() ||
+      surfaces.features.size() != contours.features.size())
+    return makeError(Errc::InvalidArgument, "writeSurface: feature " + std::to_string(feature) + " is not one of the " +
+                                                std::to_string(surfaces.features.size()) + " surfaces of the contour set");
+  SurfaceCompactor compactor(surfaces.mesh);
+  SCANSURF_ASSIGN_OR_RETURN(const CompactMesh mesh, compactor.compact(surfaces.features[static_cast<std::size_t>(feature)]));
+  return writeCompact(path, mesh, feature, format, contours.features[static_cast<std::size_t>(feature)].name, draco);
+}
+
+Result<void> writeMultiLabelMesh(const fs::path& path, const Surfaces& surfaces) {
+  return writeMultiLabelPly(path, surfaces.mesh);
+}
+
+Result<void> writeScene(const fs::path& path, const ContourSet& contours, const Surfaces& surfaces, const SceneOptions& options) {
+  if (surfaces.features.size() != contours.features.size())
+    return makeError(Errc::InvalidArgument, "writeScene: the surfaces are not those of the contour set");
+  SurfaceCompactor compactor(surfaces.mesh);
+  std::vector<CompactMesh> meshes;
+  for (const FeatureSurface& surface : surfaces.features) {
+    SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surface));
+    meshes.push_back(std::move(mesh));
+  }
+  GlbOptions glb{options.draco, options.dracoOptions};
+  return writeGlb(path, sceneFeatures(contours, meshes), glb);
+}
+
+Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, const LabelVolume& volume) {
+  const std::vector<LabelEntry> table = labelTable(contours);
+  SCANSURF_TRY(writeNrrd(path, regularize(volume), table));
+  fs::path tablePath = path;
+  return writeLabelTable(tablePath.replace_extension(".ctbl"), table);
+}
+
+Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
+  return writePng(path, image.width, image.height, image.rgba);
+}
+
+Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
+                                           const Surfaces& surfaces, const LabelVolume& volume) {
+  const std::size_t featureCount = contours.features.size();
+  SurfaceOutputs out;
+  out.files.resize(featureCount);
+  const DracoOptions draco = dracoFor(plan.scene.dracoOptions, volume.grid);
+  const std::vector<fs::path> scenes = sceneTargets(plan);
+  std::vector<CompactMesh> compact;  // kept for the GLB scene
+  SurfaceCompactor compactor(surfaces.mesh);
+  std::vector<std::string> used{"multilabel", plan.sceneName};
+  for (std::size_t f = 0; f < featureCount; ++f) {
+    const std::string& name = contours.features[f].name;
+    SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surfaces.features[f]));
+    if (!plan.dir.empty())
+      SCANSURF_TRY(stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, fileStem(name, used), draco, out));
+    if (!scenes.empty()) compact.push_back(std::move(mesh));
+  }
+  if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)
+    SCANSURF_TRY(staging.stage(plan.dir / "multilabel.ply", [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh); }));
+  const GlbOptions glb{plan.scene.draco, draco};
+  for (const fs::path& target : scenes) {
+    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeGlb(p, sceneFeatures(contours, compact), glb); }));
+    for (std::size_t f = 0; f < featureCount; ++f)
+      if (surfaces.features[f].triangleCount() > 0) out.files[f].push_back(target);
+  }
+  if (!plan.labelVolume.empty()) {
+    const std::vector<LabelEntry> table = labelTable(contours);
+    SCANSURF_TRY(staging.stage(plan.labelVolume, [&](const fs::path& p) { return writeNrrd(p, regularize(volume), table); }));
+    fs::path tablePath = plan.labelVolume;
+    tablePath.replace_extension(".ctbl");
+    SCANSURF_TRY(staging.stage(tablePath, [&](const fs::path& p) { return writeLabelTable(p, table); }));
+  }
+  return out;
+}
+
+}  // namespace scansurf
