@@ -55,6 +55,17 @@ expect_output("truncated.json")
 run_scansurf(0 "${DATA}/tiny_contour.json" -o "${OUT}/tiny" --voxel-size 1)
 expect_output("warning: .*tiny_contour.json: feature \"organ\".*slice z=0.*contour 1")
 
+# The version, and numbers that once aborted the program: never a crash, always exit 2 or 5
+# with a message.
+run_scansurf(0 --version)
+expect_output("^scansurf [0-9]+\\.[0-9]+\\.[0-9]+")
+run_scansurf(5 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --device 99999999999999999999)
+expect_output("no usable Vulkan device matches \"99999999999999999999\"")
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength 0)
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength nan)
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --grid 0 0)
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --threads 99999999999999999999)
+
 # Usage errors: exit 2.
 run_scansurf(2 "${EXAMPLES}/phantom.json")
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --convention sideways)
@@ -102,6 +113,10 @@ string(JSON stages LENGTH "${report}" timings)
 string(JSON max_error GET "${report}" parameters draco_max_error)
 if(NOT max_error GREATER 0 OR NOT max_error LESS 0.2)  # 2 mm voxels: 1/25 voxel = 0.08 mm
   message(FATAL_ERROR "unexpected draco_max_error ${max_error}")
+endif()
+string(JSON generator GET "${report}" generator)
+if(NOT generator MATCHES "^scansurf [0-9]+\\.[0-9]+\\.[0-9]+$")
+  message(FATAL_ERROR "report generator '${generator}'")
 endif()
 if(NOT body_name STREQUAL "BODY" OR NOT body_genus EQUAL 0 OR NOT body_closed OR stages LESS 5)
   message(FATAL_ERROR "unexpected report: ${body_name} genus ${body_genus} closed ${body_closed}, ${stages} stages")

@@ -1,8 +1,10 @@
 // Tetrahedral classification on the GPU against the CPU reference: identical records.
+#include <cstring>
 #include <random>
 
 #include "geometry/cell_cases.h"
 #include "gpu/gpu_test_env.h"
+#include "gpu/resources.h"
 #include "passes/classification.h"
 
 namespace scansurf::test {
@@ -78,6 +80,34 @@ TEST_F(ClassificationTest, SlabsAndBufferGrowthGiveTheSameRecords) {
   ASSERT_TRUE(slabbed) << slabbed.error().message;
   EXPECT_GE((*classifier)->lastSlabCount(), 10);
   expectSameRecords(*slabbed, ref);
+}
+
+// Labels already on the device (16 and 32 bits, at an offset in the buffer), classified in
+// slabs copied on the device: the same records as the CPU reference.
+TEST_F(ClassificationTest, DeviceLabelsInSlabsMatchReference) {
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(classifier);
+  const LabelVolume v = randomVolume(7, 40, 37, 30, 5);
+  const std::vector<CellCase> ref = classifyCellsReference(v);
+  (*classifier)->setSlabBudget(static_cast<std::size_t>(40 * 37 * 2) * 4 + 4);
+  for (std::uint32_t bits : {16u, 32u}) {
+    SCOPED_TRACE(std::to_string(bits) + "-bit labels");
+    const std::size_t bytes = v.labels.size() * bits / 8, offset = 12;
+    auto buffer = gpu::Buffer::create(sharedContext(), offset + bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryDomain::Upload);
+    ASSERT_TRUE(buffer) << buffer.error().message;
+    auto* out = static_cast<std::uint8_t*>(buffer->mapped()) + offset;
+    if (bits == 16) {
+      std::memcpy(out, v.labels.data(), bytes);
+    } else {
+      const std::vector<std::uint32_t> wide(v.labels.begin(), v.labels.end());
+      std::memcpy(out, wide.data(), bytes);
+    }
+    DeviceLabelVolume device{buffer->handle(), offset, bits, v.grid};
+    auto gpu = (*classifier)->run(device);
+    ASSERT_TRUE(gpu) << gpu.error().message;
+    EXPECT_GE((*classifier)->lastSlabCount(), 10);
+    expectSameRecords(*gpu, ref);
+  }
 }
 
 }  // namespace

@@ -12,13 +12,15 @@ std::unique_ptr<gpu::Context> gContext;
 
 }  // namespace
 
+void recordValidationMessage(std::string_view message) {
+  std::lock_guard lock(gMessagesMutex);
+  gMessages.emplace_back(message);
+}
+
 EngineOptions validatedEngineOptions() {
   EngineOptions options;
   options.validation = true;
-  options.onValidationMessage = [](std::string_view message) {
-    std::lock_guard lock(gMessagesMutex);
-    gMessages.emplace_back(message);
-  };
+  options.onValidationMessage = recordValidationMessage;
   return options;
 }
 

@@ -16,6 +16,8 @@ namespace scansurf::test {
 
 // Options that route validation messages into the fixture's log.
 EngineOptions validatedEngineOptions();
+// Adds a validation message to the running test's log (which fails the test at TearDown).
+void recordValidationMessage(std::string_view message);
 gpu::Context& sharedContext();
 
 class GpuTest : public ::testing::Test {
