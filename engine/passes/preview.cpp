@@ -205,30 +205,14 @@ Result<PreviewImage> PreviewRenderer::render(const Surfaces& surfaces, const Pre
                       VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                       VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    VkRenderingAttachmentInfo colorAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    colorAttachment.imageView = color.layerView(0);
-    colorAttachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colorAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colorAttachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    colorAttachment.clearValue.color = {{options.background[0] / 255.0f, options.background[1] / 255.0f,
-                                         options.background[2] / 255.0f, 1.0f}};
-    VkRenderingAttachmentInfo depthAttachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depthAttachment.imageView = depth.layerView(0);
-    depthAttachment.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depthAttachment.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depthAttachment.clearValue.depthStencil = {1.0f, 0};
-    const VkRect2D area{{0, 0}, {width, height}};
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = area;
-    rendering.layerCount = 1;
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &colorAttachment;
-    rendering.pDepthAttachment = &depthAttachment;
-    vkCmdBeginRendering(cmd, &rendering);
-    const VkViewport viewport{0, 0, static_cast<float>(width), static_cast<float>(height), 0, 1};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &area);
+    gpu::RenderingDesc rendering;
+    rendering.color = color.layerView(0);
+    rendering.clearColor = {{options.background[0] / 255.0f, options.background[1] / 255.0f,
+                             options.background[2] / 255.0f, 1.0f}};
+    rendering.depth = depth.layerView(0);
+    rendering.area = {width, height};
+    rendering.viewport = {width, height};
+    gpu::beginRendering(cmd, rendering);
     const VkDeviceSize zero = 0;
     VkBuffer vb = vertexBuffer.handle();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);

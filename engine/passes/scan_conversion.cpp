@@ -210,8 +210,12 @@ Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& g
 
     const VkDeviceSize zero = 0;
     VkBuffer vb = vertexBuffer.handle();
-    const VkViewport viewport{0, 0, static_cast<float>(viewportW), static_cast<float>(viewportH), 0, 1};
-    const VkRect2D area{{0, 0}, {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny)}};
+    gpu::RenderingDesc rendering;
+    rendering.clearColor.uint32[0] = kBackground;
+    rendering.depth = depthImage.layerView(0);
+    rendering.stencil = true;
+    rendering.area = {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny)};
+    rendering.viewport = {viewportW, viewportH};
     shared::ScanPush push{{2.0f / static_cast<float>(viewportW), 2.0f / static_cast<float>(viewportH)}, 0.0f, 0};
 
     for (int l = 0; l < count; ++l) {
@@ -220,28 +224,8 @@ Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& g
                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
                            VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
-      VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      color.imageView = labelImage.layerView(static_cast<std::uint32_t>(l));
-      color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-      color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-      color.clearValue.color.uint32[0] = kBackground;
-      VkRenderingAttachmentInfo depthStencil{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      depthStencil.imageView = depthImage.layerView(0);
-      depthStencil.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-      depthStencil.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      depthStencil.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-      depthStencil.clearValue.depthStencil = {1.0f, 0};
-      VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      rendering.renderArea = area;
-      rendering.layerCount = 1;
-      rendering.colorAttachmentCount = 1;
-      rendering.pColorAttachments = &color;
-      rendering.pDepthAttachment = &depthStencil;
-      rendering.pStencilAttachment = &depthStencil;
-      vkCmdBeginRendering(cmd, &rendering);
-      vkCmdSetViewport(cmd, 0, 1, &viewport);
-      vkCmdSetScissor(cmd, 0, 1, &area);
+      rendering.color = labelImage.layerView(static_cast<std::uint32_t>(l));
+      gpu::beginRendering(cmd, rendering);
       vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
       for (const FeatureDraw& d : draws[static_cast<std::size_t>(l)]) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, state_->stencilPipeline.get());
