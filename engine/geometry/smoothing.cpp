@@ -255,195 +255,286 @@ void edgeOfKey(const Grid& grid, std::uint64_t key, Vec3& a, Vec3& b) {
   b = cornerPosition(grid, hi);
 }
 
-}  // namespace
-
-SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                           const SmoothingOptions& options, int threads, double sliceTolerance) {
-  SmoothingReport report;
-  const std::size_t vertexCount = mesh.vertexCount();
-  if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return report;
-  Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
-
-  // Fitted vertices go to their contour crossing and stay.
-  if (options.contourFit && contours) {
-    const std::vector<double> t = fitContourCrossings(grid, *contours, mesh.keys, adj.labels, sliceTolerance, threads);
-    for (std::size_t v = 0; v < vertexCount; ++v) {
-      if (t[v] < 0) continue;
-      const Carrier c = carrierOfKey(mesh.keys[v]);
-      const double tc = std::clamp(t[v], kMargin, 1 - kMargin);
-      const Vec3 a = cornerPosition(grid, c.corners[0]), b = cornerPosition(grid, c.corners[1]);
-      for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
-      adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
-    }
+// Fitted vertices go to their contour crossing and stay.
+void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet& contours, Adjacency& adj,
+                         double sliceTolerance, int threads) {
+  const std::vector<double> t = fitContourCrossings(grid, contours, mesh.keys, adj.labels, sliceTolerance, threads);
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+    if (t[v] < 0) continue;
+    const Carrier c = carrierOfKey(mesh.keys[v]);
+    const double tc = std::clamp(t[v], kMargin, 1 - kMargin);
+    const Vec3 a = cornerPosition(grid, c.corners[0]), b = cornerPosition(grid, c.corners[1]);
+    for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
+    adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
   }
-  std::vector<Label>().swap(adj.labels);
-  for (std::size_t v = 0; v < vertexCount; ++v) {
-    const Role role = roleOf(adj.kind[v]);
+}
+
+// Fixes the vertices whose carrier is a single grid point (nowhere to move), marks the sheet
+// vertices whose carrier is an edge (kOnEdge), and counts the roles.
+SmoothingReport settleRoles(const std::vector<std::uint64_t>& keys, std::vector<std::uint8_t>& kind) {
+  SmoothingReport report;
+  for (std::size_t v = 0; v < kind.size(); ++v) {
+    const Role role = roleOf(kind[v]);
     if (role == Role::Sheet || role == Role::Curve) {
-      const int count = carrierOfKey(mesh.keys[v]).count;
+      const int count = carrierOfKey(keys[v]).count;
       if (count < 2)
-        adj.kind[v] = static_cast<std::uint8_t>(Role::Fixed);
+        kind[v] = static_cast<std::uint8_t>(Role::Fixed);
       else if (role == Role::Sheet && count == 2)
-        adj.kind[v] |= kOnEdge;
+        kind[v] |= kOnEdge;
     }
-    switch (roleOf(adj.kind[v])) {
+    switch (roleOf(kind[v])) {
       case Role::Sheet: ++report.sheet; break;
       case Role::Curve: ++report.curve; break;
       case Role::Fixed: ++report.fixed; break;
       case Role::Fitted: ++report.fitted; break;
     }
   }
+  return report;
+}
 
-  // Working copies in float, one 16-byte lane group per vertex (x, y, z, t) so that a gather
-  // and a sum are one vector operation each. Every update is computed from small differences
-  // (neighbour - vertex, position along the carrier edge), so float loses nothing beyond the
-  // final rounding to float that the mesh stores anyway.
-  std::vector<Float4> cur(vertexCount);
-  for (std::size_t v = 0; v < vertexCount; ++v)
-    cur[v] = Float4{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2], 0.0f};
-  std::vector<float>().swap(mesh.positions);  // rebuilt at the end; its memory serves the sweeps
+// The relaxation's working set: vertex positions in float, one 16-byte lane group per vertex
+// (x, y, z, t) so that a gather and a sum are one vector operation each. Every update is
+// computed from small differences (neighbour - vertex, position along the carrier edge), so
+// float loses nothing beyond the final rounding to float that the mesh stores anyway.
+//
+// Each sweep moves a vertex by strength * (kTension * U - kBending * U^2), then into its
+// carrier. Bending alone is stable below 0.5 for uniform weights (eigenvalues of U^2 <= 4)
+// and would extrapolate a cap past the last contour by the chord slope of the rings below;
+// a little tension balances that (measured on spheres and tori, see smoothing_test.cpp).
+//
+// A sheet vertex on a carrier edge e = b - a then goes where the plane through its target
+// with normal n cuts the edge (t clamped to [kMargin, 1 - kMargin]): it follows the
+// surface's normal motion and ignores tangential drift, which a nearest-point projection
+// onto a slanted edge would turn into normal error. With the target p + d and p = a + t e,
+// that cut is t + d . n / (e . n), so the slope n / (e . n) is all a sweep needs. Where the
+// edge runs nearly inside the tangent plane (e.n^2 < 0.01 |e|^2 |n|^2), and for every other
+// vertex, the target's nearest point of the carrier.
+class Relaxation {
+ public:
+  // Takes over mesh.positions (released until storeInto, its memory serves the sweeps) and
+  // the roles in adj.kind, which must outlive this object.
+  Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads);
+
+  // One Jacobi sweep over every vertex; refreshNormals recomputes the slide slopes.
+  void sweep(bool refreshNormals);
+  // Frees the working set and writes the positions back into mesh.positions.
+  void storeInto(MultiLabelMesh& mesh);
+
+ private:
+  void startOnCarrierEdges();
+  Float4 edgeVectorOf(std::uint8_t kind, const Float4& a) const;
+  Vec3 normalOf(std::size_t v) const;
+  void computeUmbrella(std::size_t v, bool refreshNormals);
+  void refreshSlide(std::size_t v);
+  Float4 stepOf(std::size_t v) const;
+  void moveVertex(std::size_t v);
+  Float4 alongCarrierEdge(std::size_t v, std::uint8_t kind, const Float4& d) const;
+  Float4 intoCarrier(std::size_t v, const Float4& d) const;
+
+  const Grid& grid_;
+  const int threads_;
+  const std::size_t vertexCount_;
+  // The adjacency and keys as plain arrays, for the per-vertex loops.
+  std::uint8_t* const kinds_;
+  const std::uint32_t* const start_;
+  const std::uint32_t* const neighbours_;
+  const std::vector<std::array<std::uint32_t, 3>>& pinchedLinks_;
+  const std::uint64_t* const keys_;
+  const float stepX_, stepY_;     // grid spacing, the x and y extent of a carrier edge
+  const float bending_, tension_;  // kBending and kTension at the options' strength
+  std::vector<Float4> cur_;        // positions before the sweep
+  std::vector<Float4> next_;       // after it; fixed and fitted vertices hold the same value in both
+  // Umbrella operator U(v) = mean of neighbours - v (last lane unused); zero where a vertex has
+  // none.
+  std::vector<Float4> umbrella_;
   // A sheet vertex on its carrier edge a -> b is a + t (b - a), t in its position's last lane:
   // edgeStart holds a and (b - a).z, kStepX and kStepY say whether b - a has x, y components
   // (one grid spacing), and slope, while the vertex slides along the normal n, holds
-  // n / ((b - a) . n) (below). Zero for other vertices.
-  std::vector<Float4> edgeStart(vertexCount, Float4{0, 0, 0, 0});
-  std::vector<Float4> slope(vertexCount, Float4{0, 0, 0, 0});
-  const float stepX = static_cast<float>(grid.spacingX), stepY = static_cast<float>(grid.spacingY);
-  const auto edgeVectorOf = [&](std::uint8_t kind, const Float4& a) {
-    return Float4{(kind & kStepX) ? stepX : 0.0f, (kind & kStepY) ? stepY : 0.0f, a[3], 0.0f};
-  };
-  std::uint8_t* kinds = adj.kind.data();
-  const std::uint32_t* start = adj.start.data();
-  const std::uint32_t* neighbours = adj.neighbours.data();
-  const std::uint64_t* keys = mesh.keys.data();
-  parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
+  // n / ((b - a) . n). Zero for other vertices.
+  std::vector<Float4> edgeStart_;
+  std::vector<Float4> slope_;
+};
+
+Relaxation::Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads)
+    : grid_(grid),
+      threads_(threads),
+      vertexCount_(mesh.vertexCount()),
+      kinds_(adj.kind.data()),
+      start_(adj.start.data()),
+      neighbours_(adj.neighbours.data()),
+      pinchedLinks_(adj.pinchedLinks),
+      keys_(mesh.keys.data()),
+      stepX_(static_cast<float>(grid.spacingX)),
+      stepY_(static_cast<float>(grid.spacingY)),
+      bending_(static_cast<float>(kBending * std::clamp(strength, 0.0, 1.0))),
+      tension_(static_cast<float>(kTension * std::clamp(strength, 0.0, 1.0))),
+      cur_(vertexCount_) {
+  for (std::size_t v = 0; v < vertexCount_; ++v)
+    cur_[v] = Float4{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2], 0.0f};
+  std::vector<float>().swap(mesh.positions);
+  edgeStart_.assign(vertexCount_, Float4{0, 0, 0, 0});
+  slope_.assign(vertexCount_, Float4{0, 0, 0, 0});
+  startOnCarrierEdges();
+  next_ = cur_;
+  umbrella_.assign(vertexCount_, Float4{0, 0, 0, 0});
+}
+
+// Puts each vertex that slides along its carrier edge into the edge form a + t (b - a).
+void Relaxation::startOnCarrierEdges() {
+  parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
-      if (kinds[v] & kOnEdge) {
+      if (kinds_[v] & kOnEdge) {
         Vec3 a, b;
-        edgeOfKey(grid, keys[v], a, b);
+        edgeOfKey(grid_, keys_[v], a, b);
         double de = 0, ee = 0;
-        for (int k = 0; k < 3; ++k) de += (cur[v][k] - a[k]) * (b[k] - a[k]), ee += (b[k] - a[k]) * (b[k] - a[k]);
-        edgeStart[v] = Float4{static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(b[2] - a[2])};
-        cur[v][3] = static_cast<float>(de / ee);
-        if (b[0] != a[0]) kinds[v] |= kStepX;
-        if (b[1] != a[1]) kinds[v] |= kStepY;
+        for (int k = 0; k < 3; ++k) de += (cur_[v][k] - a[k]) * (b[k] - a[k]), ee += (b[k] - a[k]) * (b[k] - a[k]);
+        edgeStart_[v] = Float4{static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(b[2] - a[2])};
+        cur_[v][3] = static_cast<float>(de / ee);
+        if (b[0] != a[0]) kinds_[v] |= kStepX;
+        if (b[1] != a[1]) kinds_[v] |= kStepY;
       }
   });
-  std::vector<Float4> next(cur);  // fixed and fitted vertices hold the same value in both buffers
-  // Umbrella operator U(v) = mean of neighbours - v (last lane unused); zero where a vertex has
-  // none.
-  std::vector<Float4> umbrella(vertexCount, Float4{0, 0, 0, 0});
-  // The area-weighted normal of sheet vertex v: the sum of cross(a - v, b - v) over its
-  // triangles (v, a, b), from its link cycle or, for a pinched vertex, its triangles.
-  const auto normalOf = [&](const Float4* p, std::size_t v) {
-    Vec3 n{0, 0, 0};
-    const auto add = [&](std::uint32_t a, std::uint32_t b) {
-      const Float4 da = p[a] - p[v], db = p[b] - p[v];
-      const double u[3] = {da[0], da[1], da[2]}, w[3] = {db[0], db[1], db[2]};
-      n[0] += u[1] * w[2] - u[2] * w[1];
-      n[1] += u[2] * w[0] - u[0] * w[2];
-      n[2] += u[0] * w[1] - u[1] * w[0];
-    };
-    if (kinds[v] & kPinched) {
-      auto l = std::lower_bound(adj.pinchedLinks.begin(), adj.pinchedLinks.end(), static_cast<std::uint32_t>(v),
-                                [](const std::array<std::uint32_t, 3>& x, std::uint32_t y) { return x[0] < y; });
-      for (; l != adj.pinchedLinks.end() && (*l)[0] == v; ++l) add((*l)[1], (*l)[2]);
-    } else {
-      const std::uint32_t s = start[v], e = start[v + 1];
-      for (std::uint32_t i = s; i < e; ++i) add(neighbours[i], neighbours[i + 1 == e ? s : i + 1]);
-    }
-    return n;
+}
+
+// b - a of the carrier edge whose edgeStart is a.
+Float4 Relaxation::edgeVectorOf(std::uint8_t kind, const Float4& a) const {
+  return Float4{(kind & kStepX) ? stepX_ : 0.0f, (kind & kStepY) ? stepY_ : 0.0f, a[3], 0.0f};
+}
+
+// The area-weighted normal of sheet vertex v: the sum of cross(a - v, b - v) over its
+// triangles (v, a, b), from its link cycle or, for a pinched vertex, its triangles.
+Vec3 Relaxation::normalOf(std::size_t v) const {
+  const Float4* p = cur_.data();
+  Vec3 n{0, 0, 0};
+  const auto add = [&](std::uint32_t a, std::uint32_t b) {
+    const Float4 da = p[a] - p[v], db = p[b] - p[v];
+    const double u[3] = {da[0], da[1], da[2]}, w[3] = {db[0], db[1], db[2]};
+    n[0] += u[1] * w[2] - u[2] * w[1];
+    n[1] += u[2] * w[0] - u[0] * w[2];
+    n[2] += u[0] * w[1] - u[1] * w[0];
   };
-  // Each sweep moves a vertex by strength * (kTension * U - kBending * U^2), then into its
-  // carrier. Bending alone is stable below 0.5 for uniform weights (eigenvalues of U^2 <= 4)
-  // and would extrapolate a cap past the last contour by the chord slope of the rings below;
-  // a little tension balances that (measured on spheres and tori, see smoothing_test.cpp).
-  //
-  // A sheet vertex on a carrier edge e = b - a then goes where the plane through its target
-  // with normal n cuts the edge (t clamped to [kMargin, 1 - kMargin]): it follows the
-  // surface's normal motion and ignores tangential drift, which a nearest-point projection
-  // onto a slanted edge would turn into normal error. With the target p + d and p = a + t e,
-  // that cut is t + d . n / (e . n), so the slope n / (e . n) is all a sweep needs. Where the
-  // edge runs nearly inside the tangent plane (e.n^2 < 0.01 |e|^2 |n|^2), and for every other
-  // vertex, the target's nearest point of the carrier.
-  const double strength = std::clamp(options.strength, 0.0, 1.0);
-  const float bending = static_cast<float>(kBending * strength), tension = static_cast<float>(kTension * strength);
+  if (kinds_[v] & kPinched) {
+    auto l = std::lower_bound(pinchedLinks_.begin(), pinchedLinks_.end(), static_cast<std::uint32_t>(v),
+                              [](const std::array<std::uint32_t, 3>& x, std::uint32_t y) { return x[0] < y; });
+    for (; l != pinchedLinks_.end() && (*l)[0] == v; ++l) add((*l)[1], (*l)[2]);
+  } else {
+    const std::uint32_t s = start_[v], e = start_[v + 1];
+    for (std::uint32_t i = s; i < e; ++i) add(neighbours_[i], neighbours_[i + 1 == e ? s : i + 1]);
+  }
+  return n;
+}
+
+void Relaxation::sweep(bool refreshNormals) {
+  parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) computeUmbrella(v, refreshNormals);
+  });
+  parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) moveVertex(v);
+  });
+  cur_.swap(next_);
+}
+
+void Relaxation::computeUmbrella(std::size_t v, bool refreshNormals) {
+  const std::uint32_t s = start_[v], e = start_[v + 1];
+  if (s == e) return;  // its umbrella stays 0
+  const Float4* p = cur_.data();
+  const Float4 pv = p[v];
+  Float4 sum{0, 0, 0, 0};
+  for (std::uint32_t i = s; i < e; ++i) sum += p[neighbours_[i]] - pv;
+  umbrella_[v] = sum / static_cast<float>(e - s);
+  if (refreshNormals && (kinds_[v] & kOnEdge)) refreshSlide(v);
+}
+
+// Whether edge vertex v slides along its normal until the next refresh (kSlides), and its
+// slope n / (e . n) if so.
+void Relaxation::refreshSlide(std::size_t v) {
+  const Vec3 n = normalOf(v);
+  const Float4 ev = edgeVectorOf(kinds_[v], edgeStart_[v]);
+  const double ed[3] = {ev[0], ev[1], ev[2]};
+  const double en = ed[0] * n[0] + ed[1] * n[1] + ed[2] * n[2];
+  const double ee = ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2], nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  if (en * en < 0.01 * ee * nn) {
+    kinds_[v] &= static_cast<std::uint8_t>(~kSlides);
+  } else {
+    kinds_[v] |= kSlides;
+    slope_[v] = Float4{static_cast<float>(n[0] / en), static_cast<float>(n[1] / en), static_cast<float>(n[2] / en), 0.0f};
+  }
+}
+
+// v's target - p: tension * U - bending * U^2.
+Float4 Relaxation::stepOf(std::size_t v) const {
+  const Float4* u = umbrella_.data();
+  const std::uint32_t s = start_[v], e = start_[v + 1];
+  Float4 sum{0, 0, 0, 0};
+  for (std::uint32_t i = s; i < e; ++i) sum += u[neighbours_[i]];
+  const Float4 uv = u[v];
+  return tension_ * uv - bending_ * (sum / static_cast<float>(e - s) - uv);
+}
+
+void Relaxation::moveVertex(std::size_t v) {
+  const std::uint8_t kind = kinds_[v];
+  const Role role = roleOf(kind);
+  if (role == Role::Fixed || role == Role::Fitted) return;
+  const Float4 d = stepOf(v);
+  next_[v] = (kind & kOnEdge) ? alongCarrierEdge(v, kind, d) : intoCarrier(v, d);
+}
+
+// Edge vertex v moved by d: where the tangent plane cuts its edge, or the nearest point of the
+// edge; t in the last lane.
+Float4 Relaxation::alongCarrierEdge(std::size_t v, std::uint8_t kind, const Float4& d) const {
+  const Float4 a = edgeStart_[v], ev = edgeVectorOf(kind, a);
+  const float along = cur_[v][3];
+  float t;
+  if (kind & kSlides) {
+    const Float4 m = d * slope_[v];
+    t = std::clamp(along + (m[0] + m[1] + m[2]), static_cast<float>(kMargin), static_cast<float>(1 - kMargin));
+  } else {
+    // The nearest point of the edge, weights clamped to kMargin (projectIntoCarrier).
+    const Float4 de = d * ev, ee = ev * ev;
+    const double w1 = along + (de[0] + de[1] + de[2]) / static_cast<double>(ee[0] + ee[1] + ee[2]);
+    const double w0 = std::max(1 - w1, kMargin), w1c = std::max(w1, kMargin);
+    t = static_cast<float>(w1c / (w0 + w1c));
+  }
+  Float4 out = a + t * ev;
+  out[3] = t;
+  return out;
+}
+
+// Vertex v moved by d, then to the nearest point of its carrier.
+Float4 Relaxation::intoCarrier(std::size_t v, const Float4& d) const {
+  const Float4 pv = cur_[v];
+  const Vec3 out = projectIntoCarrier(grid_, carrierOfKey(keys_[v]), {pv[0] + static_cast<double>(d[0]),
+                                                                     pv[1] + static_cast<double>(d[1]),
+                                                                     pv[2] + static_cast<double>(d[2])});
+  return Float4{static_cast<float>(out[0]), static_cast<float>(out[1]), static_cast<float>(out[2]), 0.0f};
+}
+
+void Relaxation::storeInto(MultiLabelMesh& mesh) {
+  std::vector<Float4>().swap(next_);
+  std::vector<Float4>().swap(umbrella_);
+  std::vector<Float4>().swap(slope_);
+  std::vector<Float4>().swap(edgeStart_);
+  mesh.positions.resize(3 * vertexCount_);
+  for (std::size_t v = 0; v < vertexCount_; ++v)
+    for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = cur_[v][k];
+}
+
+}  // namespace
+
+SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
+                           const SmoothingOptions& options, int threads, double sliceTolerance) {
+  const std::size_t vertexCount = mesh.vertexCount();
+  if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
+  Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
+  if (options.contourFit && contours) placeFittedVertices(mesh, grid, *contours, adj, sliceTolerance, threads);
+  std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
+  const SmoothingReport report = settleRoles(mesh.keys, adj.kind);
+  Relaxation relaxation(mesh, grid, adj, options.strength, threads);
   for (int it = 0; it < options.iterations; ++it) {
     // Normals turn slowly; refreshing them every few sweeps saves most of a sweep's time.
-    const bool refreshNormals = it % kNormalPeriod == 0;
-    const Float4* p = cur.data();
-    Float4* u = umbrella.data();
-    Float4* q = next.data();
-    const auto umbrellaOf = [&](std::size_t v) {
-      const std::uint32_t s = start[v], e = start[v + 1];
-      if (s == e) return;  // its umbrella stays 0
-      const Float4 pv = p[v];
-      Float4 sum{0, 0, 0, 0};
-      for (std::uint32_t i = s; i < e; ++i) sum += p[neighbours[i]] - pv;
-      u[v] = sum / static_cast<float>(e - s);
-      if (refreshNormals && (kinds[v] & kOnEdge)) {
-        const Vec3 n = normalOf(p, v);
-        const Float4 ev = edgeVectorOf(kinds[v], edgeStart[v]);
-        const double ed[3] = {ev[0], ev[1], ev[2]};
-        const double en = ed[0] * n[0] + ed[1] * n[1] + ed[2] * n[2];
-        const double ee = ed[0] * ed[0] + ed[1] * ed[1] + ed[2] * ed[2], nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        if (en * en < 0.01 * ee * nn) {
-          kinds[v] &= static_cast<std::uint8_t>(~kSlides);
-        } else {
-          kinds[v] |= kSlides;
-          slope[v] = Float4{static_cast<float>(n[0] / en), static_cast<float>(n[1] / en), static_cast<float>(n[2] / en), 0.0f};
-        }
-      }
-    };
-    const auto update = [&](std::size_t v) {
-      const std::uint8_t kind = kinds[v];
-      const Role role = roleOf(kind);
-      if (role == Role::Fixed || role == Role::Fitted) return;
-      const std::uint32_t s = start[v], e = start[v + 1];
-      Float4 sum{0, 0, 0, 0};
-      for (std::uint32_t i = s; i < e; ++i) sum += u[neighbours[i]];
-      const Float4 uv = u[v];
-      const Float4 d = tension * uv - bending * (sum / static_cast<float>(e - s) - uv);  // target - p
-      if (kind & kOnEdge) {
-        const Float4 a = edgeStart[v], ev = edgeVectorOf(kind, a);
-        const float along = p[v][3];
-        float t;
-        if (kind & kSlides) {
-          const Float4 m = d * slope[v];
-          t = std::clamp(along + (m[0] + m[1] + m[2]), static_cast<float>(kMargin), static_cast<float>(1 - kMargin));
-        } else {
-          // The nearest point of the edge, weights clamped to kMargin (projectIntoCarrier).
-          const Float4 de = d * ev, ee = ev * ev;
-          const double w1 = along + (de[0] + de[1] + de[2]) / static_cast<double>(ee[0] + ee[1] + ee[2]);
-          const double w0 = std::max(1 - w1, kMargin), w1c = std::max(w1, kMargin);
-          t = static_cast<float>(w1c / (w0 + w1c));
-        }
-        Float4 out = a + t * ev;
-        out[3] = t;
-        q[v] = out;
-        return;
-      }
-      const Float4 pv = p[v];
-      const Vec3 out = projectIntoCarrier(grid, carrierOfKey(keys[v]), {pv[0] + static_cast<double>(d[0]),
-                                                                       pv[1] + static_cast<double>(d[1]),
-                                                                       pv[2] + static_cast<double>(d[2])});
-      q[v] = Float4{static_cast<float>(out[0]), static_cast<float>(out[1]), static_cast<float>(out[2]), 0.0f};
-    };
-    parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) umbrellaOf(v);
-    });
-    parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t v = begin; v < end; ++v) update(v);
-    });
-    cur.swap(next);
+    relaxation.sweep(it % kNormalPeriod == 0);
   }
-  std::vector<Float4>().swap(next);
-  std::vector<Float4>().swap(umbrella);
-  std::vector<Float4>().swap(slope);
-  std::vector<Float4>().swap(edgeStart);
-  mesh.positions.resize(3 * vertexCount);
-  for (std::size_t v = 0; v < vertexCount; ++v)
-    for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = cur[v][k];
+  relaxation.storeInto(mesh);
   return report;
 }
 

@@ -94,6 +94,17 @@ Result<void> AtomicFile::commit() {
   return {};
 }
 
+Result<void> writeFileAtomically(const std::filesystem::path& target,
+                                 const std::function<Result<void>(AtomicFile& file)>& writeContents) {
+  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(target));
+  SCANSURF_TRY(writeContents(file));
+  return file.commit();
+}
+
+Result<void> writeFileAtomically(const std::filesystem::path& target, const void* data, std::size_t size) {
+  return writeFileAtomically(target, [&](AtomicFile& file) { return file.write(data, size); });
+}
+
 Result<void> ensureWritableDirectory(const std::filesystem::path& directory) {
   std::error_code ec;
   if (std::filesystem::exists(directory, ec) && !std::filesystem::is_directory(directory, ec))

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include "scansurf/result.h"
 
@@ -41,6 +42,14 @@ class AtomicFile {
   std::filesystem::path temp_;
   std::FILE* file_ = nullptr;
 };
+
+// Writes `target` through an AtomicFile: commits it when writeContents succeeds, else leaves
+// the target as it was. Returns writeContents's error, or AtomicFile's (Errc::Io, naming the
+// file). Every writer goes through here, so none can forget the commit.
+Result<void> writeFileAtomically(const std::filesystem::path& target,
+                                 const std::function<Result<void>(AtomicFile& file)>& writeContents);
+// The same for contents already in memory: size bytes at data.
+Result<void> writeFileAtomically(const std::filesystem::path& target, const void* data, std::size_t size);
 
 // Creates `directory` (and its parents) if missing and checks that files can be created in
 // it, so a run fails before its work rather than after. Errors (Errc::Io) name the path.

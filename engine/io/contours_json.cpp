@@ -275,9 +275,7 @@ Result<void> writeContoursJson(const ContourSet& contours, const std::filesystem
                                                   path.string());
 
   const std::string text = formatContoursJson(contours);
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(text.data(), text.size()));
-  return file.commit();
+  return writeFileAtomically(path, text.data(), text.size());
 }
 
 }  // namespace scansurf

@@ -74,9 +74,7 @@ Result<void> writeDrc(const std::filesystem::path& path, const CompactMesh& mesh
   draco::EncoderBuffer buffer;
   if (const draco::Status s = encoder.EncodeMeshToBuffer(*dm, &buffer); !s.ok())
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco: " + s.error_msg_string());
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(buffer.data(), buffer.size()));
-  return file.commit();
+  return writeFileAtomically(path, buffer.data(), buffer.size());
 }
 
 }  // namespace scansurf

@@ -54,9 +54,7 @@ Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFea
   draco::EncoderBuffer buffer;
   if (const draco::Status s = encoder.EncodeToBuffer(scene, &buffer); !s.ok())
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco glTF encoder: " + s.error_msg_string());
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(buffer.data(), buffer.size()));
-  return file.commit();
+  return writeFileAtomically(path, buffer.data(), buffer.size());
 }
 
 }  // namespace scansurf

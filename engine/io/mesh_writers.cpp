@@ -12,15 +12,6 @@
 #include "io/draco_writer.h"
 
 namespace scansurf {
-namespace {
-
-Result<void> writeBuffer(const std::filesystem::path& path, const draco::EncoderBuffer& buffer) {
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(buffer.data(), buffer.size()));
-  return file.commit();
-}
-
-}  // namespace
 
 Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name) {
   std::unique_ptr<draco::Mesh> dm = toDracoMesh(mesh);
@@ -29,7 +20,7 @@ Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh
   draco::EncoderBuffer buffer;
   if (!encoder.EncodeToBuffer(*dm, &buffer))
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco's OBJ encoder failed");
-  return writeBuffer(path, buffer);
+  return writeFileAtomically(path, buffer.data(), buffer.size());
 }
 
 Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh) {
@@ -38,7 +29,7 @@ Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh
   draco::EncoderBuffer buffer;
   if (const draco::Status s = encoder.EncodeToBuffer(*dm, &buffer); !s.ok())
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': " + s.error_msg_string());
-  return writeBuffer(path, buffer);
+  return writeFileAtomically(path, buffer.data(), buffer.size());
 }
 
 }  // namespace scansurf

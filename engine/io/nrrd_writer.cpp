@@ -119,11 +119,11 @@ Result<void> writeNrrd(const std::filesystem::path& path, const RegularLabelVolu
     for (Label l : volume.labels) raw.push_back(static_cast<unsigned char>(l & 0xFF)), raw.push_back(static_cast<unsigned char>(l >> 8));
   }
   SCANSURF_ASSIGN_OR_RETURN(std::vector<unsigned char> packed, gzip(raw.data(), raw.size(), path));
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
   const std::string header = h.str();
-  SCANSURF_TRY(file.write(header.data(), header.size()));
-  SCANSURF_TRY(file.write(packed.data(), packed.size()));
-  return file.commit();
+  return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
+    SCANSURF_TRY(file.write(header.data(), header.size()));
+    return file.write(packed.data(), packed.size());
+  });
 }
 
 Result<void> writeLabelTable(const std::filesystem::path& path, const std::vector<LabelEntry>& table) {
@@ -135,9 +135,7 @@ Result<void> writeLabelTable(const std::filesystem::path& path, const std::vecto
     t << e.label << " " << name << " " << int{e.color[0]} << " " << int{e.color[1]} << " " << int{e.color[2]} << " 255\n";
   }
   const std::string text = t.str();
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(text.data(), text.size()));
-  return file.commit();
+  return writeFileAtomically(path, text.data(), text.size());
 }
 
 }  // namespace scansurf

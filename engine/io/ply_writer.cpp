@@ -66,57 +66,57 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMes
   const std::size_t used = compact.vertexCount();
   SCANSURF_TRY(checkIndexRange(path, used));
 
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  LittleEndianWriter out(file);
-  const std::string header =
-      "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
-      std::to_string(feature) + " (label " + std::to_string(feature + 1) +
-      "), faces wound counter-clockwise seen from outside\n" + kUnitsComment + "element vertex " +
-      std::to_string(used) +
-      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-      std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
-  out.bytes(header.data(), header.size());
-  for (float x : compact.positions) {
-    out.value(x);
-    SCANSURF_TRY(out.maybeFlush());
-  }
-  for (std::size_t t = 0; t < compact.triangleCount(); ++t) {
-    out.value(std::uint8_t{3});
-    for (int c = 0; c < 3; ++c) out.value(static_cast<std::int32_t>(compact.triangles[3 * t + c]));
-    SCANSURF_TRY(out.maybeFlush());
-  }
-  SCANSURF_TRY(out.flush());
-  return file.commit();
+  return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
+    LittleEndianWriter out(file);
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
+        std::to_string(feature) + " (label " + std::to_string(feature + 1) +
+        "), faces wound counter-clockwise seen from outside\n" + kUnitsComment + "element vertex " +
+        std::to_string(used) +
+        "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+        std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    out.bytes(header.data(), header.size());
+    for (float x : compact.positions) {
+      out.value(x);
+      SCANSURF_TRY(out.maybeFlush());
+    }
+    for (std::size_t t = 0; t < compact.triangleCount(); ++t) {
+      out.value(std::uint8_t{3});
+      for (int c = 0; c < 3; ++c) out.value(static_cast<std::int32_t>(compact.triangles[3 * t + c]));
+      SCANSURF_TRY(out.maybeFlush());
+    }
+    return out.flush();
+  });
 }
 
 Result<void> writeMultiLabelPly(const std::filesystem::path& path, const MultiLabelMesh& mesh) {
   SCANSURF_TRY(checkIndexRange(path, mesh.vertexCount()));
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  LittleEndianWriter out(file);
-  const std::string header =
-      "ply\nformat binary_little_endian 1.0\n"
-      "comment scansurf multi-label separating surfaces; label 0 = background, label L = feature L-1\n"
-      "comment label_inside < label_outside; each face's normal (counter-clockwise) points from "
-      "label_inside's region into label_outside's\n" +
-      std::string(kUnitsComment) + "element vertex " + std::to_string(mesh.vertexCount()) +
-      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-      std::to_string(mesh.triangleCount()) +
-      "\nproperty list uchar int vertex_indices\nproperty ushort label_inside\nproperty ushort label_outside\n"
-      "end_header\n";
-  out.bytes(header.data(), header.size());
-  for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-    for (int a = 0; a < 3; ++a) out.value(mesh.positions[3 * v + a]);
-    SCANSURF_TRY(out.maybeFlush());
-  }
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    out.value(std::uint8_t{3});
-    for (int c = 0; c < 3; ++c) out.value(static_cast<std::int32_t>(mesh.triangles[3 * t + c]));
-    out.value(static_cast<std::uint16_t>(mesh.labels[2 * t]));
-    out.value(static_cast<std::uint16_t>(mesh.labels[2 * t + 1]));
-    SCANSURF_TRY(out.maybeFlush());
-  }
-  SCANSURF_TRY(out.flush());
-  return file.commit();
+  return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
+    LittleEndianWriter out(file);
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\n"
+        "comment scansurf multi-label separating surfaces; label 0 = background, label L = feature L-1\n"
+        "comment label_inside < label_outside; each face's normal (counter-clockwise) points from "
+        "label_inside's region into label_outside's\n" +
+        std::string(kUnitsComment) + "element vertex " + std::to_string(mesh.vertexCount()) +
+        "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+        std::to_string(mesh.triangleCount()) +
+        "\nproperty list uchar int vertex_indices\nproperty ushort label_inside\nproperty ushort label_outside\n"
+        "end_header\n";
+    out.bytes(header.data(), header.size());
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+      for (int a = 0; a < 3; ++a) out.value(mesh.positions[3 * v + a]);
+      SCANSURF_TRY(out.maybeFlush());
+    }
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+      out.value(std::uint8_t{3});
+      for (int c = 0; c < 3; ++c) out.value(static_cast<std::int32_t>(mesh.triangles[3 * t + c]));
+      out.value(static_cast<std::uint16_t>(mesh.labels[2 * t]));
+      out.value(static_cast<std::uint16_t>(mesh.labels[2 * t + 1]));
+      SCANSURF_TRY(out.maybeFlush());
+    }
+    return out.flush();
+  });
 }
 
 }  // namespace scansurf

@@ -49,9 +49,7 @@ Result<void> writePng(const std::filesystem::path& path, std::uint32_t width, st
   std::vector<png_bytep> rows(height);
   if (!encode(width, height, rgba.data(), &encoded, &rows))
     return makeError(Errc::Internal, "cannot write '" + path.string() + "': PNG encoding failed");
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(encoded.data(), encoded.size()));
-  return file.commit();
+  return writeFileAtomically(path, encoded.data(), encoded.size());
 }
 
 }  // namespace scansurf

@@ -90,9 +90,7 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
   j["outputs"] = report.outputs;
 
   const std::string text = j.dump(2) + "\n";
-  SCANSURF_ASSIGN_OR_RETURN(AtomicFile file, AtomicFile::create(path));
-  SCANSURF_TRY(file.write(text.data(), text.size()));
-  return file.commit();
+  return writeFileAtomically(path, text.data(), text.size());
 }
 
 }  // namespace scansurf

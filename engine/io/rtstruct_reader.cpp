@@ -14,7 +14,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
+#include <span>
 
 #include "geometry/validate.h"
 #include "io/dicom_common.h"
@@ -141,6 +143,258 @@ Result<void> readRoiContours(const std::string& file, DRTROIContourSequence::Ite
   return {};
 }
 
+// Rejects an object that is not an RT Structure Set, naming what it is, or that lacks the
+// sequences surfacing needs.
+Result<void> checkIsRtStruct(const std::string& file, DcmDataset& dataset) {
+  OFString sopClass, modality;
+  dataset.findAndGetOFString(DCM_SOPClassUID, sopClass);
+  dataset.findAndGetOFString(DCM_Modality, modality);
+  if (sopClass != UID_RTStructureSetStorage && modality != "RTSTRUCT") {
+    std::string what = modality.empty() ? std::string("a DICOM object") : "a DICOM " + str(modality) + " object";
+    if (!sopClass.empty()) {
+      const char* name = dcmFindNameOfUID(sopClass.c_str());
+      what += " (SOP class " + (name ? std::string(name) : str(sopClass)) + ")";
+    }
+    return invalid(file + ": " + what + ", not an RT Structure Set (RTSTRUCT)");
+  }
+  for (const auto& [tag, name] : {std::pair{DCM_StructureSetROISequence, "Structure Set ROI Sequence (3006,0020)"},
+                                  std::pair{DCM_ROIContourSequence, "ROI Contour Sequence (3006,0039)"}}) {
+    if (!dataset.tagExists(tag)) return invalid(file + ": missing required " + std::string(name));
+  }
+  return {};
+}
+
+// The structure set's label, its frame of reference and the image series it refers to.
+void readStructureSetHeader(DRTStructureSetIOD& iod, RtStructure& out) {
+  OFString label;
+  iod.getStructureSetLabel(label);
+  out.label = str(label);
+  DRTReferencedFrameOfReferenceSequence& frames = iod.getReferencedFrameOfReferenceSequence();
+  for (std::size_t cIndex = 0; cIndex < frames.getNumberOfItems(); ++cIndex) {
+    auto& frame = frames.getItem(cIndex);
+    OFString uid;
+    if (out.frameOfReferenceUid.empty() && frame.getFrameOfReferenceUID(uid).good()) out.frameOfReferenceUid = str(uid);
+    auto& studies = frame.getRTReferencedStudySequence();
+    for (std::size_t sIndex = 0; sIndex < studies.getNumberOfItems(); ++sIndex) {
+      auto& series = studies.getItem(sIndex).getRTReferencedSeriesSequence();
+      for (std::size_t rIndex = 0; rIndex < series.getNumberOfItems(); ++rIndex) {
+        OFString seriesUid;
+        if (series.getItem(rIndex).getSeriesInstanceUID(seriesUid).good() && !seriesUid.empty())
+          out.referencedSeriesUids.push_back(str(seriesUid));
+      }
+    }
+  }
+}
+
+// Structure Set ROI Sequence: numbers and names, in file order; a number used twice is an error.
+Result<std::vector<RawRoi>> readRoiDefinitions(const std::string& file, DRTStructureSetIOD& iod) {
+  std::vector<RawRoi> rois;
+  DRTStructureSetROISequence& seq = iod.getStructureSetROISequence();
+  std::size_t index = 0;
+  for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+    ++index;
+    auto& item = seq.getItem(cIndex);
+    RawRoi roi;
+    Sint32 number = 0;
+    if (item.getROINumber(number).bad())
+      return invalid(file + ": Structure Set ROI Sequence item " + std::to_string(index) + ": missing ROI Number (3006,0022)");
+    roi.info.number = number;
+    OFString name;
+    item.getROIName(name);
+    roi.info.name = str(name);
+    if (roi.info.name.empty()) roi.info.name = "ROI-" + std::to_string(number);
+    for (const RawRoi& other : rois)
+      if (other.info.number == number)
+        return invalid(file + ": ROI Number " + std::to_string(number) + " is used twice (\"" + other.info.name +
+                       "\" and \"" + roi.info.name + "\")");
+    rois.push_back(std::move(roi));
+  }
+  return rois;
+}
+
+RawRoi* findRoi(std::vector<RawRoi>& rois, Sint32 number) {
+  for (RawRoi& r : rois)
+    if (r.info.number == number) return &r;
+  return nullptr;
+}
+
+// RT ROI Observations Sequence: each ROI's interpreted type (EXTERNAL, ORGAN, ...).
+void readInterpretedTypes(DRTStructureSetIOD& iod, std::vector<RawRoi>& rois) {
+  DRTRTROIObservationsSequence& seq = iod.getRTROIObservationsSequence();
+  for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+    auto& item = seq.getItem(cIndex);
+    Sint32 number = 0;
+    OFString type;
+    if (item.getReferencedROINumber(number).good() && item.getRTROIInterpretedType(type).good())
+      if (RawRoi* roi = findRoi(rois, number)) roi->info.interpretedType = str(type);
+  }
+}
+
+// Keeps only the ROIs whose name matches one of `patterns` selected (all of them when there
+// are none). A pattern that matches no ROI is an error that lists the names there are.
+Result<void> selectRois(const std::string& file, const std::vector<std::string>& patterns, std::vector<RawRoi>& rois) {
+  for (const std::string& pattern : patterns) {
+    bool any = false;
+    for (const RawRoi& r : rois) any = any || roiNameMatches(pattern, r.info.name);
+    if (!any) {
+      std::string names;
+      for (const RawRoi& r : rois) names += (names.empty() ? "" : ", ") + ("\"" + r.info.name + "\"");
+      return makeError(Errc::InvalidArgument, file + ": --roi \"" + pattern + "\" matches no ROI; the file holds " +
+                                                  (names.empty() ? std::string("none") : names));
+    }
+  }
+  for (RawRoi& r : rois) {
+    if (patterns.empty()) continue;
+    r.info.selected = std::any_of(patterns.begin(), patterns.end(),
+                                  [&](const std::string& p) { return roiNameMatches(p, r.info.name); });
+  }
+  return {};
+}
+
+// ROI Contour Sequence: the contours of each ROI. An item for an undefined ROI is skipped
+// with a warning.
+Result<void> readAllRoiContours(const std::string& file, DRTStructureSetIOD& iod, const RtStructOptions& options,
+                                std::vector<RawRoi>& rois, std::vector<std::string>& warnings) {
+  DRTROIContourSequence& seq = iod.getROIContourSequence();
+  std::size_t index = 0;
+  for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+    ++index;
+    auto& item = seq.getItem(cIndex);
+    Sint32 number = 0;
+    if (item.getReferencedROINumber(number).bad())
+      return invalid(file + ": ROI Contour Sequence item " + std::to_string(index) +
+                     ": missing Referenced ROI Number (3006,0084)");
+    RawRoi* roi = findRoi(rois, number);
+    if (!roi) {
+      warnings.push_back(file + ": ROI Contour Sequence item " + std::to_string(index) + " refers to ROI number " +
+                         std::to_string(number) + ", which the Structure Set ROI Sequence does not define; skipped");
+      continue;
+    }
+    SCANSURF_TRY(readRoiContours(file, item, *roi, options));
+  }
+  return {};
+}
+
+// Slice planes shared by every selected ROI, so abutting structures meet on one plane: the
+// plane of each closed contour of the selected ROIs, in ROI order.
+std::vector<double> sharedSlicePlanes(const std::vector<RawRoi>& rois, double tolerance) {
+  std::vector<double> allZ;
+  for (const RawRoi& r : rois)
+    if (r.info.selected)
+      for (const RawContour& c : r.closed) allZ.push_back(c.z);
+  return groupSlicePlanes(allZ, tolerance);
+}
+
+// Where each ROI's planes start in sharedSlicePlanes's result.
+std::vector<std::size_t> sharedPlaneStarts(const std::vector<RawRoi>& rois) {
+  std::vector<std::size_t> planeStart(rois.size(), 0);
+  for (std::size_t i = 0, next = 0; i < rois.size(); ++i) {
+    planeStart[i] = next;
+    if (rois[i].info.selected) next += rois[i].closed.size();
+  }
+  return planeStart;
+}
+
+// Features in ROI order, except that EXTERNAL ROIs (the body outline) come last: where a
+// drawn organ pokes out of BODY on some slice, nesting cannot prove BODY contains it, and
+// among siblings the earlier feature wins, so the organ keeps its voxels.
+std::vector<std::size_t> featureOrder(const std::vector<RawRoi>& rois) {
+  std::vector<std::size_t> roiOrder(rois.size());
+  for (std::size_t i = 0; i < rois.size(); ++i) roiOrder[i] = i;
+  std::stable_partition(roiOrder.begin(), roiOrder.end(),
+                        [&](std::size_t i) { return rois[i].info.interpretedType != "EXTERNAL"; });
+  return roiOrder;
+}
+
+// The slice count of an unselected ROI, for listing: its own planes, not the shared ones.
+int ownSliceCount(const RawRoi& r, double tolerance) {
+  std::vector<double> zs;
+  for (const RawContour& c : r.closed) zs.push_back(c.z);
+  const auto planes = groupSlicePlanes(zs, tolerance);
+  return static_cast<int>(std::set<double>(planes.begin(), planes.end()).size());
+}
+
+// Warns once for all of an ROI's contours that are not CLOSED_PLANAR (points, open curves).
+void warnSkippedContourTypes(const std::string& who, const RoiInfo& info, std::vector<std::string>& warnings) {
+  int skippedOther = 0;
+  std::string otherTypes;
+  for (const auto& [type, count] : info.contoursByType)
+    if (type != "CLOSED_PLANAR") skippedOther += count, otherTypes += (otherTypes.empty() ? "" : ", ") + type;
+  if (skippedOther > 0)
+    warnings.push_back(who + ": skipped " + std::to_string(skippedOther) + " " + otherTypes +
+                       " contour(s); only CLOSED_PLANAR contours are surfaced");
+}
+
+// The ROI's name, or "name #number" when another ROI's feature has it already.
+std::string uniqueFeatureName(const std::string& who, const RoiInfo& info, std::set<std::string>& usedNames,
+                              std::vector<std::string>& warnings) {
+  std::string name = info.name;
+  if (!usedNames.insert(name).second) {
+    name += " #" + std::to_string(info.number);
+    warnings.push_back(who + ": name used by another ROI; the feature is called \"" + name + "\"");
+    usedNames.insert(name);
+  }
+  return name;
+}
+
+// Moves the closed contours into feature's slices, contour i on plane planes[i]; returns how
+// many were skipped for having fewer than 3 distinct points.
+int addSlices(std::vector<RawContour>& closed, std::span<const double> planes, Feature& feature) {
+  int degenerate = 0;
+  std::size_t zIndex = 0;
+  std::map<double, std::size_t> sliceOfPlane;
+  for (RawContour& c : closed) {
+    const double z = planes[zIndex++];
+    if (distinctPoints(c.points) < 3) {
+      ++degenerate;
+      continue;
+    }
+    auto [it, inserted] = sliceOfPlane.emplace(z, feature.slices.size());
+    if (inserted) feature.slices.push_back(FeatureSlice{z, {}});
+    feature.slices[it->second].contours.push_back(Contour{std::move(c.points)});
+  }
+  return degenerate;
+}
+
+// Appends selected ROI r as a feature of out.contours, if any of its contours is usable, and
+// records its slice count and feature index; warns about what it skipped.
+void addFeature(const std::string& file, RawRoi& r, std::span<const double> planes, std::set<std::string>& usedNames,
+                RtStructure& out) {
+  const std::string who = describeRoi(file, r.info);
+  warnSkippedContourTypes(who, r.info, out.warnings);
+  if (!r.hasContourItem || r.info.contoursByType.empty()) {
+    out.warnings.push_back(who + ": no contours (empty ROI)");
+    return;
+  }
+  Feature feature;
+  feature.name = uniqueFeatureName(who, r.info, usedNames, out.warnings);
+  feature.color = r.info.color;
+  const int degenerate = addSlices(r.closed, planes, feature);
+  if (degenerate > 0)
+    out.warnings.push_back(who + ": skipped " + std::to_string(degenerate) +
+                           " CLOSED_PLANAR contour(s) with fewer than 3 distinct points");
+  r.info.slices = static_cast<int>(feature.slices.size());
+  if (feature.slices.empty()) return;
+  r.info.feature = static_cast<int>(out.contours.features.size());
+  out.contours.features.push_back(std::move(feature));
+}
+
+// The features of the selected ROIs, on shared slice planes, into out.contours.
+void addFeatures(const std::string& file, double sliceTolerance, std::vector<RawRoi>& rois, RtStructure& out) {
+  const std::vector<double> planeOf = sharedSlicePlanes(rois, sliceTolerance);
+  const std::vector<std::size_t> planeStart = sharedPlaneStarts(rois);
+  std::set<std::string> usedNames;
+  for (std::size_t roiIndex : featureOrder(rois)) {
+    RawRoi& r = rois[roiIndex];
+    if (!r.info.selected) {
+      r.info.slices = ownSliceCount(r, sliceTolerance);
+      continue;
+    }
+    const std::span<const double> planes(planeOf.data() + planeStart[roiIndex], r.closed.size());
+    addFeature(file, r, planes, usedNames, out);
+  }
+}
+
 }  // namespace
 
 bool hasDicomPreamble(const std::filesystem::path& path) {
@@ -187,203 +441,23 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
     return makeError(Errc::InvalidArgument, "slice tolerance must be finite and not negative");
   SCANSURF_ASSIGN_OR_RETURN(DicomFile dicom, loadDicomFile(path));
   DcmDataset& dataset = dicom.dataset();
-
-  OFString sopClass, modality;
-  dataset.findAndGetOFString(DCM_SOPClassUID, sopClass);
-  dataset.findAndGetOFString(DCM_Modality, modality);
-  if (sopClass != UID_RTStructureSetStorage && modality != "RTSTRUCT") {
-    std::string what = modality.empty() ? std::string("a DICOM object") : "a DICOM " + str(modality) + " object";
-    if (!sopClass.empty()) {
-      const char* name = dcmFindNameOfUID(sopClass.c_str());
-      what += " (SOP class " + (name ? std::string(name) : str(sopClass)) + ")";
-    }
-    return invalid(file + ": " + what + ", not an RT Structure Set (RTSTRUCT)");
-  }
-  for (const auto& [tag, name] : {std::pair{DCM_StructureSetROISequence, "Structure Set ROI Sequence (3006,0020)"},
-                                  std::pair{DCM_ROIContourSequence, "ROI Contour Sequence (3006,0039)"}}) {
-    if (!dataset.tagExists(tag)) return invalid(file + ": missing required " + std::string(name));
-  }
+  SCANSURF_TRY(checkIsRtStruct(file, dataset));
 
   DRTStructureSetIOD iod;
-  // dcmrt reads leniently (missing attributes are logged, not fatal); the checks below and
-  // in readRoiContours decide what is required for surfacing.
+  // dcmrt reads leniently (missing attributes are logged, not fatal); the checks in
+  // readRoiDefinitions, readAllRoiContours and readRoiContours decide what is required for surfacing.
   if (OFCondition c = iod.read(dataset); c.bad())
     return invalid(file + ": cannot read the RT Structure Set: " + std::string(c.text()));
 
   RtStructure out;
   out.contours.source = file;
   out.contours.units = "mm";
-  OFString label;
-  iod.getStructureSetLabel(label);
-  out.label = str(label);
-  {
-    DRTReferencedFrameOfReferenceSequence& frames = iod.getReferencedFrameOfReferenceSequence();
-    for (std::size_t cIndex = 0; cIndex < frames.getNumberOfItems(); ++cIndex) {
-      auto& frame = frames.getItem(cIndex);
-      OFString uid;
-      if (out.frameOfReferenceUid.empty() && frame.getFrameOfReferenceUID(uid).good()) out.frameOfReferenceUid = str(uid);
-      auto& studies = frame.getRTReferencedStudySequence();
-      for (std::size_t sIndex = 0; sIndex < studies.getNumberOfItems(); ++sIndex) {
-        auto& series = studies.getItem(sIndex).getRTReferencedSeriesSequence();
-        for (std::size_t rIndex = 0; rIndex < series.getNumberOfItems(); ++rIndex) {
-          OFString seriesUid;
-          if (series.getItem(rIndex).getSeriesInstanceUID(seriesUid).good() && !seriesUid.empty())
-            out.referencedSeriesUids.push_back(str(seriesUid));
-        }
-      }
-    }
-  }
-
-  // Structure Set ROI Sequence: numbers and names.
-  std::vector<RawRoi> rois;
-  {
-    DRTStructureSetROISequence& seq = iod.getStructureSetROISequence();
-    std::size_t index = 0;
-    for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
-      ++index;
-      auto& item = seq.getItem(cIndex);
-      RawRoi roi;
-      Sint32 number = 0;
-      if (item.getROINumber(number).bad())
-        return invalid(file + ": Structure Set ROI Sequence item " + std::to_string(index) + ": missing ROI Number (3006,0022)");
-      roi.info.number = number;
-      OFString name;
-      item.getROIName(name);
-      roi.info.name = str(name);
-      if (roi.info.name.empty()) roi.info.name = "ROI-" + std::to_string(number);
-      for (const RawRoi& other : rois)
-        if (other.info.number == number)
-          return invalid(file + ": ROI Number " + std::to_string(number) + " is used twice (\"" + other.info.name +
-                         "\" and \"" + roi.info.name + "\")");
-      rois.push_back(std::move(roi));
-    }
-  }
-  auto findRoi = [&](Sint32 number) -> RawRoi* {
-    for (RawRoi& r : rois)
-      if (r.info.number == number) return &r;
-    return nullptr;
-  };
-  {
-    DRTRTROIObservationsSequence& seq = iod.getRTROIObservationsSequence();
-    for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
-      auto& item = seq.getItem(cIndex);
-      Sint32 number = 0;
-      OFString type;
-      if (item.getReferencedROINumber(number).good() && item.getRTROIInterpretedType(type).good())
-        if (RawRoi* roi = findRoi(number)) roi->info.interpretedType = str(type);
-    }
-  }
-
-  // Selection.
-  for (const std::string& pattern : options.roiPatterns) {
-    bool any = false;
-    for (const RawRoi& r : rois) any = any || roiNameMatches(pattern, r.info.name);
-    if (!any) {
-      std::string names;
-      for (const RawRoi& r : rois) names += (names.empty() ? "" : ", ") + ("\"" + r.info.name + "\"");
-      return makeError(Errc::InvalidArgument, file + ": --roi \"" + pattern + "\" matches no ROI; the file holds " +
-                                                  (names.empty() ? std::string("none") : names));
-    }
-  }
-  for (RawRoi& r : rois) {
-    if (options.roiPatterns.empty()) continue;
-    r.info.selected = std::any_of(options.roiPatterns.begin(), options.roiPatterns.end(),
-                                  [&](const std::string& p) { return roiNameMatches(p, r.info.name); });
-  }
-
-  // ROI Contour Sequence: the contours of each ROI.
-  {
-    DRTROIContourSequence& seq = iod.getROIContourSequence();
-    std::size_t index = 0;
-    for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
-      ++index;
-      auto& item = seq.getItem(cIndex);
-      Sint32 number = 0;
-      if (item.getReferencedROINumber(number).bad())
-        return invalid(file + ": ROI Contour Sequence item " + std::to_string(index) +
-                       ": missing Referenced ROI Number (3006,0084)");
-      RawRoi* roi = findRoi(number);
-      if (!roi) {
-        out.warnings.push_back(file + ": ROI Contour Sequence item " + std::to_string(index) + " refers to ROI number " +
-                               std::to_string(number) + ", which the Structure Set ROI Sequence does not define; skipped");
-        continue;
-      }
-      SCANSURF_TRY(readRoiContours(file, item, *roi, options));
-    }
-  }
-
-  // Slice planes shared by every selected ROI, so abutting structures meet on one plane.
-  std::vector<double> allZ;
-  for (const RawRoi& r : rois)
-    if (r.info.selected)
-      for (const RawContour& c : r.closed) allZ.push_back(c.z);
-  const std::vector<double> planeOf = groupSlicePlanes(allZ, options.sliceTolerance);
-
-  // Where each ROI's planes start in planeOf (its closed contours, in ROI order).
-  std::vector<std::size_t> planeStart(rois.size(), 0);
-  for (std::size_t i = 0, next = 0; i < rois.size(); ++i) {
-    planeStart[i] = next;
-    if (rois[i].info.selected) next += rois[i].closed.size();
-  }
-  // Features in ROI order, except that EXTERNAL ROIs (the body outline) come last: where a
-  // drawn organ pokes out of BODY on some slice, nesting cannot prove BODY contains it, and
-  // among siblings the earlier feature wins, so the organ keeps its voxels.
-  std::vector<std::size_t> roiOrder(rois.size());
-  for (std::size_t i = 0; i < rois.size(); ++i) roiOrder[i] = i;
-  std::stable_partition(roiOrder.begin(), roiOrder.end(),
-                        [&](std::size_t i) { return rois[i].info.interpretedType != "EXTERNAL"; });
-  std::set<std::string> usedNames;
-  for (std::size_t roiIndex : roiOrder) {
-    RawRoi& r = rois[roiIndex];
-    std::size_t zIndex = planeStart[roiIndex];
-    if (!r.info.selected) {
-      // Unselected ROIs still report their slice count for listing.
-      std::vector<double> zs;
-      for (const RawContour& c : r.closed) zs.push_back(c.z);
-      const auto planes = groupSlicePlanes(zs, options.sliceTolerance);
-      r.info.slices = static_cast<int>(std::set<double>(planes.begin(), planes.end()).size());
-      continue;
-    }
-    const std::string who = describeRoi(file, r.info);
-    int skippedOther = 0;
-    std::string otherTypes;
-    for (const auto& [type, count] : r.info.contoursByType)
-      if (type != "CLOSED_PLANAR") skippedOther += count, otherTypes += (otherTypes.empty() ? "" : ", ") + type;
-    if (skippedOther > 0)
-      out.warnings.push_back(who + ": skipped " + std::to_string(skippedOther) + " " + otherTypes +
-                             " contour(s); only CLOSED_PLANAR contours are surfaced");
-    if (!r.hasContourItem || r.info.contoursByType.empty()) {
-      out.warnings.push_back(who + ": no contours (empty ROI)");
-      continue;
-    }
-    Feature feature;
-    feature.name = r.info.name;
-    if (!usedNames.insert(feature.name).second) {
-      feature.name += " #" + std::to_string(r.info.number);
-      out.warnings.push_back(who + ": name used by another ROI; the feature is called \"" + feature.name + "\"");
-      usedNames.insert(feature.name);
-    }
-    feature.color = r.info.color;
-    int degenerate = 0;
-    std::map<double, std::size_t> sliceOfPlane;
-    for (RawContour& c : r.closed) {
-      const double z = planeOf[zIndex++];
-      if (distinctPoints(c.points) < 3) {
-        ++degenerate;
-        continue;
-      }
-      auto [it, inserted] = sliceOfPlane.emplace(z, feature.slices.size());
-      if (inserted) feature.slices.push_back(FeatureSlice{z, {}});
-      feature.slices[it->second].contours.push_back(Contour{std::move(c.points)});
-    }
-    if (degenerate > 0)
-      out.warnings.push_back(who + ": skipped " + std::to_string(degenerate) +
-                             " CLOSED_PLANAR contour(s) with fewer than 3 distinct points");
-    r.info.slices = static_cast<int>(feature.slices.size());
-    if (feature.slices.empty()) continue;
-    r.info.feature = static_cast<int>(out.contours.features.size());
-    out.contours.features.push_back(std::move(feature));
-  }
+  readStructureSetHeader(iod, out);
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<RawRoi> rois, readRoiDefinitions(file, iod));
+  readInterpretedTypes(iod, rois);
+  SCANSURF_TRY(selectRois(file, options.roiPatterns, rois));
+  SCANSURF_TRY(readAllRoiContours(file, iod, options, rois, out.warnings));
+  addFeatures(file, options.sliceTolerance, rois, out);
   for (RawRoi& r : rois) out.rois.push_back(std::move(r.info));
 
   if (out.contours.features.empty()) {

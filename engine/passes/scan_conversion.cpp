@@ -37,6 +37,194 @@ struct FeatureDraw {
   Label label = 0;
 };
 
+// One feature's contours on one slice.
+struct SliceRef {
+  int feature;
+  const FeatureSlice* slice;
+};
+
+// What every slab of one run shares.
+struct RunPlan {
+  const Grid* grid = nullptr;
+  std::vector<std::vector<SliceRef>> byLayer;  // which feature slices land on which layer
+  std::vector<int> rank;                       // nesting rank of each feature, 0 = innermost
+  int featureCount = 0;
+  int subPixelBits = 0;
+  float invScale = 0;                          // sub-pixel units to pixels
+  std::uint32_t viewportW = 0, viewportH = 0;  // see viewportExtent
+  std::size_t layerBytes = 0;                  // labels of one layer
+};
+
+// The render targets every slab reuses: a label image with a layer per slice layer of the
+// slab, one depth-stencil image shared by the layers, and the buffer labels are read back in.
+struct SlabTargets {
+  gpu::Image labels;
+  gpu::Image depthStencil;
+  gpu::Buffer readback;
+};
+
+// A slab's vertices (x, y in pixels): each contour's points (a fan), then the feature's cover
+// quad; and per layer of the slab, the draws that use them.
+struct SlabGeometry {
+  std::vector<float> vertices;
+  std::vector<std::vector<FeatureDraw>> draws;
+};
+
+// The sub-pixel bounding box of points.
+struct SubpixelBox {
+  std::int64_t minU = std::numeric_limits<std::int64_t>::max(), minV = std::numeric_limits<std::int64_t>::max();
+  std::int64_t maxU = std::numeric_limits<std::int64_t>::min(), maxV = std::numeric_limits<std::int64_t>::min();
+
+  void add(const SubpixelPoint& sp) {
+    minU = std::min(minU, sp.u), maxU = std::max(maxU, sp.u);
+    minV = std::min(minV, sp.v), maxV = std::max(maxV, sp.v);
+  }
+};
+
+Result<void> checkRunArguments(const VkPhysicalDeviceLimits& limits, const Grid& grid, std::size_t featureCount,
+                               std::size_t orderSize) {
+  if (orderSize != featureCount)
+    return makeError(Errc::InvalidArgument, "scan conversion: the order must name every feature once");
+  if (grid.nx < 3 || grid.ny < 3 || grid.nz < 3)
+    return makeError(Errc::InvalidArgument, "scan conversion: the grid needs at least 3 voxels per axis");
+  if (static_cast<std::uint32_t>(grid.nx) > limits.maxImageDimension2D ||
+      static_cast<std::uint32_t>(grid.ny) > limits.maxImageDimension2D ||
+      viewportExtent(grid.nx) > limits.maxViewportDimensions[0] || viewportExtent(grid.ny) > limits.maxViewportDimensions[1])
+    return makeError(Errc::InvalidArgument, "scan conversion: a " + std::to_string(grid.nx) + " x " +
+                                                std::to_string(grid.ny) + " grid exceeds the device's image limits");
+  return {};
+}
+
+// Which feature slices land on which layer; a slice off the grid's layers is a bug upstream.
+Result<std::vector<std::vector<SliceRef>>> slicesByLayer(const ContourSet& contours, const Grid& grid,
+                                                         double sliceTolerance) {
+  std::vector<std::vector<SliceRef>> byLayer(static_cast<std::size_t>(grid.nz));
+  for (int f = 0; f < static_cast<int>(contours.features.size()); ++f)
+    for (const FeatureSlice& s : contours.features[static_cast<std::size_t>(f)].slices) {
+      const int layer = layerOfZ(grid, s.z, sliceTolerance);
+      if (layer < 1 || layer > grid.nz - 2)
+        return makeError(Errc::Internal, "scan conversion: slice z=" + std::to_string(s.z) + " of feature \"" +
+                                             contours.features[static_cast<std::size_t>(f)].name + "\" is not a layer of the grid");
+      byLayer[static_cast<std::size_t>(layer)].push_back({f, &s});
+    }
+  return byLayer;
+}
+
+Result<RunPlan> planRun(const ContourSet& contours, const Grid& grid, const std::vector<int>& order, int subPixelBits,
+                        double sliceTolerance) {
+  RunPlan plan;
+  plan.grid = &grid;
+  plan.featureCount = static_cast<int>(contours.features.size());
+  plan.rank.assign(static_cast<std::size_t>(plan.featureCount), -1);
+  for (int r = 0; r < plan.featureCount; ++r) plan.rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
+  SCANSURF_ASSIGN_OR_RETURN(plan.byLayer, slicesByLayer(contours, grid, sliceTolerance));
+  plan.subPixelBits = subPixelBits;
+  plan.invScale = static_cast<float>(std::ldexp(1.0, -subPixelBits));
+  plan.viewportW = viewportExtent(grid.nx);
+  plan.viewportH = viewportExtent(grid.ny);
+  plan.layerBytes = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * sizeof(Label);
+  return plan;
+}
+
+// As many layers as the budget allows, at least one, at most the device's array layers and the
+// layers there are.
+int slabLayerCount(std::size_t slabBudget, std::size_t layerBytes, std::uint32_t maxImageArrayLayers, int sliceLayers) {
+  return static_cast<int>(std::clamp<std::size_t>(
+      slabBudget / layerBytes, 1, std::min<std::size_t>(maxImageArrayLayers, static_cast<std::size_t>(sliceLayers))));
+}
+
+Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthStencilFormat, const Grid& grid,
+                                      int slabLayers, std::size_t layerBytes) {
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Image labels,
+      gpu::Image::create(ctx, kLabelFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
+                         static_cast<std::uint32_t>(slabLayers),
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Image depthStencil,
+      gpu::Image::create(ctx, depthStencilFormat, static_cast<std::uint32_t>(grid.nx),
+                         static_cast<std::uint32_t>(grid.ny), 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                         VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer readback,
+                            gpu::Buffer::create(ctx, layerBytes * static_cast<std::size_t>(slabLayers),
+                                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
+  return SlabTargets{std::move(labels), std::move(depthStencil), std::move(readback)};
+}
+
+// Cover quad: the fans stay inside the contours' bounding box; one pixel of margin.
+void appendCoverQuad(const SubpixelBox& box, const Grid& grid, float invScale, std::vector<float>& vertices) {
+  const float x0 = std::max(0.0f, std::floor(static_cast<float>(box.minU) * invScale) - 1.0f);
+  const float y0 = std::max(0.0f, std::floor(static_cast<float>(box.minV) * invScale) - 1.0f);
+  const float x1 = std::min(static_cast<float>(grid.nx), std::ceil(static_cast<float>(box.maxU) * invScale) + 1.0f);
+  const float y1 = std::min(static_cast<float>(grid.ny), std::ceil(static_cast<float>(box.maxV) * invScale) + 1.0f);
+  vertices.insert(vertices.end(), {x0, y0, x1, y0, x1, y1, x0, y1});
+}
+
+// Appends the feature slice's contours (a fan each) and its cover quad to vertices.
+FeatureDraw appendFeatureDraw(const RunPlan& plan, const SliceRef& ref, std::vector<float>& vertices) {
+  FeatureDraw draw;
+  draw.firstVertex = static_cast<std::uint32_t>(vertices.size() / 2);
+  draw.label = labelOfFeature(ref.feature);
+  draw.depth = rankDepth(plan.rank[static_cast<std::size_t>(ref.feature)], plan.featureCount);
+  SubpixelBox box;
+  for (const Contour& c : ref.slice->contours) {
+    for (const Point2& p : c.points) {
+      const SubpixelPoint sp = toSubpixel(*plan.grid, p.x, p.y, plan.subPixelBits);
+      box.add(sp);
+      vertices.push_back(static_cast<float>(sp.u) * plan.invScale);
+      vertices.push_back(static_cast<float>(sp.v) * plan.invScale);
+    }
+    draw.contourCounts.push_back(static_cast<std::uint32_t>(c.points.size()));
+  }
+  draw.coverFirst = static_cast<std::uint32_t>(vertices.size() / 2);
+  appendCoverQuad(box, *plan.grid, plan.invScale, vertices);
+  return draw;
+}
+
+SlabGeometry buildSlabGeometry(const RunPlan& plan, int first, int count) {
+  SlabGeometry geometry;
+  geometry.draws.resize(static_cast<std::size_t>(count));
+  for (int l = 0; l < count; ++l)
+    for (const SliceRef& ref : plan.byLayer[static_cast<std::size_t>(first + l)])
+      geometry.draws[static_cast<std::size_t>(l)].push_back(appendFeatureDraw(plan, ref, geometry.vertices));
+  if (geometry.vertices.empty()) geometry.vertices.assign(2, 0.0f);  // a buffer of size 0 is not allowed
+  return geometry;
+}
+
+// Both images from whatever they held (the previous slab's copy reads the labels) to attachments.
+void transitionToAttachments(VkCommandBuffer cmd, const SlabTargets& targets) {
+  gpu::imageBarrier(cmd, targets.labels.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                    VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+  gpu::imageBarrier(cmd, targets.depthStencil.handle(), VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT,
+                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+}
+
+// The depth-stencil image is reused: the next layer's clear waits for this layer's tests.
+void waitForDepthStencilTests(VkCommandBuffer cmd) {
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+                     VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
+}
+
+// Copies the slab's first `count` label layers to the readback buffer, visible to the host.
+void recordReadback(VkCommandBuffer cmd, const SlabTargets& targets, const Grid& grid, int count) {
+  gpu::imageBarrier(cmd, targets.labels.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, static_cast<std::uint32_t>(count)};
+  region.imageExtent = {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny), 1};
+  vkCmdCopyImageToBuffer(cmd, targets.labels.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.readback.handle(), 1,
+                         &region);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_HOST_READ_BIT);
+}
+
 }  // namespace
 
 struct ScanConverter::State {
@@ -95,183 +283,92 @@ Result<std::unique_ptr<ScanConverter>> ScanConverter::create(const gpu::Context&
   return std::unique_ptr<ScanConverter>(new ScanConverter(std::move(s)));
 }
 
+namespace {
+
+// One layer's features: each feature's fans toggle the stencil parity, then its cover quad
+// writes its label where the parity is odd.
+void recordFeatureDraws(VkCommandBuffer cmd, const ScanConverter::State& state, const std::vector<FeatureDraw>& draws,
+                        shared::ScanPush& push) {
+  for (const FeatureDraw& d : draws) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, state.stencilPipeline.get());
+    push.depth = d.depth;
+    push.label = d.label;
+    vkCmdPushConstants(cmd, state.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(push), &push);
+    std::uint32_t v = d.firstVertex;
+    for (std::uint32_t n : d.contourCounts) {
+      vkCmdDraw(cmd, n, 1, v, 0);
+      v += n;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, state.coverPipeline.get());
+    vkCmdDraw(cmd, 4, 1, d.coverFirst, 0);
+  }
+}
+
+// Renders each layer of the slab into its layer of the label image, then reads them back.
+void recordSlab(VkCommandBuffer cmd, const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets,
+                const SlabGeometry& geometry, VkBuffer vertexBuffer) {
+  const Grid& grid = *plan.grid;
+  transitionToAttachments(cmd, targets);
+  const VkDeviceSize zero = 0;
+  gpu::RenderingDesc rendering;
+  rendering.clearColor.uint32[0] = kBackground;
+  rendering.depth = targets.depthStencil.layerView(0);
+  rendering.stencil = true;
+  rendering.area = {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny)};
+  rendering.viewport = {plan.viewportW, plan.viewportH};
+  shared::ScanPush push{{2.0f / static_cast<float>(plan.viewportW), 2.0f / static_cast<float>(plan.viewportH)}, 0.0f, 0};
+  const int count = static_cast<int>(geometry.draws.size());
+  for (int l = 0; l < count; ++l) {
+    if (l > 0) waitForDepthStencilTests(cmd);
+    rendering.color = targets.labels.layerView(static_cast<std::uint32_t>(l));
+    gpu::beginRendering(cmd, rendering);
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &zero);
+    recordFeatureDraws(cmd, state, geometry.draws[static_cast<std::size_t>(l)], push);
+    vkCmdEndRendering(cmd);
+  }
+  recordReadback(cmd, targets, grid, count);
+}
+
+// Scan converts layers first .. first + count - 1 in one submit into volume.
+Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets, int first,
+                         int count, LabelVolume& volume) {
+  const gpu::Context& ctx = *state.ctx;
+  const SlabGeometry geometry = buildSlabGeometry(plan, first, count);
+  const std::size_t vertexBytes = geometry.vertices.size() * sizeof(float);
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer vertexBuffer, gpu::Buffer::create(ctx, vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                                                          gpu::MemoryDomain::Upload));
+  std::memcpy(vertexBuffer.mapped(), geometry.vertices.data(), vertexBytes);
+
+  SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
+  recordSlab(commands.cmd(), state, plan, targets, geometry, vertexBuffer.handle());
+  SCANSURF_TRY(commands.submitAndWait());
+  SCANSURF_TRY(targets.readback.invalidate());
+  std::memcpy(volume.labels.data() + plan.grid->index(0, 0, first), targets.readback.mapped(),
+              plan.layerBytes * static_cast<std::size_t>(count));
+  return {};
+}
+
+}  // namespace
+
 Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
                                        double sliceTolerance) {
   const gpu::Context& ctx = *state_->ctx;
-  const int featureCount = static_cast<int>(contours.features.size());
-  if (static_cast<int>(order.size()) != featureCount)
-    return makeError(Errc::InvalidArgument, "scan conversion: the order must name every feature once");
-  if (grid.nx < 3 || grid.ny < 3 || grid.nz < 3)
-    return makeError(Errc::InvalidArgument, "scan conversion: the grid needs at least 3 voxels per axis");
-  const auto& limits = ctx.limits();
-  const std::uint32_t viewportW = viewportExtent(grid.nx);
-  const std::uint32_t viewportH = viewportExtent(grid.ny);
-  if (static_cast<std::uint32_t>(grid.nx) > limits.maxImageDimension2D ||
-      static_cast<std::uint32_t>(grid.ny) > limits.maxImageDimension2D || viewportW > limits.maxViewportDimensions[0] ||
-      viewportH > limits.maxViewportDimensions[1])
-    return makeError(Errc::InvalidArgument, "scan conversion: a " + std::to_string(grid.nx) + " x " +
-                                                std::to_string(grid.ny) + " grid exceeds the device's image limits");
-
-  std::vector<int> rank(static_cast<std::size_t>(featureCount), -1);
-  for (int r = 0; r < featureCount; ++r) rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
-
-  // Which feature slices land on which layer.
-  struct SliceRef {
-    int feature;
-    const FeatureSlice* slice;
-  };
-  std::vector<std::vector<SliceRef>> byLayer(static_cast<std::size_t>(grid.nz));
-  for (int f = 0; f < featureCount; ++f)
-    for (const FeatureSlice& s : contours.features[static_cast<std::size_t>(f)].slices) {
-      const int layer = layerOfZ(grid, s.z, sliceTolerance);
-      if (layer < 1 || layer > grid.nz - 2)
-        return makeError(Errc::Internal, "scan conversion: slice z=" + std::to_string(s.z) + " of feature \"" +
-                                             contours.features[static_cast<std::size_t>(f)].name + "\" is not a layer of the grid");
-      byLayer[static_cast<std::size_t>(layer)].push_back({f, &s});
-    }
+  SCANSURF_TRY(checkRunArguments(ctx.limits(), grid, contours.features.size(), order.size()));
+  SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state_->subPixelBits, sliceTolerance));
 
   LabelVolume volume;
   volume.grid = grid;
   volume.labels.assign(grid.voxelCount(), kBackground);
 
-  const std::size_t layerBytes = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * sizeof(Label);
   const int sliceLayers = grid.nz - 2;
-  const int slabLayers = static_cast<int>(std::clamp<std::size_t>(
-      state_->slabBudget / layerBytes, 1, std::min<std::size_t>(limits.maxImageArrayLayers, static_cast<std::size_t>(sliceLayers))));
-
-  SCANSURF_ASSIGN_OR_RETURN(
-      gpu::Image labelImage,
-      gpu::Image::create(ctx, kLabelFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
-                         static_cast<std::uint32_t>(slabLayers),
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT));
-  SCANSURF_ASSIGN_OR_RETURN(
-      gpu::Image depthImage,
-      gpu::Image::create(ctx, state_->depthStencilFormat, static_cast<std::uint32_t>(grid.nx),
-                         static_cast<std::uint32_t>(grid.ny), 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                         VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT));
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer readback,
-                            gpu::Buffer::create(ctx, layerBytes * static_cast<std::size_t>(slabLayers),
-                                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
-
-  const int bits = state_->subPixelBits;
-  const float invScale = static_cast<float>(std::ldexp(1.0, -bits));
+  const int slabLayers = slabLayerCount(state_->slabBudget, plan.layerBytes, ctx.limits().maxImageArrayLayers, sliceLayers);
+  SCANSURF_ASSIGN_OR_RETURN(const SlabTargets targets,
+                            createSlabTargets(ctx, state_->depthStencilFormat, grid, slabLayers, plan.layerBytes));
   state_->lastSlabs = 0;
-
   for (int first = 1; first <= sliceLayers; first += slabLayers) {
     const int count = std::min(slabLayers, sliceLayers + 1 - first);
-
-    // Vertices of the slab: each contour's points (a fan), then the feature's cover quad.
-    std::vector<float> vertices;
-    std::vector<std::vector<FeatureDraw>> draws(static_cast<std::size_t>(count));
-    for (int l = 0; l < count; ++l) {
-      for (const SliceRef& ref : byLayer[static_cast<std::size_t>(first + l)]) {
-        FeatureDraw draw;
-        draw.firstVertex = static_cast<std::uint32_t>(vertices.size() / 2);
-        draw.label = labelOfFeature(ref.feature);
-        draw.depth = rankDepth(rank[static_cast<std::size_t>(ref.feature)], featureCount);
-        std::int64_t minU = std::numeric_limits<std::int64_t>::max(), minV = minU;
-        std::int64_t maxU = std::numeric_limits<std::int64_t>::min(), maxV = maxU;
-        for (const Contour& c : ref.slice->contours) {
-          for (const Point2& p : c.points) {
-            const SubpixelPoint sp = toSubpixel(grid, p.x, p.y, bits);
-            minU = std::min(minU, sp.u), maxU = std::max(maxU, sp.u);
-            minV = std::min(minV, sp.v), maxV = std::max(maxV, sp.v);
-            vertices.push_back(static_cast<float>(sp.u) * invScale);
-            vertices.push_back(static_cast<float>(sp.v) * invScale);
-          }
-          draw.contourCounts.push_back(static_cast<std::uint32_t>(c.points.size()));
-        }
-        // Cover quad: the fans stay inside the contours' bounding box; one pixel of margin.
-        draw.coverFirst = static_cast<std::uint32_t>(vertices.size() / 2);
-        const float x0 = std::max(0.0f, std::floor(static_cast<float>(minU) * invScale) - 1.0f);
-        const float y0 = std::max(0.0f, std::floor(static_cast<float>(minV) * invScale) - 1.0f);
-        const float x1 = std::min(static_cast<float>(grid.nx), std::ceil(static_cast<float>(maxU) * invScale) + 1.0f);
-        const float y1 = std::min(static_cast<float>(grid.ny), std::ceil(static_cast<float>(maxV) * invScale) + 1.0f);
-        vertices.insert(vertices.end(), {x0, y0, x1, y0, x1, y1, x0, y1});
-        draws[static_cast<std::size_t>(l)].push_back(std::move(draw));
-      }
-    }
-    if (vertices.empty()) vertices.assign(2, 0.0f);  // a buffer of size 0 is not allowed
-    SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer vertexBuffer,
-                              gpu::Buffer::create(ctx, vertices.size() * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                                  gpu::MemoryDomain::Upload));
-    std::memcpy(vertexBuffer.mapped(), vertices.data(), vertices.size() * sizeof(float));
-
-    SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
-    VkCommandBuffer cmd = commands.cmd();
-    gpu::imageBarrier(cmd, labelImage.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                      VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    gpu::imageBarrier(cmd, depthImage.handle(), VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT,
-                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-
-    const VkDeviceSize zero = 0;
-    VkBuffer vb = vertexBuffer.handle();
-    const VkViewport viewport{0, 0, static_cast<float>(viewportW), static_cast<float>(viewportH), 0, 1};
-    const VkRect2D area{{0, 0}, {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny)}};
-    shared::ScanPush push{{2.0f / static_cast<float>(viewportW), 2.0f / static_cast<float>(viewportH)}, 0.0f, 0};
-
-    for (int l = 0; l < count; ++l) {
-      if (l > 0)  // the depth-stencil image is reused: the next clear waits for this layer's tests
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                           VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
-                           VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                           VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
-      VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      color.imageView = labelImage.layerView(static_cast<std::uint32_t>(l));
-      color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-      color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-      color.clearValue.color.uint32[0] = kBackground;
-      VkRenderingAttachmentInfo depthStencil{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-      depthStencil.imageView = depthImage.layerView(0);
-      depthStencil.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-      depthStencil.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-      depthStencil.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-      depthStencil.clearValue.depthStencil = {1.0f, 0};
-      VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      rendering.renderArea = area;
-      rendering.layerCount = 1;
-      rendering.colorAttachmentCount = 1;
-      rendering.pColorAttachments = &color;
-      rendering.pDepthAttachment = &depthStencil;
-      rendering.pStencilAttachment = &depthStencil;
-      vkCmdBeginRendering(cmd, &rendering);
-      vkCmdSetViewport(cmd, 0, 1, &viewport);
-      vkCmdSetScissor(cmd, 0, 1, &area);
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &zero);
-      for (const FeatureDraw& d : draws[static_cast<std::size_t>(l)]) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, state_->stencilPipeline.get());
-        push.depth = d.depth;
-        push.label = d.label;
-        vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(push), &push);
-        std::uint32_t v = d.firstVertex;
-        for (std::uint32_t n : d.contourCounts) {
-          vkCmdDraw(cmd, n, 1, v, 0);
-          v += n;
-        }
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, state_->coverPipeline.get());
-        vkCmdDraw(cmd, 4, 1, d.coverFirst, 0);
-      }
-      vkCmdEndRendering(cmd);
-    }
-
-    gpu::imageBarrier(cmd, labelImage.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                      VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, static_cast<std::uint32_t>(count)};
-    region.imageExtent = {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny), 1};
-    vkCmdCopyImageToBuffer(cmd, labelImage.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(), 1, &region);
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                       VK_ACCESS_2_HOST_READ_BIT);
-    SCANSURF_TRY(commands.submitAndWait());
-    SCANSURF_TRY(readback.invalidate());
-    std::memcpy(volume.labels.data() + grid.index(0, 0, first), readback.mapped(), layerBytes * static_cast<std::size_t>(count));
+    SCANSURF_TRY(convertSlab(*state_, plan, targets, first, count, volume));
     ++state_->lastSlabs;
   }
   return volume;
