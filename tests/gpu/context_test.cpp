@@ -20,7 +20,9 @@ TEST_F(ContextTest, PicksADeviceAndReportsIt) {
 
 TEST_F(ContextTest, SelectsByIndexAndNameAndExplainsAMiss) {
   EngineOptions options = validatedEngineOptions();
-  options.device = "0";
+  // std::string("0"), not "0": GCC 12 warns -Wrestrict in error on assigning a one-character
+  // literal to a std::string (GCC bug 105329).
+  options.device = std::string("0");
   auto byIndex = Engine::create(options);
   ASSERT_TRUE(byIndex) << byIndex.error().message;
   options.device = byIndex->device().name.substr(0, 4);

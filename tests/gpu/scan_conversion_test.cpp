@@ -80,7 +80,8 @@ TEST_F(ScanConversionTest, RandomConcavePolygonsWithHolesAndOverlapsMatchReferen
     set.source = "random";
     for (int f = 0; f < 4; ++f) {
       Feature feature;
-      feature.name = "f" + std::to_string(f);
+      // std::string("f"), not "f": GCC 12 warns -Wrestrict in error on "f" + std::string here (GCC bug 105329).
+      feature.name = std::string("f") + std::to_string(f);
       for (int s = 0; s < 5; ++s) {
         FeatureSlice slice;
         slice.z = grid.layerZ[static_cast<std::size_t>(s + 1)];

@@ -115,7 +115,8 @@ TEST(Nesting, DeterministicAndOrderIsAPermutation) {
   ShapeRng rng(3);
   std::vector<Feature> features;
   for (int i = 0; i < 60; ++i) {
-    Feature f{"f" + std::to_string(i), std::nullopt, {}};
+    // std::string("f"), not "f": GCC 12 warns -Wrestrict in error on "f" + std::string here (GCC bug 105329).
+    Feature f{std::string("f") + std::to_string(i), std::nullopt, {}};
     const Point2 c{rng.uniform(0, 50), rng.uniform(0, 50)};
     const double r = rng.uniform(1, 15);
     for (int z = 0; z < 3; ++z) f.slices.push_back(FeatureSlice{double(z), {randomPolygon(rng, c, r * 0.8, r, 10)}});
