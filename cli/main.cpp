@@ -80,16 +80,14 @@ class Laps {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// Features that enclose others are drawn translucent, so that what they hold shows.
+// Features that enclose others are drawn translucent (displayOpacity), so that what they hold shows.
 Result<void> stagePreview(Engine& engine, const cli::CliOptions& o, const ContourSet& contours, const BuildResult& built,
                           OutputStaging& staging) {
   PreviewOptions options;
   options.view = *parseViewPreset(o.view);
   if (o.previewSize.size() == 2) options.width = o.previewSize[0], options.height = o.previewSize[1];
   options.colors = featureColors(contours);
-  options.opacity.assign(contours.features.size(), 1.0f);
-  for (int parent : built.nesting.parent)
-    if (parent >= 0) options.opacity[static_cast<std::size_t>(parent)] = 0.3f;
+  options.opacity = displayOpacity(built.nesting);
   SCANSURF_ASSIGN_OR_RETURN(const PreviewImage picture, engine.renderPreview(built.surfaces, options));
   return staging.stage(o.preview, [&](const fs::path& p) { return writePreview(p, picture); });
 }
@@ -143,6 +141,7 @@ int run(const cli::CliOptions& o) {
     for (const FeatureSurface& f : result.surfaces.features) stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
 
   OutputStaging staging;
+  plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
   auto files = stageSurfaceOutputs(staging, *plan, *contours, result.surfaces, result.volume);
   if (!files) return fail(files.error());

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "scansurf/version.h"
@@ -17,12 +18,26 @@ constexpr const char* kFooter =
     "8 out of memory.\n"
     "Environment: SCANSURF_DEVICE (device index or name), SCANSURF_VALIDATION=1, SCANSURF_THREADS.";
 
+// A finite number with lo < value <= hi (lo < value when openLow, else lo <= value), parsed
+// without throwing; the message prints the bounds readably (no 309-digit DBL_MAX).
+CLI::Validator numberIn(double lo, double hi, bool openLow, const std::string& description) {
+  return CLI::Validator(
+      [=](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool ok = end != text.c_str() && *end == '\0' && std::isfinite(v) && (openLow ? v > lo : v >= lo) && v <= hi;
+        return ok ? std::string() : "'" + text + "' is not " + description;
+      },
+      description);
+}
+
 // Local flags the struct does not hold directly.
 struct Flags {
   std::vector<int> grid;
   std::string convention = "enclosing";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
   std::string reference;
+  std::string gltfFrame = "gltf";
 };
 
 void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
@@ -30,7 +45,7 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("-o,--output", o.output, "output directory (created if missing) or NAME.glb; required unless --list-rois");
   auto* voxel = app.add_option("--voxel-size", o.build.grid.voxelSize,
                                "in-plane pixel size, input units (default: 256 pixels along the longer side)")
-                    ->check(CLI::PositiveNumber);
+                    ->check(numberIn(0, 1e9, true, "a positive, finite number"));
   app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border")
       ->expected(2)
       ->check(CLI::Range(3, 1 << 20))
@@ -52,13 +67,7 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_flag("--no-smooth", f.noSmooth, "write the raw (staircase) separating surfaces, without smoothing");
   app.add_option("--smooth-iterations", s.iterations, "smoothing sweeps")->check(CLI::Range(1, 100000))->capture_default_str();
   app.add_option("--smooth-strength", s.strength, "step of each smoothing sweep, in (0, 1]")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            char* end = nullptr;
-            const double v = std::strtod(text.c_str(), &end);
-            return end != text.c_str() && *end == '\0' && v > 0 && v <= 1 ? std::string() : "must be a number in (0, 1]";
-          },
-          "(0, 1]"))
+      ->check(numberIn(0, 1, true, "a number in (0, 1]"))
       ->capture_default_str();
   app.add_flag("--no-contour-fit", f.noContourFit, "do not place contour-plane vertices on the original contours");
   app.add_flag("--no-junction-smoothing", f.noJunctions, "keep vertices where three or more structures meet in place");
@@ -78,6 +87,10 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
                                         "glb (one scene OUTDIR/<input name>.glb); comma-separated")
       ->delimiter(',');
   app.add_flag("--no-draco", f.noDraco, "GLB without KHR_draco_mesh_compression (plain float accessors)");
+  app.add_option("--gltf-frame", f.gltfFrame, "GLB coordinates: gltf (a root node turns patient LPS into glTF's y-up "
+                                              "metres) or patient (raw input coordinates)")
+      ->check(CLI::IsMember({"gltf", "patient"}))
+      ->capture_default_str();
   app.add_option("--draco-bits", draco.quantizationBits, "Draco position quantization bits (default: error below 1/25 voxel)")
       ->check(CLI::Range(1, 30));
   app.add_option("--draco-level", draco.compressionLevel, "Draco compression level, 0 fastest .. 10 smallest")
@@ -103,6 +116,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
   o.scene.draco = !f.noDraco;
+  o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
 }
 

@@ -1,60 +1,148 @@
 // Binary glTF through draco::GltfEncoder: a draco::Scene with one mesh group, node and
-// material per feature.
+// material per feature; then the scene description is adjusted in the container (glTF 2.0
+// §3.5.3 node matrices, §3.9.4 alpha modes, §3.2 asset): the root transform into glTF's
+// frame, blending for translucent features, the generator and the original frame in extras.
 #include "io/gltf_writer.h"
 
 #include <draco/io/gltf_encoder.h>
 #include <draco/scene/scene.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "io/atomic_file.h"
+#include "io/glb_container.h"
+#include "scansurf/version.h"
 
 namespace scansurf {
+namespace {
+
+// Area-weighted vertex normals of a closed, outward surface: smooth within the feature.
+std::vector<float> vertexNormals(const CompactMesh& mesh) {
+  std::vector<double> sum(mesh.positions.size(), 0.0);
+  const auto at = [&](std::uint32_t v, int axis) { return static_cast<double>(mesh.positions[3 * std::size_t{v} + axis]); };
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const std::uint32_t a = mesh.triangles[3 * t], b = mesh.triangles[3 * t + 1], c = mesh.triangles[3 * t + 2];
+    const double u[3] = {at(b, 0) - at(a, 0), at(b, 1) - at(a, 1), at(b, 2) - at(a, 2)};
+    const double w[3] = {at(c, 0) - at(a, 0), at(c, 1) - at(a, 1), at(c, 2) - at(a, 2)};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    for (std::uint32_t v : {a, b, c})
+      for (int axis = 0; axis < 3; ++axis) sum[3 * std::size_t{v} + axis] += n[axis];
+  }
+  std::vector<float> normals(sum.size());
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+    const double length = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
+    for (int axis = 0; axis < 3; ++axis)
+      normals[3 * v + axis] = length > 0 ? static_cast<float>(sum[3 * v + axis] / length) : (axis == 2 ? 1.0f : 0.0f);
+  }
+  return normals;
+}
+
+void addNormals(draco::Mesh& mesh, const std::vector<float>& normals) {
+  const auto vertices = static_cast<std::uint32_t>(normals.size() / 3);
+  draco::GeometryAttribute normal;
+  normal.Init(draco::GeometryAttribute::NORMAL, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
+  draco::PointAttribute* attribute = mesh.attribute(mesh.AddAttribute(normal, true, vertices));
+  for (std::uint32_t v = 0; v < vertices; ++v)
+    attribute->SetAttributeValue(draco::AttributeValueIndex(v), &normals[3 * std::size_t{v}]);
+}
+
+std::unique_ptr<draco::Mesh> sceneMesh(const GltfFeature& f, const GlbOptions& options) {
+  std::unique_ptr<draco::Mesh> mesh = toDracoMesh(*f.mesh);
+  addNormals(*mesh, vertexNormals(*f.mesh));
+  mesh->SetName(f.name);
+  if (options.draco) {
+    draco::DracoCompressionOptions compression;
+    compression.compression_level = options.dracoOptions.compressionLevel;
+    compression.quantization_position.SetQuantizationBits(quantizationBitsFor(*f.mesh, options.dracoOptions));
+    compression.quantization_bits_normal = 10;  // directions to a fraction of a degree: shading looks smooth
+    mesh->SetCompressionEnabled(true);
+    mesh->SetCompressionOptions(compression);
+  }
+  return mesh;
+}
+
+void addFeature(draco::Scene& scene, const GltfFeature& f, const GlbOptions& options, int material) {
+  const draco::MeshIndex meshIndex = scene.AddMesh(sceneMesh(f, options));
+  draco::Material* m = scene.GetMaterialLibrary().MutableMaterial(material);
+  m->SetName(f.name);
+  m->SetColorFactor(draco::Vector4f(static_cast<float>(srgbToLinear(f.color[0])), static_cast<float>(srgbToLinear(f.color[1])),
+                                    static_cast<float>(srgbToLinear(f.color[2])), std::clamp(f.opacity, 0.0f, 1.0f)));
+  m->SetMetallicFactor(0.0f);
+  m->SetRoughnessFactor(0.7f);
+  if (f.opacity < 1) m->SetTransparencyMode(draco::Material::TRANSPARENCY_BLEND);
+  const draco::MeshGroupIndex group = scene.AddMeshGroup();
+  scene.GetMeshGroup(group)->SetName(f.name);
+  scene.GetMeshGroup(group)->AddMeshInstance({meshIndex, material});
+  const draco::SceneNodeIndex node = scene.AddNode();
+  scene.GetNode(node)->SetName(f.name);
+  scene.GetNode(node)->SetMeshGroupIndex(group);
+  scene.AddRootNodeIndex(node);
+}
+
+// Patient LPS in `units` to glTF's y-up metres, column-major: x -> x, z (superior) -> y,
+// y (posterior) -> -z (anterior toward the viewer).
+nlohmann::json rootMatrix(double scale) {
+  return nlohmann::json::array({scale, 0, 0, 0, 0, 0, -scale, 0, 0, scale, 0, 0, 0, 0, 0, 1});
+}
+
+// The root node, the generator and the record of the original frame.
+void adjustScene(nlohmann::json& gltf, const GlbOptions& options) {
+  const double metres = metresPerUnit(options.units);
+  nlohmann::json frame = {{"coordinates", "patient LPS (x left, y posterior, z superior)"}, {"unit", options.units}};
+  if (options.frame == SceneFrame::Gltf && gltf.contains("scenes") && !gltf["scenes"].empty()) {
+    nlohmann::json& scene = gltf["scenes"][0];
+    nlohmann::json root = {{"name", "scansurf patient frame"}, {"matrix", rootMatrix(metres > 0 ? metres : 1.0)}};
+    root["children"] = scene.value("nodes", nlohmann::json::array());
+    gltf["nodes"].push_back(root);
+    scene["nodes"] = nlohmann::json::array({gltf["nodes"].size() - 1});
+    frame["root_node"] = metres > 0 ? "turns patient LPS into glTF y-up and scales " + options.units + " to metres"
+                                    : "turns patient LPS into glTF y-up; unit '" + options.units + "' not scaled";
+  } else {
+    frame["root_node"] = "none: vertices are raw patient coordinates (--gltf-frame patient)";
+  }
+  gltf["asset"]["generator"] = std::string("scansurf ") + version();
+  gltf["asset"]["extras"]["scansurf"] = frame;
+}
+
+}  // namespace
 
 double srgbToLinear(std::uint8_t c) {
   const double v = c / 255.0;
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
+double metresPerUnit(const std::string& units) {
+  std::string u;
+  for (unsigned char c : units) u += static_cast<char>(std::tolower(c));
+  if (u == "mm") return 1e-3;
+  if (u == "cm") return 1e-2;
+  if (u == "m") return 1;
+  if (u == "um" || u == "\u00b5m" || u == "\u03bcm" || u == "micron" || u == "microns") return 1e-6;
+  if (u == "nm") return 1e-9;
+  return 0;
+}
+
 Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFeature> features, const GlbOptions& options) {
   draco::Scene scene;
   int materials = 0;
-  for (const GltfFeature& f : features) {
-    if (f.mesh == nullptr || f.mesh->triangleCount() == 0) continue;
-    std::unique_ptr<draco::Mesh> mesh = toDracoMesh(*f.mesh);
-    mesh->SetName(f.name);
-    if (options.draco) {
-      draco::DracoCompressionOptions compression;
-      compression.compression_level = options.dracoOptions.compressionLevel;
-      compression.quantization_position.SetQuantizationBits(quantizationBitsFor(*f.mesh, options.dracoOptions));
-      mesh->SetCompressionEnabled(true);
-      mesh->SetCompressionOptions(compression);
-    }
-    const draco::MeshIndex meshIndex = scene.AddMesh(std::move(mesh));
-
-    draco::Material* material = scene.GetMaterialLibrary().MutableMaterial(materials);
-    material->SetName(f.name);
-    material->SetColorFactor(draco::Vector4f(static_cast<float>(srgbToLinear(f.color[0])),
-                                             static_cast<float>(srgbToLinear(f.color[1])),
-                                             static_cast<float>(srgbToLinear(f.color[2])), 1.0f));
-    material->SetMetallicFactor(0.0f);
-    material->SetRoughnessFactor(0.7f);
-
-    const draco::MeshGroupIndex group = scene.AddMeshGroup();
-    scene.GetMeshGroup(group)->SetName(f.name);
-    scene.GetMeshGroup(group)->AddMeshInstance({meshIndex, materials});
-    const draco::SceneNodeIndex node = scene.AddNode();
-    scene.GetNode(node)->SetName(f.name);
-    scene.GetNode(node)->SetMeshGroupIndex(group);
-    scene.AddRootNodeIndex(node);
-    ++materials;
-  }
+  for (const GltfFeature& f : features)
+    if (f.mesh != nullptr && f.mesh->triangleCount() > 0) addFeature(scene, f, options, materials++);
 
   draco::GltfEncoder encoder;
   draco::EncoderBuffer buffer;
   if (const draco::Status s = encoder.EncodeToBuffer(scene, &buffer); !s.ok())
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco glTF encoder: " + s.error_msg_string());
-  return writeFileAtomically(path, buffer.data(), buffer.size());
+  SCANSURF_ASSIGN_OR_RETURN(GlbContainer glb, parseGlb(reinterpret_cast<const std::uint8_t*>(buffer.data()), buffer.size()));
+  nlohmann::json gltf = nlohmann::json::parse(glb.json, nullptr, false);
+  if (gltf.is_discarded()) return makeError(Errc::Internal, "cannot encode '" + path.string() + "': unreadable glTF JSON from Draco");
+  adjustScene(gltf, options);
+  glb.json = gltf.dump();
+  const std::vector<std::uint8_t> bytes = serializeGlb(glb);
+  return writeFileAtomically(path, bytes.data(), bytes.size());
 }
 
 }  // namespace scansurf

@@ -17,15 +17,25 @@ struct GltfFeature {
   std::string name;              // the node's and mesh's name
   Rgb color{};                   // sRGB; stored as the material's linear baseColorFactor
   const CompactMesh* mesh = nullptr;  // skipped when it has no triangles
+  float opacity = 1;             // below 1: alphaMode BLEND with this alpha
 };
 
 struct GlbOptions {
   bool draco = true;  // KHR_draco_mesh_compression; false: plain float32 accessors
   DracoOptions dracoOptions;
+  // Gltf: a root node turns the input's patient LPS coordinates in `units` into glTF's y-up
+  // metres; Patient: positions as they are, no root transform. Recorded in asset.extras.
+  SceneFrame frame = SceneFrame::Gltf;
+  std::string units = "mm";
 };
 
-// Writes one node and mesh per feature, each with its own material (baseColorFactor, matte),
-// positions in input units (glTF calls them metres; scale in the viewer if needed).
+// Metres per input unit for the glTF root scale: mm, cm, m, um/µm/micron(s), nm; 0 when the
+// unit is not one of these (the root node then only turns the axes).
+double metresPerUnit(const std::string& units);
+
+// Writes one node and mesh per feature, each with its own material (baseColorFactor, matte;
+// translucent features blended) and smooth per-vertex normals, under a root node that puts the
+// scene in glTF's frame (see GlbOptions::frame); asset.generator names scansurf and its version.
 // Replaced atomically. Errors: Errc::Io naming the path, Errc::Internal when Draco fails.
 Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFeature> features, const GlbOptions& options);
 

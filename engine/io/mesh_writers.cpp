@@ -6,10 +6,13 @@
 #include <draco/io/stl_encoder.h>
 #include <draco/mesh/mesh.h>
 
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "io/atomic_file.h"
 #include "io/draco_writer.h"
+#include "scansurf/version.h"
 
 namespace scansurf {
 
@@ -20,7 +23,11 @@ Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh
   draco::EncoderBuffer buffer;
   if (!encoder.EncodeToBuffer(*dm, &buffer))
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco's OBJ encoder failed");
-  return writeFileAtomically(path, buffer.data(), buffer.size());
+  const std::string comment = std::string("# scansurf ") + version() + ": surface of \"" + name + "\", input units\n";
+  return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
+    SCANSURF_TRY(file.write(comment.data(), comment.size()));
+    return file.write(buffer.data(), buffer.size());
+  });
 }
 
 Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh) {
@@ -29,7 +36,14 @@ Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh
   draco::EncoderBuffer buffer;
   if (const draco::Status s = encoder.EncodeToBuffer(*dm, &buffer); !s.ok())
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': " + s.error_msg_string());
-  return writeFileAtomically(path, buffer.data(), buffer.size());
+  // The 80-byte header names the generator (never starting with "solid", which marks ASCII STL).
+  std::vector<char> bytes(buffer.data(), buffer.data() + buffer.size());
+  const std::string header = std::string("scansurf ") + version() + " binary STL, input units";
+  if (bytes.size() >= 80) {
+    std::fill(bytes.begin(), bytes.begin() + 80, ' ');
+    std::copy_n(header.begin(), std::min<std::size_t>(header.size(), 80), bytes.begin());
+  }
+  return writeFileAtomically(path, bytes.data(), bytes.size());
 }
 
 }  // namespace scansurf

@@ -14,6 +14,7 @@
 #include "io/mesh_writers.h"
 #include "io/nrrd_writer.h"
 #include "io/ply_writer.h"
+#include "scansurf/nesting.h"
 #include "scansurf/palette.h"
 
 namespace fs = std::filesystem;
@@ -136,11 +137,27 @@ Result<std::vector<fs::path>> OutputStaging::commit() {
 
 namespace {
 
-std::vector<GltfFeature> sceneFeatures(const ContourSet& contours, const std::vector<CompactMesh>& meshes) {
+// Features that enclose others are see-through (as in the preview), unless the options say.
+std::vector<float> sceneOpacity(const ContourSet& contours, const SceneOptions& options) {
+  return options.opacity.empty() ? displayOpacity(computeNesting(contours)) : options.opacity;
+}
+
+std::vector<GltfFeature> sceneFeatures(const ContourSet& contours, const std::vector<CompactMesh>& meshes,
+                                       const std::vector<float>& opacity) {
   const std::vector<Rgb> colors = featureColors(contours);
   std::vector<GltfFeature> scene;
-  for (std::size_t f = 0; f < meshes.size(); ++f) scene.push_back({contours.features[f].name, colors[f], &meshes[f]});
+  for (std::size_t f = 0; f < meshes.size(); ++f)
+    scene.push_back({contours.features[f].name, colors[f], &meshes[f], f < opacity.size() ? opacity[f] : 1.0f});
   return scene;
+}
+
+GlbOptions glbOptions(const SceneOptions& options, const DracoOptions& draco, const ContourSet& contours) {
+  GlbOptions glb;
+  glb.draco = options.draco;
+  glb.dracoOptions = draco;
+  glb.frame = options.frame;
+  glb.units = contours.units;
+  return glb;
 }
 
 std::vector<LabelEntry> labelTable(const ContourSet& contours) {
@@ -226,8 +243,8 @@ Result<void> writeScene(const fs::path& path, const ContourSet& contours, const 
     SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surface));
     meshes.push_back(std::move(mesh));
   }
-  GlbOptions glb{options.draco, options.dracoOptions};
-  return writeGlb(path, sceneFeatures(contours, meshes), glb);
+  return writeGlb(path, sceneFeatures(contours, meshes, sceneOpacity(contours, options)),
+                  glbOptions(options, options.dracoOptions, contours));
 }
 
 Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, const LabelVolume& volume) {
@@ -260,9 +277,10 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   }
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)
     SCANSURF_TRY(staging.stage(plan.dir / "multilabel.ply", [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh); }));
-  const GlbOptions glb{plan.scene.draco, draco};
+  const GlbOptions glb = glbOptions(plan.scene, draco, contours);
+  const std::vector<float> opacity = scenes.empty() ? std::vector<float>{} : sceneOpacity(contours, plan.scene);
   for (const fs::path& target : scenes) {
-    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeGlb(p, sceneFeatures(contours, compact), glb); }));
+    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeGlb(p, sceneFeatures(contours, compact, opacity), glb); }));
     for (std::size_t f = 0; f < featureCount; ++f)
       if (surfaces.features[f].triangleCount() > 0) out.files[f].push_back(target);
   }

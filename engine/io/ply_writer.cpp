@@ -12,6 +12,7 @@
 
 #include "geometry/compact_mesh.h"
 #include "io/atomic_file.h"
+#include "scansurf/version.h"
 
 namespace scansurf {
 namespace {
@@ -54,6 +55,9 @@ Result<void> checkIndexRange(const std::filesystem::path& path, std::size_t vert
 
 const char* kUnitsComment = "comment units: the input contours' units (x, y in-plane, z along the slices)\n";
 
+// Which program and version made the file.
+std::string generatorComment() { return std::string("comment generator: scansurf ") + version() + "\n"; }
+
 }  // namespace
 
 Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh,
@@ -71,7 +75,7 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMes
     const std::string header =
         "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
         std::to_string(feature) + " (label " + std::to_string(feature + 1) +
-        "), faces wound counter-clockwise seen from outside\n" + kUnitsComment + "element vertex " +
+        "), faces wound counter-clockwise seen from outside\n" + generatorComment() + kUnitsComment + "element vertex " +
         std::to_string(used) +
         "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
         std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
@@ -98,7 +102,7 @@ Result<void> writeMultiLabelPly(const std::filesystem::path& path, const MultiLa
         "comment scansurf multi-label separating surfaces; label 0 = background, label L = feature L-1\n"
         "comment label_inside < label_outside; each face's normal (counter-clockwise) points from "
         "label_inside's region into label_outside's\n" +
-        std::string(kUnitsComment) + "element vertex " + std::to_string(mesh.vertexCount()) +
+        generatorComment() + kUnitsComment + "element vertex " + std::to_string(mesh.vertexCount()) +
         "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
         std::to_string(mesh.triangleCount()) +
         "\nproperty list uchar int vertex_indices\nproperty ushort label_inside\nproperty ushort label_outside\n"

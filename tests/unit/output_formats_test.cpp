@@ -30,6 +30,7 @@
 #include "io/mesh_writers.h"
 #include "io/nrrd_writer.h"
 #include "io/png_writer.h"
+#include "scansurf/outputs.h"
 #include "scansurf/report.h"
 #include "scansurf/version.h"
 #include "scansurf/nesting.h"
@@ -268,6 +269,81 @@ TEST_F(OutputFormatsTest, GlbSceneWithAndWithoutDracoValidatesAndDecodes) {
       expectSameSurface(b.meshes[static_cast<std::size_t>(m)], fromDraco(scene.value()->GetMesh(draco::MeshIndex(m))),
                         draco ? options.dracoOptions.maxError * 1.0001 : 0.0);
   }
+}
+
+// What a viewer needs (issue 14): smooth outward normals, the enclosing feature translucent so
+// the one inside shows, a root node into glTF's y-up metres, the generator and the frame.
+TEST_F(OutputFormatsTest, GlbSceneShowsRightInAViewer) {
+  const Built& b = nested();
+  for (SceneFrame frame : {SceneFrame::Gltf, SceneFrame::Patient}) {
+    SCOPED_TRACE(frame == SceneFrame::Gltf ? "gltf frame" : "patient frame");
+    SceneOptions options;
+    options.frame = frame;
+    const fs::path path = dir_ / "viewer.glb";
+    ASSERT_TRUE(writeScene(path, b.set, b.surfaces, options));
+    const Glb glb = parseGlb(readFile(path));
+    const nlohmann::json& j = glb.json;
+    EXPECT_EQ(j["asset"]["generator"], std::string("scansurf ") + version());
+    EXPECT_EQ(j["asset"]["extras"]["scansurf"]["unit"], "mm");
+    const auto& roots = j["scenes"][0]["nodes"];
+    if (frame == SceneFrame::Gltf) {
+      ASSERT_EQ(roots.size(), 1u);
+      const auto& root = j["nodes"][roots[0].get<std::size_t>()];
+      const std::vector<double> expected{1e-3, 0, 0, 0, 0, 0, -1e-3, 0, 0, 1e-3, 0, 0, 0, 0, 0, 1};
+      EXPECT_EQ(root["matrix"].get<std::vector<double>>(), expected);
+      EXPECT_EQ(root["children"].size(), b.set.features.size());
+    } else {
+      EXPECT_EQ(roots.size(), b.set.features.size()) << "no root transform";
+      for (const auto& node : j["nodes"]) EXPECT_FALSE(node.contains("matrix"));
+    }
+    for (std::size_t f = 0; f < b.set.features.size(); ++f) {
+      const auto& primitive = j["meshes"][f]["primitives"][0];
+      EXPECT_TRUE(primitive["attributes"].contains("NORMAL"));
+      const auto& material = j["materials"][primitive["material"].get<std::size_t>()];
+      const bool encloses = b.set.features[f].name == "outer";
+      EXPECT_EQ(material.value("alphaMode", "OPAQUE"), encloses ? "BLEND" : "OPAQUE") << b.set.features[f].name;
+      EXPECT_NEAR(material["pbrMetallicRoughness"]["baseColorFactor"][3].get<double>(), encloses ? 0.3 : 1.0, 1e-6);
+    }
+    // Draco decodes the normals: unit length, pointing out of the (spherical) surfaces.
+    auto scene = draco::ReadSceneFromFile(path.string());
+    ASSERT_TRUE(scene.ok()) << scene.status().error_msg_string();
+    const draco::Mesh& mesh = scene.value()->GetMesh(draco::MeshIndex(0));
+    const draco::PointAttribute* normals = mesh.GetNamedAttribute(draco::GeometryAttribute::NORMAL);
+    const draco::PointAttribute* positions = mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+    ASSERT_NE(normals, nullptr);
+    double centre[3] = {0, 0, 0};
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+      float v[3];
+      positions->GetMappedValue(p, v);
+      for (int a = 0; a < 3; ++a) centre[a] += v[a] / mesh.num_points();
+    }
+    std::size_t outward = 0;
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+      float n[3], v[3];
+      normals->GetMappedValue(p, n);
+      positions->GetMappedValue(p, v);
+      EXPECT_NEAR(std::hypot(n[0], n[1], n[2]), 1.0, 0.01);
+      outward += (n[0] * (v[0] - centre[0]) + n[1] * (v[1] - centre[1]) + n[2] * (v[2] - centre[2])) > 0;
+    }
+    EXPECT_EQ(outward, mesh.num_points());
+  }
+}
+
+CompactMesh readObj(const fs::path& path);
+
+// Every file records which scansurf made it.
+TEST_F(OutputFormatsTest, EveryFormatNamesItsGenerator) {
+  const Built& b = nested();
+  const std::string generator = std::string("scansurf ") + version();
+  ASSERT_TRUE(writeSurface(dir_ / "s.ply", b.surfaces, 0, MeshFormat::Ply, b.set));
+  ASSERT_TRUE(writeSurface(dir_ / "s.obj", b.surfaces, 0, MeshFormat::Obj, b.set));
+  ASSERT_TRUE(writeSurface(dir_ / "s.stl", b.surfaces, 0, MeshFormat::Stl, b.set));
+  ASSERT_TRUE(writeMultiLabelMesh(dir_ / "m.ply", b.surfaces));
+  EXPECT_NE(readFile(dir_ / "s.ply").find("comment generator: " + generator + "\n"), std::string::npos);
+  EXPECT_NE(readFile(dir_ / "m.ply").find("comment generator: " + generator + "\n"), std::string::npos);
+  EXPECT_EQ(readFile(dir_ / "s.obj").rfind("# " + generator, 0), 0u);
+  EXPECT_EQ(readFile(dir_ / "s.stl").substr(0, generator.size()), generator);
+  EXPECT_EQ(readObj(dir_ / "s.obj").triangleCount(), b.meshes[0].triangleCount()) << "the comment keeps the OBJ readable";
 }
 
 // Minimal OBJ reader: `v x y z` and `f a b c` (1-based, optionally a/b/c).

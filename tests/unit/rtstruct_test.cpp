@@ -53,7 +53,6 @@ class Dicom : public test::ScratchDirTest {
     EXPECT_EQ(r.error().code, code) << r.error().message;
     return r.error().message;
   }
-  fs::path dir_;
 };
 
 // The whole method on the CPU (reference rasterizer, reference classification, assembly).

@@ -37,9 +37,23 @@ struct DracoOptions {
 // surface vertices (at least 1/12 voxel apart) quantize to one point.
 double defaultQuantizationError(const Grid& grid);
 
+// How the scene's coordinates relate to glTF's (y up, metres).
+enum class SceneFrame {
+  // Default: a root node turns patient LPS (x left, y posterior, z superior) in the input's
+  // units into glTF's y-up metres (x stays left, superior becomes +y, anterior +z), so viewers
+  // show the patient upright at true size. The vertices keep the input's values.
+  Gltf,
+  // No root transform: raw input coordinates, read as metres by glTF viewers.
+  Patient,
+};
+
 struct SceneOptions {
   bool draco = true;  // KHR_draco_mesh_compression; false: plain float32 accessors
   DracoOptions dracoOptions;
+  SceneFrame frame = SceneFrame::Gltf;
+  // Opacity per feature in (0, 1] (below 1: alpha-blended). Empty: features that enclose
+  // others (computeNesting) are drawn at 0.3, so the organs inside BODY show; the rest opaque.
+  std::vector<float> opacity;
 };
 
 // Every single-file writer below stages its file beside the target and renames it into place,

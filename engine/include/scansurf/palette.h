@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scansurf/contours.h"
+#include "scansurf/nesting.h"
 
 namespace scansurf {
 
@@ -34,6 +35,15 @@ inline std::vector<Rgb> featureColors(const ContourSet& contours) {
   for (std::size_t f = 0; f < contours.features.size(); ++f)
     colors.push_back(contours.features[f].color.value_or(kDefaultPalette[f % kDefaultPalette.size()]));
   return colors;
+}
+
+// One opacity per feature for display: features that enclose others at `enclosing`, so what
+// they hold shows through (preview, GLB), the rest opaque.
+inline std::vector<float> displayOpacity(const Nesting& nesting, float enclosing = 0.3f) {
+  std::vector<float> opacity(nesting.parent.size(), 1.0f);
+  for (int parent : nesting.parent)
+    if (parent >= 0) opacity[static_cast<std::size_t>(parent)] = enclosing;
+  return opacity;
 }
 
 }  // namespace scansurf
