@@ -167,6 +167,7 @@ int run(const cli::CliOptions& o) {
   if (!written) return fail(written.error());
   progress.finish(0);
 
+  std::fflush(stdout);  // warnings after what was already printed
   for (const std::string& w : result.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
   if (!o.quiet) cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
   return 0;

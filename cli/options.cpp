@@ -35,6 +35,7 @@ CLI::Validator numberIn(double lo, double hi, bool openLow, const std::string& d
 struct Flags {
   std::vector<int> grid;
   std::string convention = "enclosing";
+  std::string overlaps = "layers";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
   std::string reference;
   std::string gltfFrame = "gltf";
@@ -54,6 +55,11 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                  "enclosing: each surface around all its contours enclose, nested features included; "
                  "partition: the boundary of the region each feature owns")
       ->check(CLI::IsMember({"enclosing", "partition"}))
+      ->capture_default_str();
+  app.add_option("--overlaps", f.overlaps,
+                 "layers: partly overlapping features are surfaced in separate layers, each keeping its own region; "
+                 "partition: one label per voxel, higher priority wins (reports what each feature lost)")
+      ->check(CLI::IsMember({"layers", "partition"}))
       ->capture_default_str();
   app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
@@ -112,6 +118,7 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
 void apply(const Flags& f, CliOptions& o) {
   if (f.grid.size() == 2) o.build.grid.nx = f.grid[0], o.build.grid.ny = f.grid[1];
   o.build.convention = f.convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
+  o.build.overlaps = *parseOverlapMode(f.overlaps);
   o.build.smoothing.enabled = !f.noSmooth;
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
@@ -149,6 +156,7 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
   const BuildOptions& b = o.build;
   const DracoOptions& d = o.scene.dracoOptions;
   return {{"convention", b.convention == SurfaceConvention::Enclosing ? "enclosing" : "partition"},
+          {"overlaps", overlapModeName(b.overlaps)},
           {"voxel_size", b.grid.voxelSize},
           {"grid_nx", static_cast<double>(b.grid.nx)},
           {"grid_ny", static_cast<double>(b.grid.ny)},

@@ -1,6 +1,8 @@
 #include "summary.h"
 
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 
 namespace fs = std::filesystem;
@@ -8,6 +10,32 @@ namespace fs = std::filesystem;
 namespace scansurf::cli {
 
 const char* conventionName(SurfaceConvention c) { return c == SurfaceConvention::Enclosing ? "enclosing" : "partition"; }
+
+namespace {
+
+// " (surface volume differs from the contour volume by X %)" when it does by more than 1 %.
+std::string volumeFlag(double surface, double contour) {
+  if (contour <= 0 || std::abs(surface - contour) <= 0.01 * contour) return {};
+  char text[96];
+  std::snprintf(text, sizeof text, "  (surface volume %+.1f %% from the contour volume)", 100.0 * (surface - contour) / contour);
+  return text;
+}
+
+void printOverlaps(const ContourSet& set, const OverlapReport& report) {
+  const auto name = [&](int f) { return set.features[static_cast<std::size_t>(f)].name.c_str(); };
+  const char* units = set.units.c_str();
+  for (const SharedVolume& s : report.partialOverlaps())
+    std::printf("overlap: %s and %s share %.1f %s3 (%s)\n", name(s.a), name(s.b), s.volume, units,
+                report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
+  for (const VolumeLoss& l : report.losses) {
+    if (l.nested) continue;  // a container's shell around what it holds: the convention, not a loss
+    const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
+    std::printf("partition: %s lost %.1f %s3 (%.2f %% of its contour volume) to %s\n", name(l.feature), l.volume, units,
+                contour > 0 ? 100.0 * l.volume / contour : 0.0, l.to >= 0 ? name(l.to) : "background");
+  }
+}
+
+}  // namespace
 
 void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, const std::string& outDir) {
   const ContourSet& set = *facts.contours;
@@ -17,15 +45,19 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
               g.spacingX, g.spacingY, set.units.c_str(), g.nz - 2);
   std::printf("nesting order (%s, innermost first):", built.nesting.userOrder ? "from input" : "computed");
   for (int f : built.nesting.order) std::printf(" %s", set.features[static_cast<std::size_t>(f)].name.c_str());
-  std::printf("\nsurfaces (%s convention): %zu vertices, %zu triangles in the multi-label mesh\n",
-              conventionName(facts.convention), built.surfaces.mesh.vertexCount(), built.surfaces.mesh.triangleCount());
-  std::printf("  %-20s %6s %10s %14s %10s %6s %s\n", "feature", "label", "triangles", ("volume " + set.units + "3").c_str(),
-              "components", "genus", "closed");
+  std::printf("\nsurfaces (%s convention, overlaps as %s: %d layer%s): %zu vertices, %zu triangles in the multi-label mesh\n",
+              conventionName(facts.convention), overlapModeName(built.overlaps.mode), built.overlaps.layers,
+              built.overlaps.layers == 1 ? "" : "s", built.surfaces.mesh.vertexCount(), built.surfaces.mesh.triangleCount());
+  std::printf("  %-20s %6s %5s %10s %14s %14s %10s %6s %s\n", "feature", "label", "layer", "triangles",
+              ("volume " + set.units + "3").c_str(), ("contour " + set.units + "3").c_str(), "components", "genus", "closed");
   for (std::size_t f = 0; f < set.features.size(); ++f) {
     const MeshStats& s = facts.stats[f];
-    std::printf("  %-20s %6d %10zu %14.1f %10d %6d %s\n", set.features[f].name.c_str(), labelOfFeature(static_cast<int>(f)),
-                s.triangles, s.volume, s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO");
+    const FeatureVolumes& v = built.overlaps.features[f];
+    std::printf("  %-20s %6d %5d %10zu %14.1f %14.1f %10d %6d %s%s\n", set.features[f].name.c_str(),
+                labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, s.volume, v.contour, s.components, s.genus,
+                s.closed && s.manifold && s.oriented ? "yes" : "NO", volumeFlag(s.volume, v.contour).c_str());
   }
+  printOverlaps(set, built.overlaps);
   double total = 0;
   std::printf("time:");
   for (const StageTime& t : facts.timings) {

@@ -2,12 +2,15 @@
 // (Lee et al., "Scanline Surfacing"; Nielson & Franke 1997).
 #include "scansurf/engine.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/guard.h"
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
 #include "geometry/feature_surfaces.h"
+#include "geometry/overlaps.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
 #include "gpu/context.h"
@@ -101,6 +104,84 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
                          ": no surface (no slices, smaller than a pixel, or covered by features of higher priority)");
 }
 
+// Classification and the CPU stages for one scan-converted volume.
+Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const LabelVolume& volume, const ContourSet& contours,
+                                  const Nesting& nesting, const BuildOptions& options, StageClock& clock) {
+  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
+  clock.lap("classification");
+  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, &contours, clock);
+}
+
+// The contour set with only `layer`'s features drawn: the others keep their index (and so
+// every label) but lose their slices.
+ContourSet layerContours(const ContourSet& contours, const OverlapReport& report, int layer) {
+  ContourSet subset;
+  subset.source = contours.source;
+  subset.units = contours.units;
+  subset.order = contours.order;
+  for (std::size_t f = 0; f < contours.features.size(); ++f) {
+    const Feature& feature = contours.features[f];
+    subset.features.push_back({feature.name, feature.color, {}});
+    if (report.features[f].layer == layer) subset.features.back().slices = feature.slices;
+  }
+  return subset;
+}
+
+// Appends a layer's surfaces of its own features to `into` (vertices not shared across layers).
+void appendLayer(Surfaces& into, const Surfaces& layer, const OverlapReport& report, int index) {
+  const auto offset = static_cast<std::uint32_t>(into.mesh.vertexCount());
+  into.mesh.positions.insert(into.mesh.positions.end(), layer.mesh.positions.begin(), layer.mesh.positions.end());
+  for (std::uint32_t v : layer.mesh.triangles) into.mesh.triangles.push_back(v + offset);
+  into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
+  into.mesh.keys.clear();  // per-layer lattice keys do not combine; smoothing is done
+  for (std::size_t f = 0; f < layer.features.size(); ++f) {
+    if (report.features[f].layer != index) continue;
+    for (std::uint32_t v : layer.features[f].triangles) into.features[f].triangles.push_back(v + offset);
+  }
+}
+
+// Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
+Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const BuildOptions& options,
+                         BuildResult& out, StageClock& clock) {
+  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
+  out.surfaces.convention = options.convention;
+  out.surfaces.features.resize(contours.features.size());
+  for (std::size_t f = 0; f < contours.features.size(); ++f) out.surfaces.features[f].feature = static_cast<int>(f);
+  for (int layer = 0; layer < out.overlaps.layers; ++layer) {
+    const ContourSet subset = layerContours(contours, out.overlaps, layer);
+    SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, grid, out.nesting.order, options.grid.sliceTolerance));
+    clock.lap("scan conversion");
+    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfVolume(impl, volume, subset, out.nesting, options, clock));
+    appendLayer(out.surfaces, surfaces, out.overlaps, layer);
+    if (layer == 0) out.volume = std::move(volume);
+  }
+  return {};
+}
+
+// Partition mode: a feature that partly overlaps one of higher priority loses the shared voxels.
+void warnAboutLosses(const ContourSet& contours, const OverlapReport& report, std::vector<std::string>& warnings) {
+  for (const VolumeLoss& l : report.losses) {
+    const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
+    if (l.nested || contour <= 0 || l.volume <= 0.01 * contour) continue;
+    const std::string to = l.to >= 0 ? "\"" + contours.features[static_cast<std::size_t>(l.to)].name + "\"" : "background";
+    warnings.push_back("feature \"" + contours.features[static_cast<std::size_t>(l.feature)].name + "\" lost " +
+                       std::to_string(static_cast<int>(std::lround(100.0 * l.volume / contour))) +
+                       " % of its contour volume to " + to + " (--overlaps partition; the default, layers, keeps it)");
+  }
+}
+
+// One entry per stage name, the times of every layer added up, in first-seen order.
+void mergeStageTimes(std::vector<StageTime>& timings) {
+  std::vector<StageTime> merged;
+  for (const StageTime& t : timings) {
+    auto it = std::find_if(merged.begin(), merged.end(), [&](const StageTime& m) { return m.stage == t.stage; });
+    if (it == merged.end()) merged.push_back(t);
+    else it->seconds += t.seconds;
+  }
+  timings = std::move(merged);
+}
+
 // Stage 2 from host or device labels (LabelVolume or DeviceLabelVolume).
 template <typename Volume>
 Result<Surfaces> extractFrom(Engine::Impl& impl, const Volume& volume, const Nesting& nesting, const BuildOptions& options,
@@ -171,18 +252,31 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
   return guarded("building the surfaces of " + contours.source, [&]() -> Result<BuildResult> {
     BuildResult out;
     StageClock clock(out.timings, options);
-    out.nesting = computeNesting(contours, options.grid.sliceTolerance);
+    const double tolerance = options.grid.sliceTolerance;
+    out.nesting = computeNesting(contours, tolerance);
     clock.lap("nesting");
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
     out.warnings = findUncoveredContours(contours, grid);
     clock.lap("grid");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
-    SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, options.grid.sliceTolerance));
-    clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl_->classify());
-    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(out.volume));
-    clock.lap("classification");
-    out.surfaces = surfacesFromCells(std::move(cells), grid, out.nesting, options, &contours, clock);
+    const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, scanner->subPixelBits(), tolerance, options.threads);
+    out.overlaps = analyzeOverlaps(contours, grid, out.nesting, regions, tolerance);
+    out.overlaps.mode = options.overlaps;
+    clock.lap("overlap analysis");
+    if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
+      for (FeatureVolumes& f : out.overlaps.features) f.layer = 0;
+      out.overlaps.layers = 1;
+      SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
+      clock.lap("scan conversion");
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfVolume(*impl_, out.volume, contours, out.nesting, options, clock));
+      if (options.overlaps == OverlapMode::Partition) {
+        out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
+        warnAboutLosses(contours, out.overlaps, out.warnings);
+      }
+    } else {
+      SCANSURF_TRY(buildLayers(*impl_, contours, grid, options, out, clock));
+    }
+    mergeStageTimes(out.timings);
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);
     return out;
   });

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <set>
+
 #include "io/atomic_file.h"
 #include "scansurf/palette.h"
 #include "scansurf/version.h"
@@ -10,6 +12,37 @@
 namespace scansurf {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// Per feature, the names of the features on the other side of its separating surfaces.
+std::vector<std::vector<std::string>> surfaceNeighbours(const ContourSet& contours, const MultiLabelMesh& mesh) {
+  std::set<std::pair<Label, Label>> pairs;
+  for (std::size_t t = 0; t + 1 < mesh.labels.size(); t += 2)
+    if (mesh.labels[t] != kBackground && mesh.labels[t + 1] != kBackground) pairs.emplace(mesh.labels[t], mesh.labels[t + 1]);
+  std::vector<std::vector<std::string>> out(contours.features.size());
+  const auto name = [&](Label l) { return contours.features[static_cast<std::size_t>(featureOfLabel(l))].name; };
+  for (auto [a, b] : pairs) {
+    if (static_cast<std::size_t>(featureOfLabel(b)) >= out.size()) continue;
+    out[static_cast<std::size_t>(featureOfLabel(a))].push_back(name(b));
+    out[static_cast<std::size_t>(featureOfLabel(b))].push_back(name(a));
+  }
+  return out;
+}
+
+void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapReport& overlaps) {
+  r.overlapMode = overlapModeName(overlaps.mode);
+  r.layers = overlaps.layers;
+  r.maskLayers = overlaps.maskLayers;
+  for (const VolumeLoss& l : overlaps.losses) {
+    const double contour = overlaps.features[static_cast<std::size_t>(l.feature)].contour;
+    r.losses.push_back({contours.features[static_cast<std::size_t>(l.feature)].name,
+                        l.to >= 0 ? contours.features[static_cast<std::size_t>(l.to)].name : std::string("background"), l.volume,
+                        contour > 0 ? 100.0 * l.volume / contour : 0.0, l.nested});
+  }
+}
+
+}  // namespace
 
 RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device, ReportContext context,
                      std::vector<MeshStats> stats) {
@@ -29,17 +62,33 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
     for (const FeatureSurface& f : built.surfaces.features) stats.push_back(computeMeshStats(built.surfaces.mesh.positions, f.triangles));
   }
   const std::vector<Rgb> colors = featureColors(contours);
+  const std::vector<std::vector<std::string>> neighbours = surfaceNeighbours(contours, built.surfaces.mesh);
   for (std::size_t f = 0; f < contours.features.size() && f < stats.size(); ++f) {
-    ReportFeature rf{contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}};
+    ReportFeature rf{contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}, {}, neighbours[f], {}};
     if (f < context.files.size())
       for (const fs::path& p : context.files[f]) rf.files.push_back(p.string());
+    if (f < built.overlaps.features.size()) rf.volumes = built.overlaps.features[f];
+    for (const SharedVolume& s : built.overlaps.partialOverlaps())
+      if (s.a == static_cast<int>(f) || s.b == static_cast<int>(f))
+        rf.overlaps.emplace_back(contours.features[static_cast<std::size_t>(s.a == static_cast<int>(f) ? s.b : s.a)].name, s.volume);
     r.features.push_back(std::move(rf));
   }
+  addOverlapFacts(r, contours, built.overlaps);
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
   return r;
 }
+
+namespace {
+
+nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, double>>& overlaps) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [name, volume] : overlaps) out.push_back({{"with", name}, {"shared_volume", volume}});
+  return out;
+}
+
+}  // namespace
 
 Result<void> writeReport(const std::filesystem::path& path, const RunReport& report) {
   using nlohmann::ordered_json;
@@ -75,9 +124,23 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
                         {"closed", s.closed},
                         {"manifold", s.manifold},
                         {"oriented", s.oriented},
+                        {"contour_volume", f.volumes.contour},
+                        {"labelled_volume", f.volumes.ownVolume},
+                        {"labelled_voxels", f.volumes.ownVoxels},
+                        {"surface_volume", s.volume},
+                        {"layer", f.volumes.layer},
+                        {"mask_layer", f.volumes.maskLayer},
+                        {"shares_surface_with", f.sharesSurfaceWith},
+                        {"overlaps", overlapsJson(f.overlaps)},
                         {"files", f.files}});
   }
   j["features"] = features;
+  j["overlaps"] = {{"mode", report.overlapMode}, {"layers", report.layers}, {"mask_layers", report.maskLayers}};
+  ordered_json losses = ordered_json::array();
+  for (const RunReport::Loss& l : report.losses)
+    losses.push_back({{"feature", l.feature}, {"to", l.to}, {"volume", l.volume}, {"percent_of_contour_volume", l.percentOfContour},
+                      {"nested", l.nested}});
+  j["overlaps"]["losses"] = losses;
   ordered_json timings = ordered_json::array();
   double total = 0;
   for (const auto& [stage, seconds] : report.timings) {

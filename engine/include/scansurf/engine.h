@@ -27,6 +27,7 @@
 #include "scansurf/grid.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"
+#include "scansurf/overlaps.h"
 #include "scansurf/preview.h"
 #include "scansurf/result.h"
 #include "scansurf/smoothing.h"
@@ -50,6 +51,9 @@ struct BuildOptions {
   // the contour set's own reference lattice (ContourSet::reference, e.g. its CT) is used.
   GridOptions grid;
   SurfaceConvention convention = SurfaceConvention::Enclosing;
+  // Layers (default): partly overlapping features are surfaced in separate layers, each
+  // feature enclosing its own contours' region. Partition: one label per voxel, as the seed.
+  OverlapMode overlaps = OverlapMode::Layers;
   int threads = 0;  // CPU threads for assembly and smoothing; 0 = all (or SCANSURF_THREADS)
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
@@ -59,8 +63,14 @@ struct BuildOptions {
 
 struct BuildResult {
   Nesting nesting;
+  // The label volume that was surfaced: the single partition, or with several layers the
+  // volume of layer 0 (OverlapReport::features[f].layer says which features it holds).
   LabelVolume volume;
+  // Every feature's surface; with several layers the layers' meshes side by side in one mesh
+  // (vertices shared within a layer only).
   Surfaces surfaces;
+  // Volumes three ways, overlapping and touching pairs, layers, and (Partition) volume losses.
+  OverlapReport overlaps;
   std::vector<std::string> warnings;  // e.g. contours too small to cover a pixel centre
   std::vector<StageTime> timings;
 };
@@ -83,11 +93,14 @@ class Engine {
   // Validation messages received so far (0 when validation is off).
   std::uint64_t validationMessageCount() const;
 
-  // The whole method: nesting, grid, scan conversion, classification, assembly, smoothing
-  // (when options.smoothing.enabled) and the feature surfaces. `contours` must be validated
+  // The whole method: nesting, grid, overlap analysis, then for each layer (one, or the single
+  // partition) scan conversion, classification, assembly, smoothing (when
+  // options.smoothing.enabled) and the feature surfaces. `contours` must be validated
   // (readContours does it). Coordinates and volumes in the contours' units.
   Result<BuildResult> build(const ContourSet& contours, const BuildOptions& options);
 
+  // The stage calls surface one label volume: the whole set when nothing partly overlaps (or
+  // in Partition mode), else one layer at a time (a ContourSet holding that layer's features).
   // Stage 1 on the device: scan converts every slice of a validated contour set into a label
   // volume on `grid` (makeGrid(contours, options.grid)), inner features first by
   // nesting.order. Label of feature i = i + 1; padding layers stay background.

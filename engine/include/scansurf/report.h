@@ -21,8 +21,11 @@ struct ReportFeature {
   std::string name;
   int label = 0;
   Rgb color{};
-  MeshStats stats;
+  MeshStats stats;                 // stats.volume: the surface volume
   std::vector<std::string> files;  // outputs holding this feature's surface
+  FeatureVolumes volumes;          // contour and labelled voxel volume, layer, mask layer
+  std::vector<std::string> sharesSurfaceWith;                  // features across its separating surfaces
+  std::vector<std::pair<std::string, double>> overlaps;        // partly overlapping features, shared volume
 };
 
 using ReportValue = std::variant<bool, double, std::string>;
@@ -38,6 +41,14 @@ struct RunReport {
   bool userOrder = false;
   std::size_t meshVertices = 0, meshTriangles = 0;
   std::vector<ReportFeature> features;
+  std::string overlapMode = "layers";
+  int layers = 1, maskLayers = 1;
+  struct Loss {
+    std::string feature, to;
+    double volume = 0, percentOfContour = 0;
+    bool nested = false;
+  };
+  std::vector<Loss> losses;  // --overlaps partition
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
   std::vector<std::string> warnings;
   std::vector<std::string> outputs;

@@ -1,0 +1,269 @@
+#include "geometry/overlaps.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+
+#include "core/parallel.h"
+#include "geometry/polygon.h"
+
+namespace scansurf {
+namespace {
+
+FeatureRegion rasterizeFeature(const Feature& feature, const Grid& grid, int bits, double tolerance) {
+  FeatureRegion region;
+  region.minRow = grid.ny, region.minColumn = grid.nx;
+  for (const FeatureSlice& slice : feature.slices) {
+    const int k = layerOfZ(grid, slice.z, tolerance);
+    if (k < 0) continue;
+    std::vector<PixelRun> runs = rasterizeSlice(slice.contours, grid, bits);
+    for (const PixelRun& r : runs) {
+      region.minRow = std::min(region.minRow, r.row), region.maxRow = std::max(region.maxRow, r.row);
+      region.minColumn = std::min(region.minColumn, r.begin), region.maxColumn = std::max(region.maxColumn, r.end - 1);
+    }
+    region.layers.push_back(k);
+    region.runs.push_back(std::move(runs));
+  }
+  return region;
+}
+
+bool boxesNear(const FeatureRegion& a, const FeatureRegion& b, int margin) {
+  if (a.maxRow < a.minRow || b.maxRow < b.minRow) return false;
+  return a.minRow <= b.maxRow + margin && b.minRow <= a.maxRow + margin && a.minColumn <= b.maxColumn + margin &&
+         b.minColumn <= a.maxColumn + margin;
+}
+
+// Voxels two regions share, and their volume.
+std::pair<std::size_t, double> sharedVoxels(const FeatureRegion& a, const FeatureRegion& b, const Grid& grid) {
+  std::size_t voxels = 0;
+  double volume = 0;
+  for (std::size_t i = 0, j = 0; i < a.layers.size() && j < b.layers.size();) {
+    if (a.layers[i] != b.layers[j]) {
+      (a.layers[i] < b.layers[j] ? i : j)++;
+      continue;
+    }
+    const std::size_t n = sharedPixels(a.runs[i], b.runs[j]);
+    voxels += n;
+    volume += static_cast<double>(n) * voxelVolume(grid, a.layers[i]);
+    ++i, ++j;
+  }
+  return {voxels, volume};
+}
+
+// Whether two regions that share no voxel have voxels sharing a face (in a layer or across
+// neighbouring layers).
+bool regionsTouch(const FeatureRegion& a, const FeatureRegion& b) {
+  for (std::size_t i = 0; i < a.layers.size(); ++i)
+    for (std::size_t j = 0; j < b.layers.size(); ++j) {
+      const int d = a.layers[i] - b.layers[j];
+      if (d == 0 && touchInPlane(a.runs[i], b.runs[j])) return true;
+      if ((d == 1 || d == -1) && sharedPixels(a.runs[i], b.runs[j]) > 0) return true;
+    }
+  return false;
+}
+
+double slab(const Grid& grid, int k) { return 0.5 * (grid.layerZ[static_cast<std::size_t>(k + 1)] - grid.layerZ[static_cast<std::size_t>(k - 1)]); }
+
+FeatureVolumes volumesOf(const Feature& feature, const FeatureRegion& region, const Grid& grid, double tolerance) {
+  FeatureVolumes v;
+  for (const FeatureSlice& slice : feature.slices) {
+    const int k = layerOfZ(grid, slice.z, tolerance);
+    if (k > 0 && k < grid.nz - 1) v.contour += std::abs(regionArea(slice.contours)) * slab(grid, k);
+  }
+  for (std::size_t s = 0; s < region.layers.size(); ++s) {
+    const std::size_t n = pixelCount(region.runs[s]);
+    v.ownVoxels += n;
+    v.ownVolume += static_cast<double>(n) * voxelVolume(grid, region.layers[s]);
+  }
+  return v;
+}
+
+// ---- layer assignment ----
+
+struct Colouring {
+  const std::vector<std::vector<int>>& conflicts;
+  const std::vector<std::vector<int>>& affinity;
+  std::vector<int>& colour;
+
+  // Colours to try for v: those of its affinity neighbours first, then ascending.
+  std::vector<int> preferences(int v, int k) const {
+    std::vector<int> order;
+    for (int u : affinity[static_cast<std::size_t>(v)])
+      if (int c = colour[static_cast<std::size_t>(u)]; c >= 0 && c < k && std::find(order.begin(), order.end(), c) == order.end())
+        order.push_back(c);
+    for (int c = 0; c < k; ++c)
+      if (std::find(order.begin(), order.end(), c) == order.end()) order.push_back(c);
+    return order;
+  }
+  bool allowed(int v, int c) const {
+    for (int u : conflicts[static_cast<std::size_t>(v)])
+      if (colour[static_cast<std::size_t>(u)] == c) return false;
+    return true;
+  }
+  // Backtracking over `order` with k colours; gives up after `budget` steps.
+  bool search(const std::vector<int>& order, std::size_t at, int k, long& budget) {
+    if (at == order.size()) return true;
+    if (--budget < 0) return false;
+    const int v = order[at];
+    for (int c : preferences(v, k)) {
+      if (!allowed(v, c)) continue;
+      colour[static_cast<std::size_t>(v)] = c;
+      if (search(order, at + 1, k, budget)) return true;
+    }
+    colour[static_cast<std::size_t>(v)] = -1;
+    return false;
+  }
+};
+
+// DSatur order of a component: most distinct neighbour colours first (ties: degree, index),
+// with its greedy colouring (the upper bound).
+std::pair<std::vector<int>, int> dsatur(const std::vector<int>& component, Colouring& colouring) {
+  std::vector<int> order;
+  std::vector<char> done(colouring.colour.size(), 0);
+  int colours = 0;
+  for (std::size_t step = 0; step < component.size(); ++step) {
+    int best = -1, bestSat = -1, bestDeg = -1;
+    for (int v : component) {
+      if (done[static_cast<std::size_t>(v)]) continue;
+      std::vector<int> seen;
+      for (int u : colouring.conflicts[static_cast<std::size_t>(v)])
+        if (int c = colouring.colour[static_cast<std::size_t>(u)]; c >= 0 && std::find(seen.begin(), seen.end(), c) == seen.end())
+          seen.push_back(c);
+      const int sat = static_cast<int>(seen.size()), deg = static_cast<int>(colouring.conflicts[static_cast<std::size_t>(v)].size());
+      if (sat > bestSat || (sat == bestSat && deg > bestDeg)) best = v, bestSat = sat, bestDeg = deg;
+    }
+    done[static_cast<std::size_t>(best)] = 1;
+    order.push_back(best);
+    for (int c : colouring.preferences(best, colours + 1))
+      if (colouring.allowed(best, c)) {
+        colouring.colour[static_cast<std::size_t>(best)] = c;
+        colours = std::max(colours, c + 1);
+        break;
+      }
+  }
+  return {order, colours};
+}
+
+std::vector<std::vector<int>> components(int n, const std::vector<std::vector<int>>& conflicts) {
+  std::vector<int> seen(static_cast<std::size_t>(n), 0);
+  std::vector<std::vector<int>> out;
+  for (int s = 0; s < n; ++s) {
+    if (seen[static_cast<std::size_t>(s)]) continue;
+    std::vector<int> component{s};
+    seen[static_cast<std::size_t>(s)] = 1;
+    for (std::size_t i = 0; i < component.size(); ++i)
+      for (int u : conflicts[static_cast<std::size_t>(component[i])])
+        if (!seen[static_cast<std::size_t>(u)]) seen[static_cast<std::size_t>(u)] = 1, component.push_back(u);
+    std::sort(component.begin(), component.end());
+    out.push_back(std::move(component));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits,
+                                             double sliceTolerance, int threads) {
+  std::vector<FeatureRegion> regions(contours.features.size());
+  parallelChunks(regions.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) regions[f] = rasterizeFeature(contours.features[f], grid, subPixelBits, sliceTolerance);
+  });
+  return regions;
+}
+
+double voxelVolume(const Grid& grid, int k) { return grid.spacingX * grid.spacingY * slab(grid, k); }
+
+std::vector<int> assignLayers(int n, const std::vector<std::pair<int, int>>& conflictPairs,
+                              const std::vector<std::pair<int, int>>& affinityPairs) {
+  std::vector<std::vector<int>> conflicts(static_cast<std::size_t>(n)), affinity(static_cast<std::size_t>(n));
+  for (auto [a, b] : conflictPairs) conflicts[static_cast<std::size_t>(a)].push_back(b), conflicts[static_cast<std::size_t>(b)].push_back(a);
+  for (auto [a, b] : affinityPairs) affinity[static_cast<std::size_t>(a)].push_back(b), affinity[static_cast<std::size_t>(b)].push_back(a);
+  std::vector<int> colour(static_cast<std::size_t>(n), -1);
+  Colouring colouring{conflicts, affinity, colour};
+  constexpr std::size_t kExactUpTo = 24;
+  for (const std::vector<int>& component : components(n, conflicts)) {
+    auto [order, upper] = dsatur(component, colouring);
+    if (component.size() > kExactUpTo || upper <= 2) continue;  // 1 or 2 colours are optimal once found
+    const std::vector<int> greedy = colour;
+    for (int k = 2; k < upper; ++k) {
+      for (int v : component) colour[static_cast<std::size_t>(v)] = -1;
+      long budget = 200000;
+      if (colouring.search(order, 0, k, budget)) break;
+      for (int v : component) colour[static_cast<std::size_t>(v)] = greedy[static_cast<std::size_t>(v)];
+    }
+  }
+  return colour;
+}
+
+OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
+                              const std::vector<FeatureRegion>& regions, double sliceTolerance) {
+  OverlapReport report;
+  const int n = static_cast<int>(contours.features.size());
+  for (int f = 0; f < n; ++f)
+    report.features.push_back(volumesOf(contours.features[static_cast<std::size_t>(f)], regions[static_cast<std::size_t>(f)], grid, sliceTolerance));
+  std::vector<std::pair<int, int>> partial, anyShared, affinity;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const FeatureRegion &ra = regions[static_cast<std::size_t>(a)], &rb = regions[static_cast<std::size_t>(b)];
+      if (!boxesNear(ra, rb, 1)) continue;
+      const auto [voxels, volume] = sharedVoxels(ra, rb, grid);
+      const bool nested = isInside(nesting, a, b) || isInside(nesting, b, a);
+      if (voxels > 0) {
+        report.shared.push_back({a, b, voxels, volume, nested});
+        anyShared.emplace_back(a, b);
+        if (nested) affinity.emplace_back(a, b);
+        else partial.emplace_back(a, b);
+      } else if (regionsTouch(ra, rb)) {
+        report.touching.emplace_back(a, b);
+        affinity.emplace_back(a, b);
+      }
+    }
+  const std::vector<int> layers = assignLayers(n, partial, affinity);
+  const std::vector<int> maskLayers = assignLayers(n, anyShared, report.touching);
+  for (int f = 0; f < n; ++f) {
+    report.features[static_cast<std::size_t>(f)].layer = layers[static_cast<std::size_t>(f)];
+    report.features[static_cast<std::size_t>(f)].maskLayer = maskLayers[static_cast<std::size_t>(f)];
+    report.layers = std::max(report.layers, layers[static_cast<std::size_t>(f)] + 1);
+    report.maskLayers = std::max(report.maskLayers, maskLayers[static_cast<std::size_t>(f)] + 1);
+  }
+  return report;
+}
+
+std::vector<VolumeLoss> volumeLosses(const std::vector<FeatureRegion>& regions, const LabelVolume& partition,
+                                     const Nesting& nesting) {
+  std::vector<VolumeLoss> losses;
+  const Grid& grid = partition.grid;
+  for (std::size_t f = 0; f < regions.size(); ++f) {
+    std::map<int, std::pair<std::size_t, double>> lost;  // by feature: voxels, volume
+    const FeatureRegion& region = regions[f];
+    for (std::size_t s = 0; s < region.layers.size(); ++s) {
+      const int k = region.layers[s];
+      for (const PixelRun& r : region.runs[s])
+        for (int i = r.begin; i < r.end; ++i) {
+          const Label label = partition.at(i, r.row, k);
+          if (label == labelOfFeature(static_cast<int>(f))) continue;
+          auto& entry = lost[featureOfLabel(label)];
+          ++entry.first;
+          entry.second += voxelVolume(grid, k);
+        }
+    }
+    for (const auto& [to, amount] : lost)
+      losses.push_back({static_cast<int>(f), to, amount.first, amount.second,
+                        to >= 0 && isInside(nesting, to, static_cast<int>(f))});
+  }
+  return losses;
+}
+
+}  // namespace scansurf
+
+namespace scansurf {
+
+std::optional<OverlapMode> parseOverlapMode(std::string_view name) {
+  if (name == "layers") return OverlapMode::Layers;
+  if (name == "partition") return OverlapMode::Partition;
+  return std::nullopt;
+}
+
+const char* overlapModeName(OverlapMode mode) { return mode == OverlapMode::Layers ? "layers" : "partition"; }
+
+}  // namespace scansurf

@@ -1,0 +1,48 @@
+// scansurf: overlap analysis and layer assignment (issue 9). Each feature's own region is
+// rasterized exactly as the GPU would draw it alone (pixel_runs.h); pairs whose regions share
+// voxels are nested or partly overlapping; features are then coloured into the fewest layers
+// that keep overlapping features apart, abutting ones together where possible.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "geometry/pixel_runs.h"
+#include "scansurf/contours.h"
+#include "scansurf/grid.h"
+#include "scansurf/label_volume.h"
+#include "scansurf/nesting.h"
+#include "scansurf/overlaps.h"
+
+namespace scansurf {
+
+// One feature's own region: per slice, its layer and pixel runs; and its pixel bounding box.
+struct FeatureRegion {
+  std::vector<int> layers;                   // sorted, one per slice that lies on the grid
+  std::vector<std::vector<PixelRun>> runs;   // per entry of layers
+  int minRow = 0, maxRow = -1, minColumn = 0, maxColumn = -1;  // empty when maxRow < minRow
+};
+
+// Every feature's region on `grid` (threads: 0 = all).
+std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits,
+                                             double sliceTolerance, int threads);
+
+// Volume of one voxel of layer k (1 .. nz-2): pixel area times the layer's slab.
+double voxelVolume(const Grid& grid, int k);
+
+// Volumes three ways, shared and touching pairs, and both layer assignments.
+OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
+                              const std::vector<FeatureRegion>& regions, double sliceTolerance);
+
+// Colours n features so that no conflicting pair shares a colour, with the fewest colours this
+// finds (exact for components of up to 24 features, else DSatur's greedy bound), preferring the
+// colour of features it has affinity with. Deterministic.
+std::vector<int> assignLayers(int n, const std::vector<std::pair<int, int>>& conflicts,
+                              const std::vector<std::pair<int, int>>& affinity);
+
+// Partition mode: for each feature, the voxels of its own region that `partition` gives to
+// another feature.
+std::vector<VolumeLoss> volumeLosses(const std::vector<FeatureRegion>& regions, const LabelVolume& partition,
+                                     const Nesting& nesting);
+
+}  // namespace scansurf
