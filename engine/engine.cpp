@@ -259,7 +259,8 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     out.warnings = findUncoveredContours(contours, grid);
     clock.lap("grid");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
-    const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, scanner->subPixelBits(), tolerance, options.threads);
+    out.subPixelBits = scanner->subPixelBits();
+    const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, tolerance, options.threads);
     out.overlaps = analyzeOverlaps(contours, grid, out.nesting, regions, tolerance);
     out.overlaps.mode = options.overlaps;
     clock.lap("overlap analysis");

@@ -71,6 +71,9 @@ struct BuildResult {
   Surfaces surfaces;
   // Volumes three ways, overlapping and touching pairs, layers, and (Partition) volume losses.
   OverlapReport overlaps;
+  // The device's sub-pixel precision of scan conversion (bits), with which the writers
+  // rasterize each feature's own mask on the CPU exactly as the device did.
+  int subPixelBits = 8;
   std::vector<std::string> warnings;  // e.g. contours too small to cover a pixel centre
   std::vector<StageTime> timings;
 };
