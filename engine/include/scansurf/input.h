@@ -59,6 +59,20 @@ struct StructureSetInfo {
 // to surface is not an error here. Errors: as readContours; JSON input is Errc::InvalidArgument.
 Result<StructureSetInfo> listRois(const std::filesystem::path& path, const std::vector<std::string>& roiPatterns = {});
 
+// One object of a Reconstruct series or an IMOD model as the file holds it.
+struct ObjectInfo {
+  int number = 0;             // IMOD: object number (1-based); Reconstruct: position in the list (1-based)
+  std::string name;           // as surfaced (IMOD: "object N" when unnamed; "#N" added to a repeated name)
+  std::optional<Rgb> color;   // Reconstruct: its first trace's border colour; IMOD: the object colour
+  int contours = 0;           // closed contours read (the ones surfaced when selected)
+  int skipped = 0;            // contours not surfaced: open traces, open or scattered objects, degenerate
+  int slices = 0;             // distinct planes (sections) of its closed contours
+  double zMin = 0;            // z range of its closed contours (ContourSet units); valid when slices > 0
+  double zMax = 0;
+  bool selected = true;       // matched by the object patterns
+  int feature = -1;           // index of its feature among the surfaced ones, or -1
+};
+
 // Writes a contour set as contour-set JSON version 1 (every double written so it reads back
 // exactly), staged and renamed so a failure leaves no partial file. Errors:
 // Errc::InvalidArgument for a non-finite value or an order index out of range; Errc::Io.
