@@ -120,8 +120,7 @@ int run(const cli::CliOptions& o) {
     auto listed = cli::printObjectList(o.input, o.read.objectPatterns);
     return listed ? 0 : fail(listed.error());
   }
-  if (o.output.empty())
-    return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois or --list-objects)"});
+  if (o.output.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois or --list-objects)"});
   // Every output is checked before the work, so a typo does not cost a whole run.
   auto plan = planOutputs(o);
   if (!plan) return fail(plan.error());

@@ -20,11 +20,10 @@ std::string formatZ(double z) {
 Result<void> printRoiList(const std::string& path, const std::vector<std::string>& roiPatterns) {
   const InputFormat format = detectInputFormat(path);
   if (format != InputFormat::RtStruct && format != InputFormat::Unknown)  // Unknown: listRois says why
-    return makeError(Errc::InvalidArgument,
-                     std::string("--list-rois applies to DICOM RTSTRUCT input, not to ") + inputFormatName(format) + " " +
-                         path + (format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel
-                                     ? " (use --list-objects)"
-                                     : ""));
+    return makeError(
+        Errc::InvalidArgument,
+        std::string("--list-rois applies to DICOM RTSTRUCT input, not to ") + inputFormatName(format) + " " + path +
+            (format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel ? " (use --list-objects)" : ""));
   SCANSURF_ASSIGN_OR_RETURN(const StructureSetInfo rt, listRois(path, roiPatterns));
   std::printf("%s: RT Structure Set \"%s\", %zu ROIs (z in mm, patient coordinates)\n", path.c_str(), rt.label.c_str(),
               rt.rois.size());

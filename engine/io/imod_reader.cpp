@@ -180,8 +180,7 @@ Result<ImodModel> readImodModel(const fs::path& path, const ImodOptions& options
   bool ended = false;
   while (!ended) {
     if (in.offset() == in.size())
-      return invalid(file + ": truncated: the file ends at " + std::to_string(in.size()) +
-                     " bytes without the IEOF end marker" +
+      return invalid(file + ": truncated: the file ends at " + std::to_string(in.size()) + " bytes without the IEOF end marker" +
                      (static_cast<std::int64_t>(objects.size()) < objectCount
                           ? " (" + std::to_string(objects.size()) + " of " + std::to_string(objectCount) + " objects read)"
                           : std::string()));
@@ -228,8 +227,8 @@ Result<ImodModel> readImodModel(const fs::path& path, const ImodOptions& options
       const std::int32_t vertices = in.i32(), indices = in.i32();
       in.skip(8);  // flag, time, surf
       if (vertices < 0 || indices < 0)
-        return invalid(file + ": " + current + ": a MESH chunk at offset " + std::to_string(chunkAt) + " with " + std::to_string(vertices) +
-                       " vertices and " + std::to_string(indices) + " indices");
+        return invalid(file + ": " + current + ": a MESH chunk at offset " + std::to_string(chunkAt) + " with " +
+                       std::to_string(vertices) + " vertices and " + std::to_string(indices) + " indices");
       const std::uint64_t bytes = 12ull * static_cast<std::uint64_t>(vertices) + 4ull * static_cast<std::uint64_t>(indices);
       SCANSURF_TRY(in.need(bytes, current + ": the MESH chunk's data"));
       in.skip(bytes);
@@ -276,8 +275,7 @@ Result<ImodModel> readImodModel(const fs::path& path, const ImodOptions& options
     const bool selected = objectSelected(options.objectPatterns, info.name);
     if (object.flags & (kObjectOpen | kObjectScattered)) {
       info.skipped = static_cast<int>(object.contours.size());
-      model.contours.warnings.push_back(who + ": " +
-                                        ((object.flags & kObjectScattered) ? "scattered points" : "an open object") +
+      model.contours.warnings.push_back(who + ": " + ((object.flags & kObjectScattered) ? "scattered points" : "an open object") +
                                         ", skipped (" + std::to_string(object.contours.size()) +
                                         " contours); only closed objects are surfaced");
       continue;
@@ -299,8 +297,8 @@ Result<ImodModel> readImodModel(const fs::path& path, const ImodOptions& options
         zMax = p == 0 ? q.z : std::max(zMax, q.z);
       }
       if (zMax - zMin > options.planeTolerance) {
-        const std::string why = where + ": not planar: its points span z " + formatFloat(zMin) + " .. " +
-                                formatFloat(zMax) + " (image sections); only contours in one z plane are surfaced";
+        const std::string why = where + ": not planar: its points span z " + formatFloat(zMin) + " .. " + formatFloat(zMax) +
+                                " (image sections); only contours in one z plane are surfaced";
         if (selected && options.requireFeatures) return invalid(why);
         ++nonPlanar;
         if (selected) model.contours.warnings.push_back(why + "; skipped");
@@ -333,13 +331,11 @@ Result<ImodModel> readImodModel(const fs::path& path, const ImodOptions& options
                             buildObjectFeatures(raws, {options.objectPatterns, options.requireFeatures}, model.contours));
   int surfaced = 0;
   for (const ObjectInfo& o : model.objects) surfaced += o.feature >= 0;
-  model.contours.notes.push_back("IMOD model \"" + model.name + "\": " + std::to_string(model.objects.size()) +
-                                 " objects, " + std::to_string(surfaced) + " surfaced; pixel size " +
-                                 formatFloat(static_cast<float>(model.pixelSize)) + " " + model.contours.units +
-                                 ", scale (" + formatFloat(static_cast<float>(model.scale[0])) + ", " +
-                                 formatFloat(static_cast<float>(model.scale[1])) + ", " +
-                                 formatFloat(static_cast<float>(model.scale[2])) + "); coordinates in " +
-                                 model.contours.units);
+  model.contours.notes.push_back(
+      "IMOD model \"" + model.name + "\": " + std::to_string(model.objects.size()) + " objects, " + std::to_string(surfaced) +
+      " surfaced; pixel size " + formatFloat(static_cast<float>(model.pixelSize)) + " " + model.contours.units + ", scale (" +
+      formatFloat(static_cast<float>(model.scale[0])) + ", " + formatFloat(static_cast<float>(model.scale[1])) + ", " +
+      formatFloat(static_cast<float>(model.scale[2])) + "); coordinates in " + model.contours.units);
   return model;
 }
 

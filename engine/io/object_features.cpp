@@ -54,8 +54,8 @@ Result<std::vector<ObjectInfo>> buildObjectFeatures(std::vector<RawObject>& obje
   const std::string& file = out.source;
   makeObjectNamesUnique(objects, file, out.warnings);
   for (const std::string& pattern : options.patterns) {
-    const bool any = std::any_of(objects.begin(), objects.end(),
-                                 [&](const RawObject& o) { return objectNameMatches(pattern, o.info.name); });
+    const bool any =
+        std::any_of(objects.begin(), objects.end(), [&](const RawObject& o) { return objectNameMatches(pattern, o.info.name); });
     if (!any)
       return makeError(Errc::InvalidArgument,
                        file + ": --object \"" + pattern + "\" matches no object; the file holds " + quotedNames(objects));

@@ -39,14 +39,12 @@ bool objectSelected(const std::vector<std::string>& patterns, const std::string&
 // number), each with a warning naming `file`.
 void makeObjectNamesUnique(std::vector<RawObject>& objects, const std::string& file, std::vector<std::string>& warnings);
 
-// Makes repeated names unique (makeObjectNamesUnique), applies the patterns, skips closed contours of fewer than 3 distinct points (one warning per object),
-// and appends one feature per selected object with contours to out.features, its slices
-// grouped by exact z, in the order of `objects`. Fills each info's contours, slices, z range,
-// selected and feature. Then validates `out` (validateAndNormalize) when it has features.
-// out.source names the file in messages; warnings go to out.warnings.
-// Errors: Errc::InvalidArgument for a pattern that matches no object (the message lists the
-// objects); Errc::InvalidInput when no (selected) object has closed contours and
-// options.requireFeatures, or what validateAndNormalize finds.
+// Makes repeated names unique (makeObjectNamesUnique), applies the patterns, skips closed contours of fewer than 3 distinct
+// points (one warning per object), and appends one feature per selected object with contours to out.features, its slices grouped
+// by exact z, in the order of `objects`. Fills each info's contours, slices, z range, selected and feature. Then validates `out`
+// (validateAndNormalize) when it has features. out.source names the file in messages; warnings go to out.warnings. Errors:
+// Errc::InvalidArgument for a pattern that matches no object (the message lists the objects); Errc::InvalidInput when no
+// (selected) object has closed contours and options.requireFeatures, or what validateAndNormalize finds.
 Result<std::vector<ObjectInfo>> buildObjectFeatures(std::vector<RawObject>& objects, const ObjectFeatureOptions& options,
                                                     ContourSet& out);
 

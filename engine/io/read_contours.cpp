@@ -99,8 +99,7 @@ std::string describeStart(const std::filesystem::path& path) {
 Unexpected unrecognised(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;
-  if (!in || std::filesystem::is_directory(path, ec))
-    return makeError(Errc::Io, path.string() + ": cannot open the file");
+  if (!in || std::filesystem::is_directory(path, ec)) return makeError(Errc::Io, path.string() + ": cannot open the file");
   return makeError(Errc::InvalidInput, path.string() + ": not a contour file scansurf reads (" + describeStart(path) +
                                            "); supported formats, recognised by content: " + kSupportedFormats);
 }
@@ -117,9 +116,9 @@ bool looksLikeDicomDataSet(const std::filesystem::path& path) {
   if (!in.read(reinterpret_cast<char*>(b), sizeof b)) return false;
   const unsigned group = b[0] | (b[1] << 8);
   if (group != 0x0002 && group != 0x0008) return false;
-  static constexpr const char* kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO", "LT", "OB",
-                                         "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST", "SV", "TM",
-                                         "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+  static constexpr const char* kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO", "LT",
+                                         "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST",
+                                         "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
   const std::string vr{static_cast<char>(b[4]), static_cast<char>(b[5])};
   if (std::find(std::begin(kVrs), std::end(kVrs), vr) != std::end(kVrs)) return true;
   const std::uint64_t length = b[4] | (b[5] << 8) | (b[6] << 16) | (static_cast<std::uint64_t>(b[7]) << 24);
@@ -131,9 +130,9 @@ Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& 
   const bool dicom = format == InputFormat::RtStruct;
   const bool objects = format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel;
   if (!dicom && (!options.roiPatterns.empty() || !options.referenceSeries.empty()))
-    return makeError(Errc::InvalidArgument, std::string("ROI selection and a reference series apply to DICOM RTSTRUCT input, not to ") +
-                                                inputFormatName(format) + " " + path.string() +
-                                                (objects ? " (select its objects with --object)" : ""));
+    return makeError(Errc::InvalidArgument,
+                     std::string("ROI selection and a reference series apply to DICOM RTSTRUCT input, not to ") +
+                         inputFormatName(format) + " " + path.string() + (objects ? " (select its objects with --object)" : ""));
   if (!objects && !options.objectPatterns.empty())
     return makeError(Errc::InvalidArgument, std::string("object selection applies to Reconstruct and IMOD input, not to ") +
                                                 inputFormatName(format) + " " + path.string() +
@@ -146,8 +145,7 @@ Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions&
   if (format == InputFormat::Unknown) return unrecognised(path);
   SCANSURF_TRY(checkOptionsApply(format, path, options));
   switch (format) {
-    case InputFormat::RtStruct:
-      return readStructureSet(path, options);
+    case InputFormat::RtStruct: return readStructureSet(path, options);
     case InputFormat::ReconstructSeries: {
       SCANSURF_ASSIGN_OR_RETURN(ReconstructSeries series, readReconstructSeries(path, {options.objectPatterns}));
       return std::move(series.contours);
@@ -158,8 +156,7 @@ Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions&
       SCANSURF_ASSIGN_OR_RETURN(ImodModel model, readImodModel(path, imod));
       return std::move(model.contours);
     }
-    default:
-      return readContoursJson(path);
+    default: return readContoursJson(path);
   }
 }
 
@@ -207,8 +204,8 @@ Result<ObjectListing> listObjects(const std::filesystem::path& path, const std::
       ReconstructOptions options{objectPatterns, false};
       SCANSURF_ASSIGN_OR_RETURN(ReconstructSeries series, readReconstructSeries(path, options));
       listing.description = "Reconstruct series \"" + series.name + "\", " + std::to_string(series.sections) +
-                            " sections (index " + std::to_string(series.firstIndex) + ".." +
-                            std::to_string(series.lastIndex) + ")";
+                            " sections (index " + std::to_string(series.firstIndex) + ".." + std::to_string(series.lastIndex) +
+                            ")";
       listing.units = series.contours.units;
       listing.objects = std::move(series.objects);
       listing.warnings = std::move(series.contours.warnings);

@@ -87,7 +87,8 @@ Result<void> loadXml(const fs::path& path, pugi::xml_document& doc) {
   SCANSURF_ASSIGN_OR_RETURN(const std::string text, readFile(path));
   const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size());
   if (parsed) return {};
-  const auto offset = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(parsed.offset, 0, static_cast<std::ptrdiff_t>(text.size())));
+  const auto offset =
+      static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(parsed.offset, 0, static_cast<std::ptrdiff_t>(text.size())));
   const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n');
   return invalid(path.string() + ": malformed XML at line " + std::to_string(line) + ": " + parsed.description());
 }
@@ -201,8 +202,7 @@ Result<Section> readSection(const fs::path& path) {
       trace.points.reserve(values->size() / 2);
       for (std::size_t i = 0; i < values->size(); i += 2) {
         auto p = transform->inverse({(*values)[i], (*values)[i + 1]});
-        if (!p)
-          return invalid(traceWhere + ", point " + std::to_string(i / 2 + 1) + ": " + p.error().message);
+        if (!p) return invalid(traceWhere + ", point " + std::to_string(i / 2 + 1) + ": " + p.error().message);
         trace.points.push_back(*p);
       }
       section.traces.push_back(std::move(trace));
@@ -261,11 +261,8 @@ Result<ReconstructTransform> ReconstructTransform::fromFile(int dim, const std::
   ReconstructTransform t;
   t.dim = dim;
   switch (dim) {
-    case 0:
-      break;
-    case 1:
-      t.a[0] = at(xcoef, 0), t.b[0] = at(ycoef, 0);
-      break;
+    case 0: break;
+    case 1: t.a[0] = at(xcoef, 0), t.b[0] = at(ycoef, 0); break;
     case 2:  // x' = a0 + a1 x, y' = b0 + b1 y
       t.a = {at(xcoef, 0), at(xcoef, 1), 0, 0, 0, 0};
       t.b = {at(ycoef, 0), 0, at(ycoef, 1), 0, 0, 0};
@@ -363,10 +360,12 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
       warnings.push_back(given + ": a section file not named SERIES.<number>: read alone, without its series");
     }
     if (out.seriesFile.empty())
-      warnings.push_back(given + ": no series file " + out.name + ".ser beside it: units microns and zMidSection off "
+      warnings.push_back(given + ": no series file " + out.name +
+                         ".ser beside it: units microns and zMidSection off "
                          "(Reconstruct's defaults)");
   } else {
-    return invalid(given + ": XML with root element <" + rootName + ">, not a Reconstruct series (<Series>) or section (<Section>)");
+    return invalid(given + ": XML with root element <" + rootName +
+                   ">, not a Reconstruct series (<Series>) or section (<Section>)");
   }
 
   if (!out.seriesFile.empty()) {
@@ -447,11 +446,11 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
                             buildObjectFeatures(objects, {options.objectPatterns, options.requireFeatures}, out.contours));
   int surfaced = 0;
   for (const ObjectInfo& o : out.objects) surfaced += o.feature >= 0;
-  out.contours.notes.push_back(
-      "Reconstruct series \"" + out.name + "\": " + std::to_string(out.sections) + " sections (index " +
-      std::to_string(out.firstIndex) + ".." + std::to_string(out.lastIndex) + "), " + std::to_string(out.objects.size()) +
-      " objects, " + std::to_string(surfaced) + " surfaced; units " + out.contours.units +
-      "; z = depth through the section thicknesses (" + (out.zMidSection ? "section middles" : "section tops") + ")");
+  out.contours.notes.push_back("Reconstruct series \"" + out.name + "\": " + std::to_string(out.sections) + " sections (index " +
+                               std::to_string(out.firstIndex) + ".." + std::to_string(out.lastIndex) + "), " +
+                               std::to_string(out.objects.size()) + " objects, " + std::to_string(surfaced) +
+                               " surfaced; units " + out.contours.units + "; z = depth through the section thicknesses (" +
+                               (out.zMidSection ? "section middles" : "section tops") + ")");
   return out;
 }
 

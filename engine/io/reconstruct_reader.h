@@ -54,10 +54,10 @@ struct ReconstructOptions {
 };
 
 struct ReconstructSeries {
-  ContourSet contours;              // validated; units from the series; z per section as above
-  std::vector<ObjectInfo> objects;  // by name
-  std::string name;                 // series name (file stem)
-  std::filesystem::path seriesFile; // NAME.ser, empty when absent
+  ContourSet contours;               // validated; units from the series; z per section as above
+  std::vector<ObjectInfo> objects;   // by name
+  std::string name;                  // series name (file stem)
+  std::filesystem::path seriesFile;  // NAME.ser, empty when absent
   int sections = 0;
   int firstIndex = 0, lastIndex = 0;
   bool zMidSection = false;

@@ -51,8 +51,7 @@ Point2 reconstructForward(int dim, const std::array<double, 6>& a, const std::ar
     case 2: return {a[0] + a[1] * x, b[0] + b[1] * y};
     case 3: return {a[0] + a[1] * x + a[2] * y, b[0] + b[1] * x + b[2] * y};
     case 4: return {a[0] + (a[1] + a[3] * y) * x + a[2] * y, b[0] + (b[1] + b[3] * y) * x + b[2] * y};
-    case 5:
-      return {a[0] + (a[1] + a[3] * y + a[4] * x) * x + a[2] * y, b[0] + (b[1] + b[3] * y + b[4] * x) * x + b[2] * y};
+    case 5: return {a[0] + (a[1] + a[3] * y + a[4] * x) * x + a[2] * y, b[0] + (b[1] + b[3] * y + b[4] * x) * x + b[2] * y};
     default:
       return {a[0] + (a[1] + a[3] * y + a[4] * x) * x + (a[2] + a[5] * y) * y,
               b[0] + (b[1] + b[3] * y + b[4] * x) * x + (b[2] + b[5] * y) * y};
@@ -68,7 +67,8 @@ void writeReconstructSeries(const TestSeries& series, const fs::path& dir) {
          "\"\n\tautoSaveSeries=\"true\"\n\tdefaultThickness=\"0.05\"\n\tzMidSection=\"" +
          (series.zMidSection ? "true" : "false") + "\"\n\tthumbWidth=\"128\">\n";
     // The trace palette: not objects.
-    s += "<Contour name=\"palette\" closed=\"true\" border=\"1 0 0\" fill=\"1 0 0\" mode=\"9\"\n points=\"-3 1,\n\t-3 -1,\n\t3 -1,\n\t3 1,\n\t\"/>\n";
+    s += "<Contour name=\"palette\" closed=\"true\" border=\"1 0 0\" fill=\"1 0 0\" mode=\"9\"\n points=\"-3 1,\n\t-3 -1,\n\t3 "
+         "-1,\n\t3 1,\n\t\"/>\n";
     s += "</Series>\n\n";
     writeText(s, dir / (series.name + ".ser"));
   }
@@ -81,7 +81,8 @@ void writeReconstructSeries(const TestSeries& series, const fs::path& dir) {
            coefficients(t.ycoef) + "\">\n";
       if (t.image) {
         s += "<Image mag=\"0.002\" contrast=\"1\" brightness=\"0\" red=\"true\" green=\"true\" blue=\"true\"\n"
-             " src=\"section" + std::to_string(section.index) + ".tif\" />\n";
+             " src=\"section" +
+             std::to_string(section.index) + ".tif\" />\n";
         s += "<Contour name=\"domain1\" hidden=\"false\" closed=\"true\" simplified=\"false\" border=\"1 0 1\" "
              "fill=\"1 0 1\" mode=\"11\"\n points=\"0 0,\n\t4096 0,\n\t4096 4096,\n\t0 4096,\n\t\"/>\n";
       } else {
@@ -89,8 +90,8 @@ void writeReconstructSeries(const TestSeries& series, const fs::path& dir) {
           std::vector<Point2> stored;
           for (const Point2& p : trace.points) stored.push_back(reconstructForward(t.dim, t.xcoef, t.ycoef, p));
           s += "<Contour name=\"" + trace.name + "\" hidden=\"" + (trace.hidden ? "true" : "false") + "\" closed=\"" +
-               (trace.closed ? "true" : "false") + "\" simplified=\"true\" border=\"" + color(trace.border) +
-               "\" fill=\"" + color(trace.border) + "\" mode=\"13\"\n points=\"" + points(stored) + "\"/>\n";
+               (trace.closed ? "true" : "false") + "\" simplified=\"true\" border=\"" + color(trace.border) + "\" fill=\"" +
+               color(trace.border) + "\" mode=\"13\"\n points=\"" + points(stored) + "\"/>\n";
         }
       }
       s += "</Transform>\n\n";
@@ -135,17 +136,17 @@ std::string imodModelBytes(const TestImodModel& model) {
   out.text(model.name, 128);
   out.i32(512), out.i32(512), out.i32(100);  // xmax, ymax, zmax
   out.i32(static_cast<std::int32_t>(model.objects.size()));
-  out.u32(0xF000);                              // flags
-  out.i32(1), out.i32(1);                       // drawmode, mousemode
-  out.i32(0), out.i32(255);                     // blacklevel, whitelevel
-  out.f32(0), out.f32(0), out.f32(0);           // offsets
-  for (float s : model.scale) out.f32(s);       // xscale, yscale, zscale
-  out.i32(0), out.i32(0), out.i32(0);           // object, contour, point
-  out.i32(3), out.i32(128);                     // res, thresh
+  out.u32(0xF000);                         // flags
+  out.i32(1), out.i32(1);                  // drawmode, mousemode
+  out.i32(0), out.i32(255);                // blacklevel, whitelevel
+  out.f32(0), out.f32(0), out.f32(0);      // offsets
+  for (float s : model.scale) out.f32(s);  // xscale, yscale, zscale
+  out.i32(0), out.i32(0), out.i32(0);      // object, contour, point
+  out.i32(3), out.i32(128);                // res, thresh
   out.f32(model.pixelSize);
   out.i32(model.units);
-  out.i32(0);                                   // csum
-  out.f32(0), out.f32(0), out.f32(0);           // alpha, beta, gamma
+  out.i32(0);                          // csum
+  out.f32(0), out.f32(0), out.f32(0);  // alpha, beta, gamma
   if (out.bytes.size() != 8 + 232) throw std::logic_error("IMOD model header size");
   bool first = true;
   for (const TestImodObject& o : model.objects) {

@@ -58,7 +58,7 @@ void writeReconstructSeries(const TestSeries& series, const std::filesystem::pat
 
 struct TestImodContour {
   std::vector<std::array<float, 3>> points;  // image pixels; z = section
-  std::uint32_t flags = 0;                    // bit 3: open
+  std::uint32_t flags = 0;                   // bit 3: open
 };
 
 struct TestImodObject {
@@ -66,8 +66,8 @@ struct TestImodObject {
   std::uint32_t flags = 0;  // bit 3: open object; bit 9: scattered points
   std::array<float, 3> color{0, 1, 0};
   std::vector<TestImodContour> contours;
-  bool mesh = false;       // append a MESH chunk (3 vertices, one triangle)
-  bool material = false;   // append an IMAT chunk
+  bool mesh = false;      // append a MESH chunk (3 vertices, one triangle)
+  bool material = false;  // append an IMAT chunk
 };
 
 struct TestImodModel {

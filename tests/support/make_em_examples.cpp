@@ -62,8 +62,10 @@ TestSeries neuropilSeries() {
       const double angle = spine * 1.4;
       const double r = 0.6 + 0.12 + 0.02 * (k - first);
       t.traces.push_back(TestTrace{"d01s" + std::to_string(spine),
-                                   ellipse(3 + drift + r * std::cos(angle), 3 + r * std::sin(angle), 0.11, 0.11, 20), true,
-                                   false, {1, 0.8, 0.2}});
+                                   ellipse(3 + drift + r * std::cos(angle), 3 + r * std::sin(angle), 0.11, 0.11, 20),
+                                   true,
+                                   false,
+                                   {1, 0.8, 0.2}});
     }
     t.traces.push_back(TestTrace{"a01", ellipse(6, 1.5, 0.45, 0.45, 40), true, hidden, {0.2, 0.9, 0.2}});
     t.traces.push_back(TestTrace{"a01", ellipse(6, 1.5, 0.3, 0.3, 40), true, hidden, {0.2, 0.9, 0.2}});
@@ -134,7 +136,6 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = argv[1];
   writeReconstructSeries(neuropilSeries(), dir / "neuropil");
   writeImodModel(neuropilModel(), dir / "neuropil.mod");
-  std::printf("wrote %s and %s\n", (dir / "neuropil" / "neuropil.ser").string().c_str(),
-              (dir / "neuropil.mod").string().c_str());
+  std::printf("wrote %s and %s\n", (dir / "neuropil" / "neuropil.ser").string().c_str(), (dir / "neuropil.mod").string().c_str());
   return 0;
 }

@@ -470,14 +470,16 @@ TEST_F(Reconstruct, MalformedFilesAreRefusedNamingFileSectionAndTrace) {
   std::string message = errorOf(ser);
   EXPECT_NE(message.find("cells.3: malformed XML at line 5"), std::string::npos) << message;
 
-  std::ofstream(dir_ / "cells.3") << "<Section index=\"3\" thickness=\"0.05\"><Transform dim=\"7\" xcoef=\"0 1 0 0 0 0\" "
-                                     "ycoef=\"0 0 1 0 0 0\"><Contour name=\"axon\" points=\"1 1, 2 2, 1 2\"/></Transform></Section>";
+  std::ofstream(dir_ / "cells.3")
+      << "<Section index=\"3\" thickness=\"0.05\"><Transform dim=\"7\" xcoef=\"0 1 0 0 0 0\" "
+         "ycoef=\"0 0 1 0 0 0\"><Contour name=\"axon\" points=\"1 1, 2 2, 1 2\"/></Transform></Section>";
   message = errorOf(ser);
   EXPECT_NE(message.find("cells.3: section 3, Transform #1: Transform dim=7 (Reconstruct defines 0 to 6)"), std::string::npos)
       << message;
 
-  std::ofstream(dir_ / "cells.3") << "<Section index=\"3\" thickness=\"0.05\"><Transform dim=\"0\"><Contour name=\"axon\" "
-                                     "points=\"1 1, 2 2, 1 2\"/><Contour name=\"axon\" points=\"1 1, 2 x, 1 2\"/></Transform></Section>";
+  std::ofstream(dir_ / "cells.3")
+      << "<Section index=\"3\" thickness=\"0.05\"><Transform dim=\"0\"><Contour name=\"axon\" "
+         "points=\"1 1, 2 2, 1 2\"/><Contour name=\"axon\" points=\"1 1, 2 x, 1 2\"/></Transform></Section>";
   message = errorOf(ser);
   EXPECT_NE(message.find("cells.3: section 3, trace \"axon\" (#2 in the section): points hold \"x\", not a number"),
             std::string::npos)
@@ -496,8 +498,9 @@ TEST_F(Reconstruct, MalformedFilesAreRefusedNamingFileSectionAndTrace) {
   message = errorOf(ser);
   EXPECT_NE(message.find("section index 4 is also"), std::string::npos) << message;
 
-  std::ofstream(dir_ / "cells.3") << "<Section index=\"3\" thickness=\"0.05\"><Transform dim=\"3\" xcoef=\"0 1 1 0 0 0\" "
-                                     "ycoef=\"0 1 1 0 0 0\"><Contour name=\"axon\" points=\"1 1, 2 2, 1 2\"/></Transform></Section>";
+  std::ofstream(dir_ / "cells.3")
+      << "<Section index=\"3\" thickness=\"0.05\"><Transform dim=\"3\" xcoef=\"0 1 1 0 0 0\" "
+         "ycoef=\"0 1 1 0 0 0\"><Contour name=\"axon\" points=\"1 1, 2 2, 1 2\"/></Transform></Section>";
   message = errorOf(ser);
   EXPECT_NE(message.find("cells.3: section 3, trace \"axon\" (#1 in the section), point 1: the Transform (dim 3) is singular"),
             std::string::npos)
@@ -667,8 +670,7 @@ TEST_F(Imod, ANonPlanarContourIsAnErrorNamingObjectAndContour) {
   model.objects[0].contours[3].points[2][2] = 13.5f;  // z 12's hole, one point off its plane
   const fs::path path = write(model);
   const std::string message = errorOf(path);
-  EXPECT_NE(message.find("cell.mod: object 1 \"mito\", contour 4: not planar: its points span z 12 .. 13.5"),
-            std::string::npos)
+  EXPECT_NE(message.find("cell.mod: object 1 \"mito\", contour 4: not planar: its points span z 12 .. 13.5"), std::string::npos)
       << message;
   // Unselected, or only listed, it does not stop the reading.
   ImodOptions others;
@@ -686,7 +688,8 @@ TEST_F(Imod, TruncatedModelsAreRefusedAtEveryLength) {
     auto r = readImodModel(dir_ / "cut.mod");
     ASSERT_FALSE(r) << "length " << length;
     EXPECT_EQ(r.error().code, Errc::InvalidInput) << "length " << length;
-    EXPECT_NE(r.error().message.find("cut.mod: truncated"), std::string::npos) << "length " << length << ": " << r.error().message;
+    EXPECT_NE(r.error().message.find("cut.mod: truncated"), std::string::npos)
+        << "length " << length << ": " << r.error().message;
   }
   test::writeBytes(bytes.substr(0, 8 + 232 + 4 + 100), dir_ / "cut.mod");
   const std::string message = errorOf(dir_ / "cut.mod");
@@ -744,8 +747,9 @@ TEST_F(InputByContent, EachFormatIsRecognisedByItsContent) {
   EXPECT_EQ(detectInputFormat(file("odd-group", std::string("\x09\x00\x05\x00\x0a\x00\x00\x00ISO_IR 100", 18))),
             InputFormat::Unknown);
   EXPECT_EQ(detectInputFormat(file("model", test::imodModelBytes(cellModel()))), InputFormat::ImodModel);
-  EXPECT_EQ(detectInputFormat(file("s.ser", "\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<!DOCTYPE Series SYSTEM \"series.dtd\">\n"
-                                            "<!-- a comment -->\n<Series units=\"microns\"/>")),
+  EXPECT_EQ(detectInputFormat(file("s.ser",
+                                   "\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<!DOCTYPE Series SYSTEM \"series.dtd\">\n"
+                                   "<!-- a comment -->\n<Series units=\"microns\"/>")),
             InputFormat::ReconstructSeries);
   EXPECT_EQ(detectInputFormat(file("s.7", "<Section index=\"7\" thickness=\"0.05\"/>")), InputFormat::ReconstructSeries);
   EXPECT_EQ(detectInputFormat(file("other.xml", "<?xml version=\"1.0\"?><svg/>")), InputFormat::Unknown);

@@ -80,16 +80,16 @@ Result<StructureSetInfo> listRois(const std::filesystem::path& path, const std::
 
 // One object of a Reconstruct series or an IMOD model as the file holds it.
 struct ObjectInfo {
-  int number = 0;             // IMOD: object number (1-based); Reconstruct: position in the list (1-based)
-  std::string name;           // as surfaced (IMOD: "object N" when unnamed; "#N" added to a repeated name)
-  std::optional<Rgb> color;   // Reconstruct: its first trace's border colour; IMOD: the object colour
-  int contours = 0;           // closed contours read (the ones surfaced when selected)
-  int skipped = 0;            // contours not surfaced: open traces, open or scattered objects, degenerate
-  int slices = 0;             // distinct planes (sections) of its closed contours
-  double zMin = 0;            // z range of its closed contours (ContourSet units); valid when slices > 0
+  int number = 0;            // IMOD: object number (1-based); Reconstruct: position in the list (1-based)
+  std::string name;          // as surfaced (IMOD: "object N" when unnamed; "#N" added to a repeated name)
+  std::optional<Rgb> color;  // Reconstruct: its first trace's border colour; IMOD: the object colour
+  int contours = 0;          // closed contours read (the ones surfaced when selected)
+  int skipped = 0;           // contours not surfaced: open traces, open or scattered objects, degenerate
+  int slices = 0;            // distinct planes (sections) of its closed contours
+  double zMin = 0;           // z range of its closed contours (ContourSet units); valid when slices > 0
   double zMax = 0;
-  bool selected = true;       // matched by the object patterns
-  int feature = -1;           // index of its feature among the surfaced ones, or -1
+  bool selected = true;  // matched by the object patterns
+  int feature = -1;      // index of its feature among the surfaced ones, or -1
 };
 
 struct ObjectListing {
