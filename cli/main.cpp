@@ -116,7 +116,11 @@ int run(const cli::CliOptions& o) {
     auto listed = cli::printRoiList(o.input, o.read.roiPatterns);
     return listed ? 0 : fail(listed.error());
   }
-  if (o.output.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois)"});
+  if (o.listObjects) {
+    auto listed = cli::printObjectList(o.input, o.read.objectPatterns);
+    return listed ? 0 : fail(listed.error());
+  }
+  if (o.output.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois or --list-objects)"});
   // Every output is checked before the work, so a typo does not cost a whole run.
   auto plan = planOutputs(o);
   if (!plan) return fail(plan.error());

@@ -42,8 +42,13 @@ struct Flags {
 };
 
 void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
-  app.add_option("input", o.input, "contour set: JSON (docs/input-format.md) or DICOM RTSTRUCT")->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", o.output, "output directory (created if missing) or NAME.glb; required unless --list-rois");
+  app.add_option("input", o.input,
+                 "contour set, recognised by content: JSON (docs/input-format.md), DICOM RTSTRUCT, Reconstruct series "
+                 "(.ser or one of its section files), IMOD model (.mod)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("-o,--output", o.output,
+                 "output directory (created if missing) or NAME.glb; required unless --list-rois or --list-objects");
   auto* voxel = app.add_option("--voxel-size", o.build.grid.voxelSize,
                                "in-plane pixel size, input units (default: 256 pixels along the longer side)")
                     ->check(numberIn(0, 1e9, true, "a positive, finite number"));
@@ -114,6 +119,14 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
       ->check(CLI::Range(1, 16384));
 }
 
+void addObjects(CLI::App& app, CliOptions& o) {
+  app.add_option("--object", o.read.objectPatterns,
+                 "Reconstruct, IMOD: surface only the objects whose name matches (glob, case-insensitive; repeatable)")
+      ->expected(1)
+      ->take_all();
+  app.add_flag("--list-objects", o.listObjects, "Reconstruct, IMOD: list the file's objects and exit");
+}
+
 // Moves the flags into the options struct.
 void apply(const Flags& f, CliOptions& o) {
   if (f.grid.size() == 2) o.build.grid.nx = f.grid[0], o.build.grid.ny = f.grid[1];
@@ -138,6 +151,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   addGeneral(app, parsed.options, flags);
   addSmoothing(app, parsed.options, flags);
   addDicom(app, parsed.options, flags);
+  addObjects(app, parsed.options);
   addOutputs(app, parsed.options, flags);
   try {
     app.parse(argc, argv);

@@ -18,6 +18,7 @@ struct CliOptions {
   std::string input;
   std::string output;  // a directory, or NAME.glb
   bool listRois = false;
+  bool listObjects = false;
   bool quiet = false;
   bool jsonProgress = false;
   EngineOptions engine;

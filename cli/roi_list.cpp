@@ -1,4 +1,4 @@
-// scansurf CLI: --list-rois.
+// scansurf CLI: --list-rois and --list-objects.
 #include "roi_list.h"
 
 #include <cstdio>
@@ -18,8 +18,12 @@ std::string formatZ(double z) {
 }  // namespace
 
 Result<void> printRoiList(const std::string& path, const std::vector<std::string>& roiPatterns) {
-  if (detectInputFormat(path) != InputFormat::RtStruct)
-    return makeError(Errc::InvalidArgument, "--list-rois applies to DICOM RTSTRUCT input, not to " + path);
+  const InputFormat format = detectInputFormat(path);
+  if (format != InputFormat::RtStruct && format != InputFormat::Unknown)  // Unknown: listRois says why
+    return makeError(
+        Errc::InvalidArgument,
+        std::string("--list-rois applies to DICOM RTSTRUCT input, not to ") + inputFormatName(format) + " " + path +
+            (format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel ? " (use --list-objects)" : ""));
   SCANSURF_ASSIGN_OR_RETURN(const StructureSetInfo rt, listRois(path, roiPatterns));
   std::printf("%s: RT Structure Set \"%s\", %zu ROIs (z in mm, patient coordinates)\n", path.c_str(), rt.label.c_str(),
               rt.rois.size());
@@ -36,6 +40,27 @@ Result<void> printRoiList(const std::string& path, const std::vector<std::string
     std::printf("  %6d  %-24s %-12s %-28s %6d  %-20s %s\n", roi.number, roi.name.c_str(),
                 roi.interpretedType.empty() ? "-" : roi.interpretedType.c_str(), contours.c_str(), roi.slices, range.c_str(),
                 roi.selected ? (roi.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
+  }
+  return {};
+}
+
+Result<void> printObjectList(const std::string& path, const std::vector<std::string>& objectPatterns) {
+  const InputFormat format = detectInputFormat(path);
+  if (format == InputFormat::RtStruct || format == InputFormat::ContoursJson)
+    return makeError(Errc::InvalidArgument, std::string("--list-objects applies to Reconstruct and IMOD input, not to ") +
+                                                inputFormatName(format) + " " + path +
+                                                (format == InputFormat::RtStruct ? " (use --list-rois)" : ""));
+  SCANSURF_ASSIGN_OR_RETURN(const ObjectListing listing, listObjects(path, objectPatterns));
+  for (const std::string& w : listing.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
+  const char* planes = listing.format == InputFormat::ReconstructSeries ? "sections" : "slices";
+  std::printf("%s: %s, %zu objects (x, y, z in %s)\n", path.c_str(), listing.description.c_str(), listing.objects.size(),
+              listing.units.c_str());
+  std::printf("  %6s  %-24s %9s %9s %9s  %-20s %s\n", "number", "name", "contours", "skipped", planes, "z range", "selected");
+  for (const ObjectInfo& object : listing.objects) {
+    const std::string range = object.slices > 0 ? formatZ(object.zMin) + " .. " + formatZ(object.zMax) : "-";
+    std::printf("  %6d  %-24s %9d %9d %9d  %-20s %s\n", object.number, object.name.c_str(), object.contours, object.skipped,
+                object.slices, range.c_str(),
+                object.selected ? (object.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
   }
   return {};
 }

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <string>
 
-
 namespace fs = std::filesystem;
 
 namespace scansurf::cli {
@@ -12,6 +11,13 @@ namespace scansurf::cli {
 const char* conventionName(SurfaceConvention c) { return c == SurfaceConvention::Enclosing ? "enclosing" : "partition"; }
 
 namespace {
+
+// One decimal for mm-scale volumes; four significant digits for small ones (µm³ of EM data).
+std::string formatVolume(double volume) {
+  char text[32];
+  std::snprintf(text, sizeof text, std::abs(volume) >= 100 ? "%.1f" : "%.4g", volume);
+  return text;
+}
 
 // " (surface volume differs from the contour volume by X %)" when it does by more than 1 %.
 std::string volumeFlag(double surface, double contour) {
@@ -25,12 +31,13 @@ void printOverlaps(const ContourSet& set, const OverlapReport& report) {
   const auto name = [&](int f) { return set.features[static_cast<std::size_t>(f)].name.c_str(); };
   const char* units = set.units.c_str();
   for (const SharedVolume& s : report.partialOverlaps())
-    std::printf("overlap: %s and %s share %.1f %s3 (%s)\n", name(s.a), name(s.b), s.volume, units,
+    std::printf("overlap: %s and %s share %s %s3 (%s)\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
                 report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
   for (const VolumeLoss& l : report.losses) {
     if (l.nested) continue;  // a container's shell around what it holds: the convention, not a loss
     const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
-    std::printf("partition: %s lost %.1f %s3 (%.2f %% of its contour volume) to %s\n", name(l.feature), l.volume, units,
+    std::printf("partition: %s lost %s %s3 (%.2f %% of its contour volume) to %s\n", name(l.feature),
+                formatVolume(l.volume).c_str(), units,
                 contour > 0 ? 100.0 * l.volume / contour : 0.0, l.to >= 0 ? name(l.to) : "background");
   }
 }
@@ -53,9 +60,10 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   for (std::size_t f = 0; f < set.features.size(); ++f) {
     const MeshStats& s = facts.stats[f];
     const FeatureVolumes& v = built.overlaps.features[f];
-    std::printf("  %-20s %6d %5d %10zu %14.1f %14.1f %10d %6d %s%s\n", set.features[f].name.c_str(),
-                labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, s.volume, v.contour, s.components, s.genus,
-                s.closed && s.manifold && s.oriented ? "yes" : "NO", volumeFlag(s.volume, v.contour).c_str());
+    std::printf("  %-20s %6d %5d %10zu %14s %14s %10d %6d %s%s\n", set.features[f].name.c_str(),
+                labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, formatVolume(s.volume).c_str(),
+                formatVolume(v.contour).c_str(), s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO",
+                volumeFlag(s.volume, v.contour).c_str());
   }
   printOverlaps(set, built.overlaps);
   double total = 0;

@@ -18,6 +18,9 @@ find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
 # DICOM RT Structure Sets and CT series (engine/io): Debian's DCMTK config, targets DCMTK::<module>.
 find_package(DCMTK REQUIRED CONFIG)
+# Reconstruct series (XML, engine/io/reconstruct_reader.cpp): Debian's pugixml config,
+# target pugixml::pugixml.
+find_package(pugixml REQUIRED CONFIG)
 if(SCANSURF_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

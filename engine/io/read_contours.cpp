@@ -1,4 +1,4 @@
-// scansurf: readContours and listRois, the public entry to every contour reader.
+// scansurf: readContours, listRois and listObjects, the public entry to every contour reader.
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -7,6 +7,8 @@
 #include "core/guard.h"
 #include "io/contours_json.h"
 #include "io/ct_series.h"
+#include "io/imod_reader.h"
+#include "io/reconstruct_reader.h"
 #include "io/rtstruct_reader.h"
 #include "scansurf/input.h"
 
@@ -68,33 +70,165 @@ Result<ContourSet> readStructureSet(const std::filesystem::path& path, const Rea
   return contours;
 }
 
-Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions& options) {
-  if (detectInputFormat(path) == InputFormat::RtStruct) return readStructureSet(path, options);
-  if (!options.roiPatterns.empty() || !options.referenceSeries.empty())
+constexpr const char* kSupportedFormats =
+    "scansurf contour-set JSON; DICOM RT Structure Set (with or without the Part 10 header); Reconstruct series "
+    "(XML .ser or section file NAME.<number>); IMOD binary model (.mod)";
+
+// The first bytes of a file, printable, for messages.
+std::string describeStart(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char buffer[16];
+  in.read(buffer, sizeof buffer);
+  const auto n = static_cast<std::size_t>(in.gcount());
+  if (n == 0) return "it is empty";
+  std::string text;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(buffer[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\' && c != '"') {
+      text += static_cast<char>(c);
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      text += hex;
+    }
+  }
+  return "it starts with \"" + text + "\"";
+}
+
+// Why a file of an unrecognised format cannot be read: Errc::Io when it cannot be opened.
+Unexpected unrecognised(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  if (!in || std::filesystem::is_directory(path, ec)) return makeError(Errc::Io, path.string() + ": cannot open the file");
+  return makeError(Errc::InvalidInput, path.string() + ": not a contour file scansurf reads (" + describeStart(path) +
+                                           "); supported formats, recognised by content: " + kSupportedFormats);
+}
+
+// A DICOM data set without the Part 10 header starts with its first data element: group
+// 0002 (meta information) or 0008 (the identifying group every IOD begins with), little
+// endian, then either an explicit VR (two upper-case letters of a known VR) or an implicit
+// VR's 32-bit length that fits the file.
+bool looksLikeDicomDataSet(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, in.tellg()));
+  in.seekg(0);
+  unsigned char b[8];
+  if (!in.read(reinterpret_cast<char*>(b), sizeof b)) return false;
+  const unsigned group = b[0] | (b[1] << 8);
+  if (group != 0x0002 && group != 0x0008) return false;
+  static constexpr const char* kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO", "LT",
+                                         "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST",
+                                         "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+  const std::string vr{static_cast<char>(b[4]), static_cast<char>(b[5])};
+  if (std::find(std::begin(kVrs), std::end(kVrs), vr) != std::end(kVrs)) return true;
+  const std::uint64_t length = b[4] | (b[5] << 8) | (b[6] << 16) | (static_cast<std::uint64_t>(b[7]) << 24);
+  return length == 0xFFFFFFFFu || length <= size - 8;
+}
+
+// --roi, --reference and --object each apply to some formats only.
+Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& path, const ReadOptions& options) {
+  const bool dicom = format == InputFormat::RtStruct;
+  const bool objects = format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel;
+  if (!dicom && (!options.roiPatterns.empty() || !options.referenceSeries.empty()))
     return makeError(Errc::InvalidArgument,
-                     "ROI selection and a reference series apply to DICOM RTSTRUCT input, not to " + path.string());
-  return readContoursJson(path);
+                     std::string("ROI selection and a reference series apply to DICOM RTSTRUCT input, not to ") +
+                         inputFormatName(format) + " " + path.string() + (objects ? " (select its objects with --object)" : ""));
+  if (!objects && !options.objectPatterns.empty())
+    return makeError(Errc::InvalidArgument, std::string("object selection applies to Reconstruct and IMOD input, not to ") +
+                                                inputFormatName(format) + " " + path.string() +
+                                                (dicom ? " (select its ROIs with --roi)" : ""));
+  return {};
+}
+
+Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions& options) {
+  const InputFormat format = detectInputFormat(path);
+  if (format == InputFormat::Unknown) return unrecognised(path);
+  SCANSURF_TRY(checkOptionsApply(format, path, options));
+  switch (format) {
+    case InputFormat::RtStruct: return readStructureSet(path, options);
+    case InputFormat::ReconstructSeries: {
+      SCANSURF_ASSIGN_OR_RETURN(ReconstructSeries series, readReconstructSeries(path, {options.objectPatterns}));
+      return std::move(series.contours);
+    }
+    case InputFormat::ImodModel: {
+      ImodOptions imod;
+      imod.objectPatterns = options.objectPatterns;
+      SCANSURF_ASSIGN_OR_RETURN(ImodModel model, readImodModel(path, imod));
+      return std::move(model.contours);
+    }
+    default: return readContoursJson(path);
+  }
 }
 
 }  // namespace
 
+const char* inputFormatName(InputFormat format) noexcept {
+  switch (format) {
+    case InputFormat::ContoursJson: return "contour-set JSON";
+    case InputFormat::RtStruct: return "DICOM RTSTRUCT";
+    case InputFormat::ReconstructSeries: return "Reconstruct series";
+    case InputFormat::ImodModel: return "IMOD model";
+    case InputFormat::Unknown: break;
+  }
+  return "unrecognised file";
+}
+
 InputFormat detectInputFormat(const std::filesystem::path& path) {
   if (hasDicomPreamble(path)) return InputFormat::RtStruct;
-  if (lower(path.extension().string()) == ".json") return InputFormat::ContoursJson;
+  if (hasImodMagic(path)) return InputFormat::ImodModel;
+  if (looksLikeReconstructXml(path)) return InputFormat::ReconstructSeries;
   std::ifstream in(path, std::ios::binary);
   char c = 0;
   while (in.get(c) && std::isspace(static_cast<unsigned char>(c))) {
   }
-  return in && c == '{' ? InputFormat::ContoursJson : InputFormat::RtStruct;
+  if (in && c == '{') return InputFormat::ContoursJson;
+  if (looksLikeDicomDataSet(path)) return InputFormat::RtStruct;
+  if (lower(path.extension().string()) == ".json") return InputFormat::ContoursJson;  // its parser says what is wrong
+  return InputFormat::Unknown;
 }
 
 Result<ContourSet> readContours(const std::filesystem::path& path, const ReadOptions& options) {
   return guarded("reading " + path.string(), [&] { return readAny(path, options); });
 }
 
+Result<ObjectListing> listObjects(const std::filesystem::path& path, const std::vector<std::string>& objectPatterns) {
+  const InputFormat format = detectInputFormat(path);
+  if (format == InputFormat::Unknown) return unrecognised(path);
+  if (format != InputFormat::ReconstructSeries && format != InputFormat::ImodModel)
+    return makeError(Errc::InvalidArgument, std::string("listing objects applies to Reconstruct and IMOD input, not to ") +
+                                                inputFormatName(format) + " " + path.string());
+  return guarded("reading " + path.string(), [&]() -> Result<ObjectListing> {
+    ObjectListing listing;
+    listing.format = format;
+    if (format == InputFormat::ReconstructSeries) {
+      ReconstructOptions options{objectPatterns, false};
+      SCANSURF_ASSIGN_OR_RETURN(ReconstructSeries series, readReconstructSeries(path, options));
+      listing.description = "Reconstruct series \"" + series.name + "\", " + std::to_string(series.sections) +
+                            " sections (index " + std::to_string(series.firstIndex) + ".." + std::to_string(series.lastIndex) +
+                            ")";
+      listing.units = series.contours.units;
+      listing.objects = std::move(series.objects);
+      listing.warnings = std::move(series.contours.warnings);
+    } else {
+      ImodOptions options;
+      options.objectPatterns = objectPatterns;
+      options.requireFeatures = false;
+      SCANSURF_ASSIGN_OR_RETURN(ImodModel model, readImodModel(path, options));
+      listing.description = "IMOD model \"" + model.name + "\"";
+      listing.units = model.contours.units;
+      listing.objects = std::move(model.objects);
+      listing.warnings = std::move(model.contours.warnings);
+    }
+    return listing;
+  });
+}
+
 Result<StructureSetInfo> listRois(const std::filesystem::path& path, const std::vector<std::string>& roiPatterns) {
-  if (detectInputFormat(path) != InputFormat::RtStruct)
-    return makeError(Errc::InvalidArgument, "listing ROIs applies to DICOM RTSTRUCT input, not to " + path.string());
+  const InputFormat format = detectInputFormat(path);
+  if (format == InputFormat::Unknown) return unrecognised(path);
+  if (format != InputFormat::RtStruct)
+    return makeError(Errc::InvalidArgument, std::string("listing ROIs applies to DICOM RTSTRUCT input, not to ") +
+                                                inputFormatName(format) + " " + path.string());
   RtStructOptions options;
   options.roiPatterns = roiPatterns;
   options.requireFeatures = false;

@@ -161,3 +161,33 @@ endforeach()
 if(EXISTS "${OUT}/speck/speck.drc")
   message(FATAL_ERROR "an empty surface was written as .drc")
 endif()
+
+# Input is recognised by content: a file of no supported format is refused (exit 3) with a
+# message naming it and listing the formats.
+run_scansurf(3 "${DATA}/not_contours.txt" -o "${OUT}/notcontours")
+expect_output("not_contours.txt: not a contour file scansurf reads \\(it starts with \"these are notes")
+expect_output("contour-set JSON; DICOM RT Structure Set .*; Reconstruct series .*; IMOD binary model")
+run_scansurf(3 "${DATA}/not_contours.txt" --list-objects)
+
+# A Reconstruct series (tests/data/reconstruct: 3 sections, a translated Transform, an image
+# domain, hidden and open traces): its objects listed, then surfaced from one section file.
+run_scansurf(0 "${DATA}/reconstruct/tiny.ser" --list-objects --object soma)
+expect_output("tiny.ser: Reconstruct series \"tiny\", 3 sections \\(index 1..3\\), 3 objects \\(x, y, z in .*m\\)")
+expect_output("number  name +contours +skipped +sections +z range +selected")
+expect_output("1  axon +2 +0 +2  0.1 .. 0.15 +no")
+expect_output("2  note +0 +1 +0  - +no")
+expect_output("3  soma +3 +0 +3  0.05 .. 0.15 +yes")
+expect_output("warning: .*tiny.ser: object \"note\": skipped 1 open trace\\(s\\) \\(it has no closed trace\\)")
+run_scansurf(0 "${DATA}/reconstruct/tiny.2" -o "${OUT}/tiny" --voxel-size 0.02)
+expect_output("Reconstruct series \"tiny\": 3 sections \\(index 1..3\\), 3 objects, 2 surfaced")
+foreach(name axon soma multilabel)
+  if(NOT EXISTS "${OUT}/tiny/${name}.ply")
+    message(FATAL_ERROR "missing ${OUT}/tiny/${name}.ply")
+  endif()
+endforeach()
+run_scansurf(2 "${DATA}/reconstruct/tiny.ser" -o "${OUT}/x" --object nucleus)
+expect_output("--object \"nucleus\" matches no object; the file holds \"axon\", \"note\", \"soma\"")
+run_scansurf(2 "${DATA}/reconstruct/tiny.ser" --list-rois)
+expect_output("--list-rois applies to DICOM RTSTRUCT input, not to Reconstruct series .*\\(use --list-objects\\)")
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --object BODY)
+expect_output("object selection applies to Reconstruct and IMOD input, not to contour-set JSON")
