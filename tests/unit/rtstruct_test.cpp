@@ -36,7 +36,6 @@ std::vector<Point2> square(double x0, double y0, double x1, double y1) { return 
 
 class Dicom : public test::ScratchDirTest {
  protected:
-
   fs::path write(const TestRtStruct& rt, const std::string& name = "rt.dcm") {
     const fs::path p = dir_ / name;
     test::writeTestRtStruct(rt, p);
