@@ -7,7 +7,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev
   libdraco-dev libeigen3-dev libpng-dev zlib1g-dev
-  libdcmtk-dev libpugixml-dev
+  libdcmtk-dev libpugixml-dev libnifti2-dev
 )
 missing=()
 for p in "${packages[@]}"; do

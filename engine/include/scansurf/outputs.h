@@ -70,9 +70,30 @@ Result<void> writeMultiLabelMesh(const std::filesystem::path& path, const Surfac
 // One binary glTF scene (.glb): a named, coloured node per feature with a surface.
 Result<void> writeScene(const std::filesystem::path& path, const ContourSet& contours, const Surfaces& surfaces,
                         const SceneOptions& options = {});
-// The label volume as gzip NRRD (3D Slicer segment keys; *.seg.nrrd opens as a segmentation)
-// and its label table (3D Slicer colour table) at `path` with the extension .ctbl.
+// Label volume formats, chosen by the file name (case-insensitive).
+enum class VolumeFormat {
+  Nrrd,   // F.nrrd, F.seg.nrrd: gzip NRRD, LPS, with the label table F.ctbl (3D Slicer colour table)
+  Nifti,  // F.nii, F.nii.gz: NIfTI-1 (gzip for .nii.gz), RAS, with the label table F.label.txt (ITK-SNAP)
+};
+// The format of a label volume path; else an Errc::InvalidArgument error naming the known
+// extensions (.nrrd, .seg.nrrd, .nii, .nii.gz).
+Result<VolumeFormat> volumeFormatOf(const std::filesystem::path& path);
+// The label table written beside a label volume: F.ctbl for F.nrrd (F.seg.ctbl for
+// F.seg.nrrd), F.label.txt for F.nii and F.nii.gz.
+std::filesystem::path labelTablePathFor(const std::filesystem::path& labelVolume, VolumeFormat format);
+
+// The label volume (label = feature index + 1, 0 = background) in the format of `path`'s
+// extension, plus its label table beside it (labelTablePathFor). Unevenly spaced layers are
+// resampled along z onto even planes first (nearest layer; see regularize in the README).
+// - NRRD: gzip, `space: left-posterior-superior`, 3D Slicer segment keys (*.seg.nrrd opens as a
+//   named, coloured segmentation), the table in Slicer's colour-table format.
+// - NIfTI-1 through the NIfTI reference library: uint8 (uint16 when a label exceeds 255),
+//   intent LABEL; qform and sform map voxels to RAS mm, i.e. scansurf's LPS x and y negated, so
+//   the volume overlays the surfaces in RAS tools (ITK-SNAP, FSL, nibabel, 3D Slicer); the
+//   table in ITK-SNAP's label description format.
+// Errors: Errc::InvalidArgument for an unknown extension; Errc::Io naming the path.
 Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume);
+
 // An RGBA picture as PNG.
 Result<void> writePreview(const std::filesystem::path& path, const PreviewImage& image);
 
@@ -84,7 +105,7 @@ struct OutputPlan {
   std::filesystem::path glbFile;    // a scene at this exact path; empty = none
   bool multilabel = true;           // dir/multilabel.ply when Ply is among the formats
   SceneOptions scene;               // GLB (dracoOptions also for .drc; maxError from the grid when 0)
-  std::filesystem::path labelVolume;  // .nrrd (+ .ctbl beside it); empty = none
+  std::filesystem::path labelVolume;  // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
   std::filesystem::path report;       // .json; empty = none
   std::filesystem::path preview;      // .png; empty = none
 };
