@@ -16,7 +16,8 @@ find_package(Eigen3 REQUIRED NO_MODULE)
 target_link_libraries(scansurf_draco INTERFACE Eigen3::Eigen)
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
-# DICOM RT Structure Sets and CT series (engine/io): Debian's DCMTK config, targets DCMTK::<module>.
+# DICOM RT Structure Sets and CT series (engine/io): Debian's DCMTK config, targets DCMTK::<module>;
+# DICOM SEG output uses DCMTK::dcmseg with dcmfg and dcmiod.
 find_package(DCMTK REQUIRED CONFIG)
 # Reconstruct series (XML, engine/io/reconstruct_reader.cpp): Debian's pugixml config,
 # target pugixml::pugixml.

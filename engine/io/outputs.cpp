@@ -8,6 +8,8 @@
 
 #include "geometry/compact_mesh.h"
 #include "io/atomic_file.h"
+#include "io/ct_series.h"
+#include "io/dicom_seg_writer.h"
 #include "io/draco_writer.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_writers.h"
@@ -111,6 +113,10 @@ Result<void> checkOutputs(const OutputPlan& plan) {
     SCANSURF_TRY(checkFile(plan.labelVolume, "label volume", "", seen));
     SCANSURF_TRY(checkFile(labelTablePathFor(plan.labelVolume, *format), "label table", "", seen));
   }
+  SCANSURF_TRY(checkFile(plan.dicomSeg, "DICOM SEG output", ".dcm", seen));
+  if (!plan.dicomSeg.empty() && plan.referenceSeries.empty())
+    return makeError(Errc::InvalidArgument, "DICOM SEG output '" + plan.dicomSeg.string() +
+                                                "' needs the CT series the label volume lies on (--reference CT_DIR)");
   SCANSURF_TRY(checkFile(plan.report, "report", ".json", seen));
   SCANSURF_TRY(checkFile(plan.preview, "preview", ".png", seen));
   return {};
@@ -297,6 +303,12 @@ Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, 
   return writeTableFile(labelTablePathFor(path, format), format, table);
 }
 
+Result<DicomSegSummary> writeDicomSeg(const fs::path& path, const ContourSet& contours, const LabelVolume& volume,
+                                      const fs::path& referenceSeriesDir) {
+  SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(referenceSeriesDir));
+  return writeDicomSegmentation(path, contours, volume, ct);
+}
+
 Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
   return writePng(path, image.width, image.height, image.rgba);
 }
@@ -335,6 +347,16 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
     }));
     SCANSURF_TRY(staging.stage(labelTablePathFor(plan.labelVolume, format),
                                [&](const fs::path& p) { return writeTableFile(p, format, table); }));
+  }
+  if (!plan.dicomSeg.empty()) {
+    if (plan.referenceSeries.empty())
+      return makeError(Errc::InvalidArgument, "DICOM SEG output '" + plan.dicomSeg.string() + "' needs a reference series");
+    SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(plan.referenceSeries));
+    SCANSURF_TRY(staging.stage(plan.dicomSeg, [&](const fs::path& p) -> Result<void> {
+      SCANSURF_ASSIGN_OR_RETURN(DicomSegSummary seg, writeDicomSegmentation(p, contours, volume, ct));
+      out.warnings.insert(out.warnings.end(), seg.warnings.begin(), seg.warnings.end());
+      return {};
+    }));
   }
   return out;
 }

@@ -94,6 +94,24 @@ std::filesystem::path labelTablePathFor(const std::filesystem::path& labelVolume
 // Errors: Errc::InvalidArgument for an unknown extension; Errc::Io naming the path.
 Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume);
 
+// What writeDicomSeg wrote.
+struct DicomSegSummary {
+  int segments = 0;                   // one per feature with a voxel inside the CT
+  int frames = 0;                     // one per segment and CT slice that holds part of it
+  std::vector<std::string> warnings;  // features left out; voxels beyond the CT's field of view
+};
+// The label volume as a DICOM Segmentation (BINARY, one segment per feature that has voxels;
+// the segments do not overlap, as in the label volume) on the grid of the CT series in
+// `referenceSeriesDir`: the CT's rows, columns, pixel spacing and slice positions, referencing
+// its images (Referenced Series, Derivation Image and Source Image Sequences), with its
+// patient, study and frame of reference. `volume` must lie on that CT's lattice, as build()
+// puts it when the contours were read with ReadOptions::referenceSeries and the grid options
+// set no voxel size or counts. Details: README, "DICOM SEG".
+// Errors: Errc::InvalidArgument (the volume is not on the CT lattice), Errc::InvalidInput (the
+// series cannot be read, or no feature has a voxel on it), Errc::Io naming the path,
+// Errc::Internal (DCMTK refused the object).
+Result<DicomSegSummary> writeDicomSeg(const std::filesystem::path& path, const ContourSet& contours,
+                                      const LabelVolume& volume, const std::filesystem::path& referenceSeriesDir);
 // An RGBA picture as PNG.
 Result<void> writePreview(const std::filesystem::path& path, const PreviewImage& image);
 
@@ -106,13 +124,17 @@ struct OutputPlan {
   bool multilabel = true;           // dir/multilabel.ply when Ply is among the formats
   SceneOptions scene;               // GLB (dracoOptions also for .drc; maxError from the grid when 0)
   std::filesystem::path labelVolume;  // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
+  std::filesystem::path dicomSeg;     // .dcm DICOM Segmentation on referenceSeries' grid; empty = none
+  std::filesystem::path referenceSeries;  // the CT folder the label volume lies on (for dicomSeg)
   std::filesystem::path report;       // .json; empty = none
   std::filesystem::path preview;      // .png; empty = none
 };
 
 // Checks, before any work, that every output of the plan can be written: directories exist or
-// can be created and accept files, extensions are known, no two outputs share a path.
-// Errors: Errc::InvalidArgument (unknown extension, clash), Errc::Io naming the path.
+// can be created and accept files, extensions are known, no two outputs share a path, a DICOM
+// SEG has its reference series.
+// Errors: Errc::InvalidArgument (unknown extension, clash, DICOM SEG without referenceSeries),
+// Errc::Io naming the path.
 Result<void> checkOutputs(const OutputPlan& plan);
 
 // Files written into staging folders beside their destinations (one per directory) and moved
@@ -146,8 +168,9 @@ struct SurfaceOutputs {
   std::vector<std::string> warnings;                      // e.g. a feature without a surface
 };
 
-// Stages the surfaces, scene and label volume of the plan (not its report or preview). A
-// feature with no triangles gets only its (empty) PLY, with a warning.
+// Stages the surfaces, scene, label volume and DICOM SEG of the plan (not its report or
+// preview). A feature with no triangles gets only its (empty) PLY, with a warning; the DICOM
+// SEG's warnings (writeDicomSeg) join them.
 Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
                                            const Surfaces& surfaces, const LabelVolume& volume);
 
