@@ -166,7 +166,7 @@ TEST_F(VolumeFormats, NiftiUncompressedUint16OnUnevenLayersIsResampled) {
   v.labels = {0, 300, 1, 2, 3, 4};
   ContourSet set;
   set.features.resize(300);
-  for (std::size_t f = 0; f < set.features.size(); ++f) set.features[f].name = "f" + std::to_string(f);
+  for (std::size_t f = 0; f < set.features.size(); ++f) set.features[f].name = std::to_string(f) + "th";
   const fs::path path = dir_ / "wide.nii";
   ASSERT_TRUE(writeLabelVolume(path, set, v));
   const std::string bytes = readFile(path);
