@@ -110,9 +110,8 @@ DatasetValues valuesOf(DcmDataset& ds, const CtSeries& ct) {
     v.sliceThickness = decimalString(gap > 0 ? gap : std::max(ct.spacingX, ct.spacingY));
   }
   Sint32 number = 0;
-  v.seriesNumber = std::to_string(ds.findAndGetSint32(DCM_SeriesNumber, number).good() && number >= 0 && number < 1000000
-                                      ? number + 1000
-                                      : 1000);
+  v.seriesNumber = std::to_string(
+      ds.findAndGetSint32(DCM_SeriesNumber, number).good() && number >= 0 && number < 1000000 ? number + 1000 : 1000);
   return v;
 }
 

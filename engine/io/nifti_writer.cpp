@@ -44,8 +44,8 @@ bool readsBackAs(const std::filesystem::path& path, const nifti_image& written) 
   NimPtr back(nifti_image_read(path.c_str(), 1));
   if (!back || !back->data) return false;
   const std::size_t bytes = static_cast<std::size_t>(written.nvox) * static_cast<std::size_t>(written.nbyper);
-  return back->datatype == written.datatype && back->nx == written.nx && back->ny == written.ny &&
-         back->nz == written.nz && static_cast<std::size_t>(back->nvox) * static_cast<std::size_t>(back->nbyper) == bytes &&
+  return back->datatype == written.datatype && back->nx == written.nx && back->ny == written.ny && back->nz == written.nz &&
+         static_cast<std::size_t>(back->nvox) * static_cast<std::size_t>(back->nbyper) == bytes &&
          std::memcmp(back->data, written.data, bytes) == 0;
 }
 
@@ -72,7 +72,8 @@ Result<void> writeNifti(const std::filesystem::path& path, const RegularLabelVol
 
   const int dims[8] = {3, volume.nx, volume.ny, volume.nz, 1, 1, 1, 1};
   NimPtr nim(nifti_make_new_nim(dims, bytes ? DT_UINT8 : DT_UINT16, 1));
-  if (!nim || !nim->data) return makeError(Errc::OutOfMemory, "cannot write '" + path.string() + "': no memory for the NIfTI image");
+  if (!nim || !nim->data)
+    return makeError(Errc::OutOfMemory, "cannot write '" + path.string() + "': no memory for the NIfTI image");
   if (bytes)
     std::copy(volume.labels.begin(), volume.labels.end(), static_cast<std::uint8_t*>(nim->data));
   else
@@ -89,8 +90,8 @@ Result<void> writeNifti(const std::filesystem::path& path, const RegularLabelVol
   nim->sto_xyz = m;
   nim->sto_ijk = nifti_mat44_inverse(m);
   float dx = 0, dy = 0, dz = 0, qfac = 1;
-  nifti_mat44_to_quatern(m, &nim->quatern_b, &nim->quatern_c, &nim->quatern_d, &nim->qoffset_x, &nim->qoffset_y,
-                         &nim->qoffset_z, &dx, &dy, &dz, &qfac);
+  nifti_mat44_to_quatern(m, &nim->quatern_b, &nim->quatern_c, &nim->quatern_d, &nim->qoffset_x, &nim->qoffset_y, &nim->qoffset_z,
+                         &dx, &dy, &dz, &qfac);
   nim->qfac = qfac;
   nim->qform_code = NIFTI_XFORM_SCANNER_ANAT;
   nim->qto_xyz = nifti_quatern_to_mat44(nim->quatern_b, nim->quatern_c, nim->quatern_d, nim->qoffset_x, nim->qoffset_y,
@@ -114,7 +115,8 @@ Result<void> writeNifti(const std::filesystem::path& path, const RegularLabelVol
       return makeError(Errc::Io, "cannot write '" + path.string() + "': the NIfTI library refused the file name");
     nifti_image_write(nim.get());
     if (!readsBackAs(temp, *nim))
-      return makeError(Errc::Io, "cannot write '" + path.string() + "': the file written does not read back (disk full or not writable?)");
+      return makeError(Errc::Io,
+                       "cannot write '" + path.string() + "': the file written does not read back (disk full or not writable?)");
     return {};
   });
 }

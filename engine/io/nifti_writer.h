@@ -13,8 +13,9 @@
 namespace scansurf {
 
 // NIfTI's world space is RAS ("+x = Right  +y = Anterior  +z = Superior", nifti1.h), while
-// scansurf's coordinates are DICOM patient LPS (+x = Left, +y = Posterior, +z = Superior). The voxel-to-world matrix is therefore diag(-1, -1, 1) times the LPS
-// geometry: voxel (i, j, k) lies at RAS (-x, -y, z) where (x, y, z) is its LPS centre.
+// scansurf's coordinates are DICOM patient LPS (+x = Left, +y = Posterior, +z = Superior). The
+// voxel-to-world matrix is therefore diag(-1, -1, 1) times the LPS geometry: voxel (i, j, k)
+// lies at RAS (-x, -y, z) where (x, y, z) is its LPS centre.
 struct NiftiAffine {
   double m[3][4] = {};  // rows x, y, z of the 3x4 voxel -> RAS mm matrix
 };

@@ -53,7 +53,7 @@ Result<VolumeFormat> volumeFormatOf(const fs::path& path) {
     if (hasExtension(path, ext)) return VolumeFormat::Nrrd;
   for (const char* ext : {".nii", ".nii.gz"})
     if (hasExtension(path, ext)) return VolumeFormat::Nifti;
-  std::string message = "'";  // (not "'" + path.string(): GCC 12 warns falsely, -Wrestrict)
+  std::string message = "'";  // not "'" + path.string(): GCC 12 warns -Wrestrict in error (GCC bug 105329)
   message += path.string();
   message += "': unknown format (known: .nrrd, .seg.nrrd, .nii, .nii.gz)";
   return makeError(Errc::InvalidArgument, message);
@@ -342,9 +342,8 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   if (!plan.labelVolume.empty()) {
     SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(plan.labelVolume));
     const std::vector<LabelEntry> table = labelTable(contours);
-    SCANSURF_TRY(staging.stage(plan.labelVolume, [&](const fs::path& p) {
-      return writeVolumeFile(p, format, contours, regularize(volume), table);
-    }));
+    SCANSURF_TRY(staging.stage(
+        plan.labelVolume, [&](const fs::path& p) { return writeVolumeFile(p, format, contours, regularize(volume), table); }));
     SCANSURF_TRY(staging.stage(labelTablePathFor(plan.labelVolume, format),
                                [&](const fs::path& p) { return writeTableFile(p, format, table); }));
   }

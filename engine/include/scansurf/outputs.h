@@ -110,8 +110,8 @@ struct DicomSegSummary {
 // Errors: Errc::InvalidArgument (the volume is not on the CT lattice), Errc::InvalidInput (the
 // series cannot be read, or no feature has a voxel on it), Errc::Io naming the path,
 // Errc::Internal (DCMTK refused the object).
-Result<DicomSegSummary> writeDicomSeg(const std::filesystem::path& path, const ContourSet& contours,
-                                      const LabelVolume& volume, const std::filesystem::path& referenceSeriesDir);
+Result<DicomSegSummary> writeDicomSeg(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume,
+                                      const std::filesystem::path& referenceSeriesDir);
 // An RGBA picture as PNG.
 Result<void> writePreview(const std::filesystem::path& path, const PreviewImage& image);
 
@@ -123,8 +123,8 @@ struct OutputPlan {
   std::filesystem::path glbFile;    // a scene at this exact path; empty = none
   bool multilabel = true;           // dir/multilabel.ply when Ply is among the formats
   SceneOptions scene;               // GLB (dracoOptions also for .drc; maxError from the grid when 0)
-  std::filesystem::path labelVolume;  // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
-  std::filesystem::path dicomSeg;     // .dcm DICOM Segmentation on referenceSeries' grid; empty = none
+  std::filesystem::path labelVolume;      // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
+  std::filesystem::path dicomSeg;         // .dcm DICOM Segmentation on referenceSeries' grid; empty = none
   std::filesystem::path referenceSeries;  // the CT folder the label volume lies on (for dicomSeg)
   std::filesystem::path report;       // .json; empty = none
   std::filesystem::path preview;      // .png; empty = none
