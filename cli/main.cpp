@@ -50,6 +50,12 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
   }
   plan.scene = o.scene;
   plan.labelVolume = o.labelVolume;
+  plan.dicomSeg = o.dicomSeg;
+  plan.referenceSeries = o.read.referenceSeries;
+  if (!o.dicomSeg.empty() && !plan.referenceSeries.empty() && (o.build.grid.voxelSize > 0 || o.build.grid.nx > 0))
+    return makeError(Errc::InvalidArgument,
+                     "--dicom-seg writes the label volume on the --reference CT's grid; "
+                     "leave out --voxel-size and --grid");
   plan.report = o.report;
   plan.preview = o.preview;
   SCANSURF_TRY(checkOutputs(plan));

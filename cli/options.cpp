@@ -13,7 +13,8 @@ namespace {
 constexpr const char* kFooter =
     "Outputs: OUTDIR/<feature>.ply (one closed surface per feature, outward), OUTDIR/multilabel.ply\n"
     "(every separating surface, each face with its two labels; label = feature index + 1); other formats\n"
-    "with --format (glb: one scene OUTDIR/<input name>.glb); -o NAME.glb writes one Draco-compressed glTF scene instead.\n"
+    "with --format (glb: one scene OUTDIR/<input name>.glb); -o NAME.glb writes one Draco-compressed glTF scene instead;\n"
+    "--label-volume (.nrrd, .seg.nrrd, .nii, .nii.gz) and --dicom-seg (needs --reference) write the label volume.\n"
     "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal,\n"
     "8 out of memory.\n"
     "Environment: SCANSURF_DEVICE (device index or name), SCANSURF_VALIDATION=1, SCANSURF_THREADS.";
@@ -107,8 +108,13 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--draco-level", draco.compressionLevel, "Draco compression level, 0 fastest .. 10 smallest")
       ->check(CLI::Range(0, 10))
       ->capture_default_str();
-  app.add_option("--label-volume", o.labelVolume, "write the label volume as NRRD (.nrrd; *.seg.nrrd opens as a Slicer "
-                                                  "segmentation) plus its label table (.ctbl)");
+  app.add_option("--label-volume", o.labelVolume,
+                 "write the label volume by extension: .nrrd or .seg.nrrd (LPS; a .seg.nrrd opens as a Slicer "
+                 "segmentation) with its label table F.ctbl, or .nii / .nii.gz (NIfTI-1, RAS: x and y negated) "
+                 "with an ITK-SNAP label table F.label.txt");
+  app.add_option("--dicom-seg", o.dicomSeg,
+                 "write the label volume as a DICOM Segmentation (.dcm) on the --reference CT's grid, one segment per "
+                 "feature, referencing the CT images");
   app.add_option("--report", o.report, "write a JSON report: per-feature statistics, parameters, device, timings");
   app.add_option("--preview", o.preview, "render a picture of the surfaces on the Vulkan device (.png)");
   app.add_option("--view", o.view, "preview camera")

@@ -26,7 +26,7 @@ struct CliOptions {
   ReadOptions read;
   std::vector<std::string> formats;  // --format, before parsing into MeshFormat
   SceneOptions scene;
-  std::string labelVolume, report, preview;
+  std::string labelVolume, dicomSeg, report, preview;
   std::string view = "oblique";
   std::vector<unsigned> previewSize;
 };

@@ -16,11 +16,22 @@ find_package(Eigen3 REQUIRED NO_MODULE)
 target_link_libraries(scansurf_draco INTERFACE Eigen3::Eigen)
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
-# DICOM RT Structure Sets and CT series (engine/io): Debian's DCMTK config, targets DCMTK::<module>.
+# DICOM RT Structure Sets and CT series (engine/io): Debian's DCMTK config, targets DCMTK::<module>;
+# DICOM SEG output uses DCMTK::dcmseg with dcmfg and dcmiod.
 find_package(DCMTK REQUIRED CONFIG)
 # Reconstruct series (XML, engine/io/reconstruct_reader.cpp): Debian's pugixml config,
 # target pugixml::pugixml.
 find_package(pugixml REQUIRED CONFIG)
+# NIfTI label volumes (engine/io/nifti_writer.cpp): the NIfTI reference library's nifti1_io and
+# znzlib from libnifti2-dev (which pulls in libniftiio-dev and libznz-dev). Its CMake config
+# cannot be used on Debian 12: NIFTITargets-none.cmake names /usr/lib/libznz.so.3.0.0 and
+# /usr/bin/nifti_tool, which the packages do not install (the libraries are in the multiarch
+# directory), so find_package(NIFTI CONFIG) stops with a fatal error; and the packages ship no
+# pkg-config file. Hence a plain header and library search.
+find_path(SCANSURF_NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)
+find_library(SCANSURF_NIFTIIO_LIBRARY niftiio REQUIRED)
+find_library(SCANSURF_ZNZ_LIBRARY znz REQUIRED)
+set(SCANSURF_NIFTI_LIBRARIES "${SCANSURF_NIFTIIO_LIBRARY}" "${SCANSURF_ZNZ_LIBRARY}" ZLIB::ZLIB)
 if(SCANSURF_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -1,6 +1,7 @@
 // Write-to-temporary-then-rename, the POSIX way to replace a file atomically.
 #include "io/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -14,6 +15,12 @@ namespace scansurf {
 namespace {
 
 std::string systemError(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+// pid and a process-wide counter keep concurrent writers (threads or processes) apart.
+std::string uniqueSuffix() {
+  static std::atomic<unsigned> counter{0};
+  return std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
 
 Unexpected ioError(const std::string& what, const std::filesystem::path& path, const std::string& why) {
   return makeError(Errc::Io, what + " '" + path.string() + "': " + why);
@@ -50,10 +57,8 @@ void AtomicFile::discard() {
 }
 
 Result<AtomicFile> AtomicFile::create(const std::filesystem::path& target) {
-  // pid and a process-wide counter keep concurrent writers (threads or processes) apart.
-  static std::atomic<unsigned> counter{0};
   std::filesystem::path temp = target;
-  temp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  temp += ".tmp-" + uniqueSuffix();
   errno = 0;
   std::FILE* file = std::fopen(temp.c_str(), "wbx");  // x: never clobber an existing file
   if (!file) return ioError("cannot create a temporary file for", target, temp.string() + ": " + systemError(errno));
@@ -103,6 +108,42 @@ Result<void> writeFileAtomically(const std::filesystem::path& target,
 
 Result<void> writeFileAtomically(const std::filesystem::path& target, const void* data, std::size_t size) {
   return writeFileAtomically(target, [&](AtomicFile& file) { return file.write(data, size); });
+}
+
+Result<void> writeThroughTemporaryPath(const std::filesystem::path& target, const std::string& suffix,
+                                       const std::function<Result<void>(const std::filesystem::path& temporary)>& write) {
+  const std::filesystem::path parent = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp-";
+  name += uniqueSuffix();
+  name += suffix;
+  const std::filesystem::path temp = parent / name;
+  auto removeTemp = [&] {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+  };
+  Result<void> written = write(temp);
+  if (!written) {
+    removeTemp();
+    return written;
+  }
+  errno = 0;
+  const int fd = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC);
+  const bool synced = fd >= 0 && ::fsync(fd) == 0;
+  const int syncError = errno;
+  if (fd >= 0) ::close(fd);
+  if (!synced) {
+    removeTemp();
+    return ioError("cannot write", temp, systemError(syncError));
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, target, ec);
+  if (ec) {
+    removeTemp();
+    return ioError("cannot replace", target, ec.message());
+  }
+  return {};
 }
 
 Result<void> ensureWritableDirectory(const std::filesystem::path& directory) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <string>
 
 #include "scansurf/result.h"
 
@@ -50,6 +51,13 @@ Result<void> writeFileAtomically(const std::filesystem::path& target,
                                  const std::function<Result<void>(AtomicFile& file)>& writeContents);
 // The same for contents already in memory: size bytes at data.
 Result<void> writeFileAtomically(const std::filesystem::path& target, const void* data, std::size_t size);
+// For writers whose library opens the file itself (by name): calls write(temporary) with a
+// fresh path beside `target` whose name ends in `suffix` (libraries that choose the encoding by
+// the name, such as nifti's ".nii.gz", need it), then syncs the file and renames it over
+// `target`. After an error from write, the sync or the rename, the temporary file is removed
+// and `target` is untouched. Errors: write's own, or Errc::Io naming the path.
+Result<void> writeThroughTemporaryPath(const std::filesystem::path& target, const std::string& suffix,
+                                       const std::function<Result<void>(const std::filesystem::path& temporary)>& write);
 
 // Creates `directory` (and its parents) if missing and checks that files can be created in
 // it, so a run fails before its work rather than after. Errors (Errc::Io) name the path.

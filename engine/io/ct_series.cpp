@@ -22,6 +22,7 @@ constexpr double kGeometryTolerance = 1e-3;
 struct Image {
   std::string file;
   std::string seriesUid, frameUid, modality;
+  std::string sopClassUid, sopInstanceUid;
   int rows = 0, columns = 0;
   double position[3] = {0, 0, 0};
   double spacing[2] = {0, 0};  // row spacing (y), column spacing (x)
@@ -65,6 +66,9 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
     if (ds.findAndGetOFString(DCM_SeriesInstanceUID, text).good()) image.seriesUid = text.c_str();
     if (ds.findAndGetOFString(DCM_FrameOfReferenceUID, text).good()) image.frameUid = text.c_str();
     if (ds.findAndGetOFString(DCM_Modality, text).good()) image.modality = text.c_str();
+    if (ds.findAndGetOFString(DCM_SOPClassUID, text).good()) image.sopClassUid = text.c_str();
+    if (ds.findAndGetOFString(DCM_SOPInstanceUID, text).good()) image.sopInstanceUid = text.c_str();
+    if (image.sopInstanceUid.empty()) return invalid(file + ": missing SOP Instance UID (0008,0018)");
     Uint16 rows = 0, columns = 0;
     if (ds.findAndGetUint16(DCM_Rows, rows).bad() || rows == 0) return invalid(file + ": missing Rows (0028,0010)");
     if (ds.findAndGetUint16(DCM_Columns, columns).bad() || columns == 0)
@@ -119,6 +123,10 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
   for (std::size_t i = 1; i < images.size(); ++i)
     if (images[i].position[2] - images[i - 1].position[2] <= kGeometryTolerance)
       return invalid(images[i].file + ": at z=" + formatNumber(images[i].position[2]) + " like " + images[i - 1].file);
+  std::map<std::string, const Image*> byUid;
+  for (const Image& image : images)
+    if (const auto [at, added] = byUid.emplace(image.sopInstanceUid, &image); !added)
+      return invalid(image.file + ": SOP Instance UID " + image.sopInstanceUid + " is also that of " + at->second->file);
 
   CtSeries ct;
   ct.directory = dir;
@@ -134,6 +142,8 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
   for (const Image& image : images) {
     ct.sliceZ.push_back(image.position[2]);
     ct.files.push_back(image.file);
+    ct.sopClassUids.push_back(image.sopClassUid);
+    ct.sopInstanceUids.push_back(image.sopInstanceUid);
   }
   return ct;
 }

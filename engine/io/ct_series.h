@@ -25,7 +25,11 @@ struct CtSeries {
   double originX = 0;    // Image Position (Patient) x, y: the centre of the first pixel
   double originY = 0;
   std::vector<double> sliceZ;  // Image Position (Patient) z of each image, increasing
-  std::vector<std::string> files;  // in sliceZ order
+  // Per image, in sliceZ order: its file and SOP Class / SOP Instance UIDs (for references
+  // to the images from derived objects such as a DICOM SEG).
+  std::vector<std::string> files;
+  std::vector<std::string> sopClassUids;
+  std::vector<std::string> sopInstanceUids;
 };
 
 // Reads the geometry of the one image series in a directory (files that are not DICOM
@@ -34,7 +38,7 @@ struct CtSeries {
 // image; more than one series; a missing Image Position / Image Orientation / Pixel Spacing /
 // Rows / Columns; an orientation other than axial rows along +x and columns along +y
 // (1\0\0\0\1\0); images that differ in size, spacing or in-plane position; two images at
-// one z.
+// one z; an image without SOP Instance UID (0008,0018), or two images with the same one.
 Result<CtSeries> readCtSeries(const std::filesystem::path& directory);
 
 // The explicit grid reference for makeGrid: the CT's pixel lattice and slice positions.

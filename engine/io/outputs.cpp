@@ -8,18 +8,35 @@
 
 #include "geometry/compact_mesh.h"
 #include "io/atomic_file.h"
+#include "io/ct_series.h"
+#include "io/dicom_seg_writer.h"
 #include "io/draco_writer.h"
-#include "io/png_writer.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_writers.h"
+#include "io/nifti_writer.h"
 #include "io/nrrd_writer.h"
 #include "io/ply_writer.h"
+#include "io/png_writer.h"
 #include "scansurf/nesting.h"
 #include "scansurf/palette.h"
 
 namespace fs = std::filesystem;
 
 namespace scansurf {
+namespace {
+
+std::string lowerName(const fs::path& path) {
+  std::string name = path.filename().string();
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name;
+}
+
+bool hasExtension(const fs::path& path, const std::string& ext) {
+  const std::string name = lowerName(path);
+  return name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0;
+}
+
+}  // namespace
 
 std::string fileStem(const std::string& name, std::vector<std::string>& used) {
   std::string stem;
@@ -29,6 +46,23 @@ std::string fileStem(const std::string& name, std::vector<std::string>& used) {
   for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n) unique = stem + "_" + std::to_string(n);
   used.push_back(unique);
   return unique;
+}
+
+Result<VolumeFormat> volumeFormatOf(const fs::path& path) {
+  for (const char* ext : {".nrrd"})
+    if (hasExtension(path, ext)) return VolumeFormat::Nrrd;
+  for (const char* ext : {".nii", ".nii.gz"})
+    if (hasExtension(path, ext)) return VolumeFormat::Nifti;
+  std::string message = "'";  // not "'" + path.string(): GCC 12 warns -Wrestrict in error (GCC bug 105329)
+  message += path.string();
+  message += "': unknown format (known: .nrrd, .seg.nrrd, .nii, .nii.gz)";
+  return makeError(Errc::InvalidArgument, message);
+}
+
+fs::path labelTablePathFor(const fs::path& labelVolume, VolumeFormat format) {
+  if (format == VolumeFormat::Nifti) return itkSnapLabelPathFor(labelVolume);
+  fs::path table = labelVolume;
+  return table.replace_extension(".ctbl");
 }
 
 Result<MeshFormat> parseMeshFormat(std::string_view name) {
@@ -53,15 +87,10 @@ const char* extensionOf(MeshFormat format) {
 
 namespace {
 
-bool hasExtension(const fs::path& path, const std::string& ext) {
-  std::string e = path.extension().string();
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e == ext;
-}
-
+// ext empty: the caller checked the format.
 Result<void> checkFile(const fs::path& path, const char* what, const std::string& ext, std::vector<fs::path>& seen) {
   if (path.empty()) return {};
-  if (!hasExtension(path, ext))
+  if (!ext.empty() && !hasExtension(path, ext))
     return makeError(Errc::InvalidArgument, std::string(what) + " '" + path.string() + "': unknown format (expected a " + ext +
                                                 " file)");
   const fs::path full = fs::absolute(path).lexically_normal();
@@ -78,7 +107,16 @@ Result<void> checkOutputs(const OutputPlan& plan) {
   std::vector<fs::path> seen;
   if (!plan.dir.empty()) SCANSURF_TRY(ensureWritableDirectory(plan.dir));
   SCANSURF_TRY(checkFile(plan.glbFile, "GLB output", ".glb", seen));
-  SCANSURF_TRY(checkFile(plan.labelVolume, "label volume", ".nrrd", seen));
+  if (!plan.labelVolume.empty()) {
+    auto format = volumeFormatOf(plan.labelVolume);
+    if (!format) return makeError(Errc::InvalidArgument, "label volume " + format.error().message);
+    SCANSURF_TRY(checkFile(plan.labelVolume, "label volume", "", seen));
+    SCANSURF_TRY(checkFile(labelTablePathFor(plan.labelVolume, *format), "label table", "", seen));
+  }
+  SCANSURF_TRY(checkFile(plan.dicomSeg, "DICOM SEG output", ".dcm", seen));
+  if (!plan.dicomSeg.empty() && plan.referenceSeries.empty())
+    return makeError(Errc::InvalidArgument, "DICOM SEG output '" + plan.dicomSeg.string() +
+                                                "' needs the CT series the label volume lies on (--reference CT_DIR)");
   SCANSURF_TRY(checkFile(plan.report, "report", ".json", seen));
   SCANSURF_TRY(checkFile(plan.preview, "preview", ".png", seen));
   return {};
@@ -189,6 +227,17 @@ DracoOptions dracoFor(const DracoOptions& options, const Grid& grid) {
   return draco;
 }
 
+Result<void> writeVolumeFile(const fs::path& path, VolumeFormat format, const ContourSet& contours,
+                             const RegularLabelVolume& volume, const std::vector<LabelEntry>& table) {
+  if (format == VolumeFormat::Nifti) return writeNifti(path, volume, contours.units);
+  return writeNrrd(path, volume, table);
+}
+
+Result<void> writeTableFile(const fs::path& path, VolumeFormat format, const std::vector<LabelEntry>& table) {
+  if (format == VolumeFormat::Nifti) return writeItkSnapLabels(path, table);
+  return writeLabelTable(path, table);
+}
+
 bool has(const std::vector<MeshFormat>& formats, MeshFormat f) {
   return std::find(formats.begin(), formats.end(), f) != formats.end();
 }
@@ -248,10 +297,16 @@ Result<void> writeScene(const fs::path& path, const ContourSet& contours, const 
 }
 
 Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, const LabelVolume& volume) {
+  SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(path));
   const std::vector<LabelEntry> table = labelTable(contours);
-  SCANSURF_TRY(writeNrrd(path, regularize(volume), table));
-  fs::path tablePath = path;
-  return writeLabelTable(tablePath.replace_extension(".ctbl"), table);
+  SCANSURF_TRY(writeVolumeFile(path, format, contours, regularize(volume), table));
+  return writeTableFile(labelTablePathFor(path, format), format, table);
+}
+
+Result<DicomSegSummary> writeDicomSeg(const fs::path& path, const ContourSet& contours, const LabelVolume& volume,
+                                      const fs::path& referenceSeriesDir) {
+  SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(referenceSeriesDir));
+  return writeDicomSegmentation(path, contours, volume, ct);
 }
 
 Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
@@ -285,11 +340,22 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
       if (surfaces.features[f].triangleCount() > 0) out.files[f].push_back(target);
   }
   if (!plan.labelVolume.empty()) {
+    SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(plan.labelVolume));
     const std::vector<LabelEntry> table = labelTable(contours);
-    SCANSURF_TRY(staging.stage(plan.labelVolume, [&](const fs::path& p) { return writeNrrd(p, regularize(volume), table); }));
-    fs::path tablePath = plan.labelVolume;
-    tablePath.replace_extension(".ctbl");
-    SCANSURF_TRY(staging.stage(tablePath, [&](const fs::path& p) { return writeLabelTable(p, table); }));
+    SCANSURF_TRY(staging.stage(
+        plan.labelVolume, [&](const fs::path& p) { return writeVolumeFile(p, format, contours, regularize(volume), table); }));
+    SCANSURF_TRY(staging.stage(labelTablePathFor(plan.labelVolume, format),
+                               [&](const fs::path& p) { return writeTableFile(p, format, table); }));
+  }
+  if (!plan.dicomSeg.empty()) {
+    if (plan.referenceSeries.empty())
+      return makeError(Errc::InvalidArgument, "DICOM SEG output '" + plan.dicomSeg.string() + "' needs a reference series");
+    SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(plan.referenceSeries));
+    SCANSURF_TRY(staging.stage(plan.dicomSeg, [&](const fs::path& p) -> Result<void> {
+      SCANSURF_ASSIGN_OR_RETURN(DicomSegSummary seg, writeDicomSegmentation(p, contours, volume, ct));
+      out.warnings.insert(out.warnings.end(), seg.warnings.begin(), seg.warnings.end());
+      return {};
+    }));
   }
   return out;
 }

@@ -120,16 +120,42 @@ void writeTestRtStruct(const TestRtStruct& rt, const std::filesystem::path& path
   save(file, path, rt.fileHeader);
 }
 
+std::string testCtInstanceUid(const TestCt& ct, std::size_t k) {
+  // Distinct per series: the last component of the series UID, then the image number.
+  const std::string series = ct.seriesUid.substr(ct.seriesUid.rfind('.') + 1);
+  return "1.2.826.0.1.3680043.2.1125.9.10." + series + "." + std::to_string(k + 1);
+}
+
 void writeTestCtSeries(const TestCt& ct, const std::filesystem::path& directory) {
   std::filesystem::create_directories(directory);
   for (std::size_t k = 0; k < ct.sliceZ.size(); ++k) {
     DcmFileFormat file;
     DcmDataset& ds = *file.getDataset();
     put(ds, DCM_SOPClassUID, UID_CTImageStorage);
-    put(ds, DCM_SOPInstanceUID, "1.2.826.0.1.3680043.2.1125.9.10." + std::to_string(k + 1));
+    put(ds, DCM_SOPInstanceUID, testCtInstanceUid(ct, k));
     put(ds, DCM_Modality, "CT");
+    put(ds, DCM_PatientName, ct.patientName);
+    put(ds, DCM_PatientID, ct.patientId);
+    put(ds, DCM_PatientBirthDate, "");
+    put(ds, DCM_PatientSex, "O");
+    put(ds, DCM_StudyInstanceUID, ct.studyUid);
+    put(ds, DCM_StudyDate, "20240101");
+    put(ds, DCM_StudyTime, "120000");
+    put(ds, DCM_ReferringPhysicianName, "");
+    put(ds, DCM_StudyID, "1");
+    put(ds, DCM_AccessionNumber, "");
     put(ds, DCM_SeriesInstanceUID, ct.seriesUid);
+    put(ds, DCM_SeriesNumber, "2");
     put(ds, DCM_FrameOfReferenceUID, ct.frameOfReferenceUid);
+    put(ds, DCM_PositionReferenceIndicator, "");
+    put(ds, DCM_Manufacturer, "scansurf tests");
+    put(ds, DCM_InstanceNumber, std::to_string(k + 1));
+    put(ds, DCM_ImageType, "ORIGINAL\\PRIMARY\\AXIAL");
+    put(ds, DCM_KVP, "120");
+    put(ds, DCM_AcquisitionNumber, "1");
+    put(ds, DCM_RescaleIntercept, "0");
+    put(ds, DCM_RescaleSlope, "1");
+    if (ct.sliceThickness > 0) put(ds, DCM_SliceThickness, formatNumber(ct.sliceThickness));
     put(ds, DCM_ImagePositionPatient, join({ct.originX, ct.originY, ct.sliceZ[k]}));
     put(ds, DCM_ImageOrientationPatient, join(std::vector<double>(ct.orientation.begin(), ct.orientation.end())));
     put(ds, DCM_PixelSpacing, join({ct.spacingY, ct.spacingX}));

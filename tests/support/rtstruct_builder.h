@@ -54,9 +54,19 @@ struct TestCt {
   std::array<double, 6> orientation{1, 0, 0, 0, 1, 0};
   std::string seriesUid = "1.2.826.0.1.3680043.2.1125.9.2";
   std::string frameOfReferenceUid = "1.2.826.0.1.3680043.2.1125.9.1";
+  // Patient, study and series attributes a derived object (a DICOM SEG) copies.
+  std::string patientName = "Test^Phantom";
+  std::string patientId = "SCANSURF-TEST";
+  std::string studyUid = "1.2.826.0.1.3680043.2.1125.9.4";
+  double sliceThickness = 0;  // 0: not written
 };
 
-// Writes one CT image file per slice (zero pixels) into directory, named ct_<k>.dcm.
+// The SOP Instance UID writeTestCtSeries gives image k (0-based) of a series.
+std::string testCtInstanceUid(const TestCt& ct, std::size_t k);
+
+// Writes one CT image file per slice (zero pixels) into directory, named ct_<k>.dcm, with the
+// attributes of the CT Image IOD's mandatory modules (patient, study, series, frame of
+// reference, equipment, image plane, image pixel, CT image, SOP common).
 void writeTestCtSeries(const TestCt& ct, const std::filesystem::path& directory);
 
 // A closed contour from (x, y) points on plane z.

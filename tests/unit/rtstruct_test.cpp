@@ -36,7 +36,6 @@ std::vector<Point2> square(double x0, double y0, double x1, double y1) { return 
 
 class Dicom : public test::ScratchDirTest {
  protected:
-
   fs::path write(const TestRtStruct& rt, const std::string& name = "rt.dcm") {
     const fs::path p = dir_ / name;
     test::writeTestRtStruct(rt, p);
@@ -496,6 +495,12 @@ TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
   EXPECT_DOUBLE_EQ(series->spacingY, 0.9);
   EXPECT_EQ(series->sliceZ, ct.sliceZ);
   EXPECT_EQ(series->files.size(), 6u);
+  ASSERT_EQ(series->sopInstanceUids.size(), 6u);
+  ASSERT_EQ(series->sopClassUids.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(series->sopInstanceUids[k], test::testCtInstanceUid(ct, k));
+    EXPECT_EQ(series->sopClassUids[k], "1.2.840.10008.5.1.4.1.1.2");  // CT Image Storage
+  }
 
   auto r = readRtStruct(dir_ / "ct" / "rt.dcm");
   ASSERT_TRUE(r) << r.error().message;
@@ -571,6 +576,17 @@ TEST_F(Dicom, ReferenceSeriesErrors) {
   r = readCtSeries(dir_ / "two");
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().message.find("holds more than one series"), std::string::npos) << r.error().message;
+
+  // Two images that claim one SOP Instance UID (a copy at another z).
+  test::TestCt copy = a;
+  copy.sliceZ = {2};
+  test::writeTestCtSeries(a, dir_ / "dup");
+  test::writeTestCtSeries(copy, dir_ / "dup" / "sub");
+  fs::rename(dir_ / "dup" / "sub" / "ct_0.dcm", dir_ / "dup" / "copy.dcm");
+  r = readCtSeries(dir_ / "dup");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("SOP Instance UID " + test::testCtInstanceUid(a, 0) + " is also that of"), std::string::npos)
+      << r.error().message;
 }
 
 // ---------------------------------------------------------------------------------------

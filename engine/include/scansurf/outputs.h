@@ -70,9 +70,48 @@ Result<void> writeMultiLabelMesh(const std::filesystem::path& path, const Surfac
 // One binary glTF scene (.glb): a named, coloured node per feature with a surface.
 Result<void> writeScene(const std::filesystem::path& path, const ContourSet& contours, const Surfaces& surfaces,
                         const SceneOptions& options = {});
-// The label volume as gzip NRRD (3D Slicer segment keys; *.seg.nrrd opens as a segmentation)
-// and its label table (3D Slicer colour table) at `path` with the extension .ctbl.
+// Label volume formats, chosen by the file name (case-insensitive).
+enum class VolumeFormat {
+  Nrrd,   // F.nrrd, F.seg.nrrd: gzip NRRD, LPS, with the label table F.ctbl (3D Slicer colour table)
+  Nifti,  // F.nii, F.nii.gz: NIfTI-1 (gzip for .nii.gz), RAS, with the label table F.label.txt (ITK-SNAP)
+};
+// The format of a label volume path; else an Errc::InvalidArgument error naming the known
+// extensions (.nrrd, .seg.nrrd, .nii, .nii.gz).
+Result<VolumeFormat> volumeFormatOf(const std::filesystem::path& path);
+// The label table written beside a label volume: F.ctbl for F.nrrd (F.seg.ctbl for
+// F.seg.nrrd), F.label.txt for F.nii and F.nii.gz.
+std::filesystem::path labelTablePathFor(const std::filesystem::path& labelVolume, VolumeFormat format);
+
+// The label volume (label = feature index + 1, 0 = background) in the format of `path`'s
+// extension, plus its label table beside it (labelTablePathFor). Unevenly spaced layers are
+// resampled along z onto even planes first (nearest layer; see regularize in the README).
+// - NRRD: gzip, `space: left-posterior-superior`, 3D Slicer segment keys (*.seg.nrrd opens as a
+//   named, coloured segmentation), the table in Slicer's colour-table format.
+// - NIfTI-1 through the NIfTI reference library: uint8 (uint16 when a label exceeds 255),
+//   intent LABEL; qform and sform map voxels to RAS mm, i.e. scansurf's LPS x and y negated, so
+//   the volume overlays the surfaces in RAS tools (ITK-SNAP, FSL, nibabel, 3D Slicer); the
+//   table in ITK-SNAP's label description format.
+// Errors: Errc::InvalidArgument for an unknown extension; Errc::Io naming the path.
 Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume);
+
+// What writeDicomSeg wrote.
+struct DicomSegSummary {
+  int segments = 0;                   // one per feature with a voxel inside the CT
+  int frames = 0;                     // one per segment and CT slice that holds part of it
+  std::vector<std::string> warnings;  // features left out; voxels beyond the CT's field of view
+};
+// The label volume as a DICOM Segmentation (BINARY, one segment per feature that has voxels;
+// the segments do not overlap, as in the label volume) on the grid of the CT series in
+// `referenceSeriesDir`: the CT's rows, columns, pixel spacing and slice positions, referencing
+// its images (Referenced Series, Derivation Image and Source Image Sequences), with its
+// patient, study and frame of reference. `volume` must lie on that CT's lattice, as build()
+// puts it when the contours were read with ReadOptions::referenceSeries and the grid options
+// set no voxel size or counts. Details: README, "DICOM SEG".
+// Errors: Errc::InvalidArgument (the volume is not on the CT lattice), Errc::InvalidInput (the
+// series cannot be read, or no feature has a voxel on it), Errc::Io naming the path,
+// Errc::Internal (DCMTK refused the object).
+Result<DicomSegSummary> writeDicomSeg(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume,
+                                      const std::filesystem::path& referenceSeriesDir);
 // An RGBA picture as PNG.
 Result<void> writePreview(const std::filesystem::path& path, const PreviewImage& image);
 
@@ -84,14 +123,18 @@ struct OutputPlan {
   std::filesystem::path glbFile;    // a scene at this exact path; empty = none
   bool multilabel = true;           // dir/multilabel.ply when Ply is among the formats
   SceneOptions scene;               // GLB (dracoOptions also for .drc; maxError from the grid when 0)
-  std::filesystem::path labelVolume;  // .nrrd (+ .ctbl beside it); empty = none
+  std::filesystem::path labelVolume;      // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
+  std::filesystem::path dicomSeg;         // .dcm DICOM Segmentation on referenceSeries' grid; empty = none
+  std::filesystem::path referenceSeries;  // the CT folder the label volume lies on (for dicomSeg)
   std::filesystem::path report;       // .json; empty = none
   std::filesystem::path preview;      // .png; empty = none
 };
 
 // Checks, before any work, that every output of the plan can be written: directories exist or
-// can be created and accept files, extensions are known, no two outputs share a path.
-// Errors: Errc::InvalidArgument (unknown extension, clash), Errc::Io naming the path.
+// can be created and accept files, extensions are known, no two outputs share a path, a DICOM
+// SEG has its reference series.
+// Errors: Errc::InvalidArgument (unknown extension, clash, DICOM SEG without referenceSeries),
+// Errc::Io naming the path.
 Result<void> checkOutputs(const OutputPlan& plan);
 
 // Files written into staging folders beside their destinations (one per directory) and moved
@@ -125,8 +168,9 @@ struct SurfaceOutputs {
   std::vector<std::string> warnings;                      // e.g. a feature without a surface
 };
 
-// Stages the surfaces, scene and label volume of the plan (not its report or preview). A
-// feature with no triangles gets only its (empty) PLY, with a warning.
+// Stages the surfaces, scene, label volume and DICOM SEG of the plan (not its report or
+// preview). A feature with no triangles gets only its (empty) PLY, with a warning; the DICOM
+// SEG's warnings (writeDicomSeg) join them.
 Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
                                            const Surfaces& surfaces, const LabelVolume& volume);
 

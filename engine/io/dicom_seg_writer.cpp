@@ -1,0 +1,285 @@
+// DICOM Segmentation writer (PS3.3 A.51 Segmentation IOD, C.8.20 Segmentation Image Module,
+// C.7.6.16 functional groups) with DCMTK's dcmseg: segments, frames and functional groups are
+// built through its API, which checks the object before it is written.
+#include "io/dicom_seg_writer.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmfg/fgderimg.h>
+#include <dcmtk/dcmfg/fgfracon.h>
+#include <dcmtk/dcmfg/fgpixmsr.h>
+#include <dcmtk/dcmfg/fgplanor.h>
+#include <dcmtk/dcmfg/fgplanpo.h>
+#include <dcmtk/dcmiod/cielabutil.h>
+#include <dcmtk/dcmiod/iodmacro.h>
+#include <dcmtk/dcmiod/modcommoninstanceref.h>
+#include <dcmtk/dcmseg/segdoc.h>
+#include <dcmtk/dcmseg/segment.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "geometry/validate.h"
+#include "io/atomic_file.h"
+#include "io/dicom_common.h"
+#include "scansurf/palette.h"
+#include "scansurf/version.h"
+
+namespace scansurf {
+namespace {
+
+// Grid and CT agree within this (mm, or a fraction of a pixel for the lattice offset).
+constexpr double kLatticeTolerance = 1e-3;
+
+Unexpected dcmtkError(const std::string& what, const OFCondition& condition) {
+  return makeError(Errc::Internal, "DICOM SEG: DCMTK refused " + what + " (" + condition.text() + ")");
+}
+
+// A Decimal String (DS) value: at most 16 characters, as exact as they allow.
+std::string decimalString(double value) {
+  if (value == 0) return "0";
+  char buffer[64];
+  for (int digits = 16; digits > 0; --digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (std::char_traits<char>::length(buffer) <= 16) break;
+  }
+  return buffer;
+}
+
+// A Long String (LO): at most 64 characters, no backslash or control characters.
+std::string longString(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) out += c == '\\' ? '/' : (c < 0x20 ? ' ' : static_cast<char>(c));
+  if (out.size() > 64) {
+    out.resize(64);
+    while (!out.empty() && (static_cast<unsigned char>(out.back()) & 0xC0) == 0x80) out.pop_back();  // a cut UTF-8 character
+    if (!out.empty() && (static_cast<unsigned char>(out.back()) & 0x80)) out.pop_back();
+  }
+  return out.empty() ? std::string("unnamed") : out;
+}
+
+// Where the CT's voxels lie in the label volume's grid.
+struct CtInGrid {
+  int offsetX = 0, offsetY = 0;  // grid column and row of CT pixel (0, 0)
+  std::vector<int> layer;        // grid layer of each CT slice
+};
+
+Result<CtInGrid> locateCt(const Grid& g, const CtSeries& ct) {
+  auto notOnLattice = [&](const std::string& why) {
+    return makeError(Errc::InvalidArgument, "DICOM SEG: the label volume is not on the voxel lattice of the reference series " +
+                                                ct.directory + " (" + why +
+                                                "); build it on the reference grid (no voxel size or grid counts)");
+  };
+  if (std::abs(g.spacingX - ct.spacingX) > kLatticeTolerance * ct.spacingX ||
+      std::abs(g.spacingY - ct.spacingY) > kLatticeTolerance * ct.spacingY)
+    return notOnLattice("pixel size " + formatNumber(g.spacingX) + " x " + formatNumber(g.spacingY) + " mm, the CT's " +
+                        formatNumber(ct.spacingX) + " x " + formatNumber(ct.spacingY) + " mm");
+  CtInGrid at;
+  const double fx = (ct.originX - g.originX) / g.spacingX, fy = (ct.originY - g.originY) / g.spacingY;
+  at.offsetX = static_cast<int>(std::lround(fx));
+  at.offsetY = static_cast<int>(std::lround(fy));
+  if (std::abs(fx - at.offsetX) > kLatticeTolerance || std::abs(fy - at.offsetY) > kLatticeTolerance || at.offsetX < 0 ||
+      at.offsetY < 0 || at.offsetX + ct.columns > g.nx || at.offsetY + ct.rows > g.ny)
+    return notOnLattice("its pixels do not cover the CT's");
+  for (double z : ct.sliceZ) {
+    const int k = layerOfZ(g, z, kLatticeTolerance);
+    if (k < 0) return notOnLattice("no layer at the CT slice z=" + formatNumber(z));
+    at.layer.push_back(k);
+  }
+  return at;
+}
+
+struct DatasetValues {
+  std::string sliceThickness, seriesNumber;
+};
+
+DatasetValues valuesOf(DcmDataset& ds, const CtSeries& ct) {
+  DatasetValues v;
+  Float64 thickness = 0;
+  if (ds.findAndGetFloat64(DCM_SliceThickness, thickness).good() && thickness > 0 && std::isfinite(thickness)) {
+    v.sliceThickness = decimalString(thickness);
+  } else {  // the smallest slice gap, else the pixel size
+    double gap = 0;
+    for (std::size_t k = 1; k < ct.sliceZ.size(); ++k)
+      gap = k == 1 ? ct.sliceZ[1] - ct.sliceZ[0] : std::min(gap, ct.sliceZ[k] - ct.sliceZ[k - 1]);
+    v.sliceThickness = decimalString(gap > 0 ? gap : std::max(ct.spacingX, ct.spacingY));
+  }
+  Sint32 number = 0;
+  v.seriesNumber = std::to_string(
+      ds.findAndGetSint32(DCM_SeriesNumber, number).good() && number >= 0 && number < 1000000 ? number + 1000 : 1000);
+  return v;
+}
+
+}  // namespace
+
+Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path, const ContourSet& contours,
+                                               const LabelVolume& volume, const CtSeries& ct) {
+  const Grid& g = volume.grid;
+  if (volume.labels.size() != g.voxelCount())
+    return makeError(Errc::InvalidArgument, "DICOM SEG: the label volume has " + std::to_string(volume.labels.size()) +
+                                                " labels for a grid of " + std::to_string(g.voxelCount()) + " voxels");
+  if (ct.sliceZ.empty() || ct.sopInstanceUids.size() != ct.sliceZ.size() || ct.sopClassUids.size() != ct.sliceZ.size())
+    return makeError(Errc::InvalidArgument, "DICOM SEG: the reference series " + ct.directory + " has no images");
+  if (ct.rows > 65535 || ct.columns > 65535)
+    return makeError(Errc::InvalidInput, "DICOM SEG: the CT's images are larger than 65535 pixels");
+  SCANSURF_ASSIGN_OR_RETURN(const CtInGrid at, locateCt(g, ct));
+
+  // Which feature has voxels on which CT slice, and how many lie beyond the CT.
+  const std::size_t featureCount = contours.features.size();
+  const std::size_t slices = ct.sliceZ.size();
+  std::vector<std::vector<char>> present(featureCount, std::vector<char>(slices, 0));
+  std::vector<std::size_t> inside(featureCount, 0), total(featureCount, 0);
+  for (Label l : volume.labels)
+    if (l != kBackground && static_cast<std::size_t>(l) <= featureCount) ++total[static_cast<std::size_t>(featureOfLabel(l))];
+  for (std::size_t k = 0; k < slices; ++k)
+    for (int j = 0; j < ct.rows; ++j)
+      for (int i = 0; i < ct.columns; ++i) {
+        const Label l = volume.at(at.offsetX + i, at.offsetY + j, at.layer[k]);
+        if (l == kBackground || static_cast<std::size_t>(l) > featureCount) continue;
+        const auto f = static_cast<std::size_t>(featureOfLabel(l));
+        ++inside[f];
+        present[f][k] = 1;
+      }
+
+  DicomSegSummary written;
+  std::vector<std::size_t> segmentFeatures;
+  for (std::size_t f = 0; f < featureCount; ++f) {
+    const std::string& name = contours.features[f].name;
+    if (inside[f] == 0) {
+      written.warnings.push_back("feature \"" + name + "\" has no voxel on the CT's grid: no segment for it in the DICOM SEG");
+      continue;
+    }
+    if (total[f] > inside[f])
+      written.warnings.push_back("feature \"" + name + "\": " + std::to_string(total[f] - inside[f]) +
+                                 " voxel(s) beyond the CT's field of view are not in the DICOM SEG");
+    segmentFeatures.push_back(f);
+  }
+  if (segmentFeatures.empty())
+    return makeError(Errc::InvalidInput, "DICOM SEG: no feature has a voxel on the CT's grid (" + ct.directory +
+                                             "); nothing to write to " + path.string());
+
+  // The document, with patient, study and frame of reference from the first CT image.
+  SCANSURF_ASSIGN_OR_RETURN(DicomFile first, loadDicomFile(ct.files.front(), /*stopAtPixelData=*/true));
+  const DatasetValues values = valuesOf(first.dataset(), ct);
+  const IODGeneralEquipmentModule::EquipmentInfo equipment("scansurf", "scansurf", "1", SCANSURF_VERSION_STRING);
+  const ContentIdentificationMacro content("1", "SCANSURF", "scansurf label volume from planar contours", "");
+  DcmSegmentation* created = nullptr;
+  OFCondition c = DcmSegmentation::createBinarySegmentation(created, static_cast<Uint16>(ct.rows),
+                                                            static_cast<Uint16>(ct.columns), equipment, content);
+  std::unique_ptr<DcmSegmentation> seg(created);
+  if (c.bad() || !seg) return dcmtkError("a binary segmentation", c);
+  if ((c = seg->importFromSourceImage(first.dataset())).bad()) return dcmtkError("the CT's patient and study", c);
+  // The import also copies the CT's General Equipment (institution, station, ...): the SEG's
+  // equipment is scansurf.
+  seg->getEquipment().clearData();
+  if ((c = seg->setEquipmentInfo(equipment)).bad()) return dcmtkError("the equipment", c);
+  seg->getSeries().setSeriesDescription("scansurf segmentation");
+  seg->getSeries().setSeriesNumber(values.seriesNumber.c_str());
+
+  // Dimensions: segment, then slice position (PS3.3 C.8.20.2.3's recommended pair).
+  char dimensionUid[100];
+  dcmGenerateUniqueIdentifier(dimensionUid, SITE_INSTANCE_UID_ROOT);
+  IODMultiframeDimensionModule& dimensions = seg->getDimensions();
+  if ((c = dimensions.addDimensionIndex(DCM_ReferencedSegmentNumber, dimensionUid, DCM_SegmentIdentificationSequence,
+                                        "ReferencedSegmentNumber"))
+          .bad() ||
+      (c = dimensions.addDimensionIndex(DCM_ImagePositionPatient, dimensionUid, DCM_PlanePositionSequence,
+                                        "ImagePositionPatient"))
+          .bad())
+    return dcmtkError("the dimension indices", c);
+
+  // Shared functional groups: axial orientation (readCtSeries accepts no other) and the CT's
+  // pixel measures.
+  std::unique_ptr<FGPlaneOrientationPatient> orientation(FGPlaneOrientationPatient::createMinimal("1", "0", "0", "0", "1", "0"));
+  FGPixelMeasures measures;
+  if (!orientation || (c = seg->addForAllFrames(*orientation)).bad()) return dcmtkError("the plane orientation", c);
+  const std::string spacing = decimalString(ct.spacingY) + "\\" + decimalString(ct.spacingX);  // row\column spacing
+  if ((c = measures.setPixelSpacing(spacing.c_str())).bad() ||
+      (c = measures.setSliceThickness(values.sliceThickness.c_str())).bad() || (c = seg->addForAllFrames(measures)).bad())
+    return dcmtkError("the pixel measures", c);
+
+  // Segments.
+  const std::vector<Rgb> colors = featureColors(contours);
+  const CodeSequenceMacro category("85756007", "SCT", "Tissue"), type("85756007", "SCT", "Tissue");
+  std::vector<Uint16> segmentNumbers;
+  for (std::size_t f : segmentFeatures) {
+    DcmSegment* segment = nullptr;
+    const std::string label = longString(contours.features[f].name);
+    c = DcmSegment::create(segment, label.c_str(), category, type, DcmSegTypes::SAT_AUTOMATIC, "scansurf");
+    if (c.bad() || !segment) return dcmtkError("segment \"" + label + "\"", c);
+    double lab[3];
+    IODCIELabUtil::rgb2DicomLab(lab[0], lab[1], lab[2], colors[f][0] / 255.0, colors[f][1] / 255.0, colors[f][2] / 255.0);
+    Uint16 scaled[3];
+    for (int i = 0; i < 3; ++i) scaled[i] = static_cast<Uint16>(std::clamp(std::lround(lab[i]), 0L, 65535L));
+    if ((c = segment->setRecommendedDisplayCIELabValue(scaled[0], scaled[1], scaled[2])).bad()) {
+      delete segment;
+      return dcmtkError("the colour of segment \"" + label + "\"", c);
+    }
+    Uint16 number = 0;
+    if ((c = seg->addSegment(segment, number)).bad()) {
+      delete segment;
+      return dcmtkError("segment \"" + label + "\"", c);
+    }
+    segmentNumbers.push_back(number);
+  }
+
+  // Frames: per segment, each CT slice it has voxels on, in increasing z.
+  const std::string x = decimalString(ct.originX), y = decimalString(ct.originY);
+  std::vector<Uint8> mask(static_cast<std::size_t>(ct.rows) * static_cast<std::size_t>(ct.columns));
+  for (std::size_t s = 0; s < segmentFeatures.size(); ++s) {
+    const std::size_t f = segmentFeatures[s];
+    const Label label = labelOfFeature(static_cast<int>(f));
+    for (std::size_t k = 0; k < slices; ++k) {
+      if (!present[f][k]) continue;
+      for (int j = 0; j < ct.rows; ++j)
+        for (int i = 0; i < ct.columns; ++i)
+          mask[static_cast<std::size_t>(j) * static_cast<std::size_t>(ct.columns) + static_cast<std::size_t>(i)] =
+              volume.at(at.offsetX + i, at.offsetY + j, at.layer[k]) == label ? 1 : 0;
+      std::unique_ptr<FGPlanePosPatient> position(
+          FGPlanePosPatient::createMinimal(x.c_str(), y.c_str(), decimalString(ct.sliceZ[k]).c_str()));
+      FGFrameContent frameContent;
+      ImageSOPInstanceReferenceMacro source;
+      if (!position || (c = frameContent.setDimensionIndexValues(segmentNumbers[s], 0)).bad() ||
+          (c = frameContent.setDimensionIndexValues(static_cast<Uint32>(k + 1), 1)).bad() ||
+          (c = source.setReferencedSOPClassUID(ct.sopClassUids[k].c_str())).bad() ||
+          (c = source.setReferencedSOPInstanceUID(ct.sopInstanceUids[k].c_str())).bad())
+        return dcmtkError("the functional groups of a frame", c);
+      OFVector<ImageSOPInstanceReferenceMacro> sources;
+      sources.push_back(source);
+      std::unique_ptr<FGDerivationImage> derivation(
+          DcmSegmentation::createDerivationImageFG(sources, "scansurf: scan conversion of planar contours"));
+      if (!derivation) return makeError(Errc::Internal, "DICOM SEG: DCMTK refused the derivation image of a frame");
+      OFVector<FGBase*> perFrame;
+      perFrame.push_back(position.get());
+      perFrame.push_back(&frameContent);
+      perFrame.push_back(derivation.get());
+      if ((c = seg->addFrame(mask.data(), segmentNumbers[s], perFrame)).bad()) return dcmtkError("a frame", c);
+      ++written.frames;
+    }
+  }
+  written.segments = static_cast<int>(segmentNumbers.size());
+
+  // Every CT image, in the Common Instance Reference Module's Referenced Series Sequence.
+  auto series = std::make_unique<IODSeriesAndInstanceReferenceMacro::ReferencedSeriesItem>();
+  if ((c = series->setSeriesInstanceUID(ct.seriesUid.c_str())).bad()) return dcmtkError("the CT's Series Instance UID", c);
+  for (std::size_t k = 0; k < slices; ++k)
+    if ((c = series->addReference(ct.sopClassUids[k].c_str(), ct.sopInstanceUids[k].c_str())).bad())
+      return dcmtkError("the reference to " + ct.files[k], c);
+  seg->getCommonInstanceReference().getReferencedSeriesItems().push_back(series.release());
+
+  DcmFileFormat file;
+  if ((c = seg->writeDataset(*file.getDataset())).bad()) return dcmtkError("the Segmentation", c);
+  SCANSURF_TRY(writeThroughTemporaryPath(path, ".dcm", [&](const std::filesystem::path& temp) -> Result<void> {
+    const OFCondition saved = file.saveFile(temp.c_str(), EXS_LittleEndianExplicit);
+    if (saved.bad()) return makeError(Errc::Io, "cannot write '" + path.string() + "': " + saved.text());
+    return {};
+  }));
+  return written;
+}
+
+}  // namespace scansurf
