@@ -153,7 +153,7 @@ int run(const cli::CliOptions& o) {
   OutputStaging staging;
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
-  auto files = stageSurfaceOutputs(staging, *plan, *contours, result.surfaces, result.volume);
+  auto files = stageSurfaceOutputs(staging, *plan, *contours, result);
   if (!files) return fail(files.error());
   result.warnings.insert(result.warnings.end(), files->warnings.begin(), files->warnings.end());
   laps.lap("write");

@@ -260,6 +260,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     clock.lap("grid");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     out.subPixelBits = scanner->subPixelBits();
+    out.sliceTolerance = tolerance;
     const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, tolerance, options.threads);
     out.overlaps = analyzeOverlaps(contours, grid, out.nesting, regions, tolerance);
     out.overlaps.mode = options.overlaps;

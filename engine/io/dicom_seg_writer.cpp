@@ -118,11 +118,13 @@ DatasetValues valuesOf(DcmDataset& ds, const CtSeries& ct) {
 }  // namespace
 
 Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path, const ContourSet& contours,
-                                               const LabelVolume& volume, const CtSeries& ct) {
-  const Grid& g = volume.grid;
-  if (volume.labels.size() != g.voxelCount())
-    return makeError(Errc::InvalidArgument, "DICOM SEG: the label volume has " + std::to_string(volume.labels.size()) +
-                                                " labels for a grid of " + std::to_string(g.voxelCount()) + " voxels");
+                                               const std::vector<LabelVolume>& layers, const CtSeries& ct) {
+  if (layers.empty()) return makeError(Errc::InvalidArgument, "DICOM SEG: no label volume");
+  const Grid& g = layers.front().grid;
+  for (const LabelVolume& volume : layers)
+    if (volume.labels.size() != g.voxelCount() || volume.grid.nx != g.nx || volume.grid.ny != g.ny || volume.grid.nz != g.nz)
+      return makeError(Errc::InvalidArgument, "DICOM SEG: the label volumes have " + std::to_string(volume.labels.size()) +
+                                                  " labels for a grid of " + std::to_string(g.voxelCount()) + " voxels");
   if (ct.sliceZ.empty() || ct.sopInstanceUids.size() != ct.sliceZ.size() || ct.sopClassUids.size() != ct.sliceZ.size())
     return makeError(Errc::InvalidArgument, "DICOM SEG: the reference series " + ct.directory + " has no images");
   if (ct.rows > 65535 || ct.columns > 65535)
@@ -133,18 +135,23 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
   const std::size_t featureCount = contours.features.size();
   const std::size_t slices = ct.sliceZ.size();
   std::vector<std::vector<char>> present(featureCount, std::vector<char>(slices, 0));
-  std::vector<std::size_t> inside(featureCount, 0), total(featureCount, 0);
-  for (Label l : volume.labels)
-    if (l != kBackground && static_cast<std::size_t>(l) <= featureCount) ++total[static_cast<std::size_t>(featureOfLabel(l))];
-  for (std::size_t k = 0; k < slices; ++k)
-    for (int j = 0; j < ct.rows; ++j)
-      for (int i = 0; i < ct.columns; ++i) {
-        const Label l = volume.at(at.offsetX + i, at.offsetY + j, at.layer[k]);
-        if (l == kBackground || static_cast<std::size_t>(l) > featureCount) continue;
-        const auto f = static_cast<std::size_t>(featureOfLabel(l));
-        ++inside[f];
-        present[f][k] = 1;
+  std::vector<std::size_t> inside(featureCount, 0), total(featureCount, 0), layerOf(featureCount, 0);
+  for (std::size_t layer = 0; layer < layers.size(); ++layer)
+    for (Label l : layers[layer].labels)
+      if (l != kBackground && static_cast<std::size_t>(l) <= featureCount) {
+        ++total[static_cast<std::size_t>(featureOfLabel(l))];
+        layerOf[static_cast<std::size_t>(featureOfLabel(l))] = layer;  // each feature is in one layer
       }
+  for (const LabelVolume& volume : layers)
+    for (std::size_t k = 0; k < slices; ++k)
+      for (int j = 0; j < ct.rows; ++j)
+        for (int i = 0; i < ct.columns; ++i) {
+          const Label l = volume.at(at.offsetX + i, at.offsetY + j, at.layer[k]);
+          if (l == kBackground || static_cast<std::size_t>(l) > featureCount) continue;
+          const auto f = static_cast<std::size_t>(featureOfLabel(l));
+          ++inside[f];
+          present[f][k] = 1;
+        }
 
   DicomSegSummary written;
   std::vector<std::size_t> segmentFeatures;
@@ -234,6 +241,7 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
   for (std::size_t s = 0; s < segmentFeatures.size(); ++s) {
     const std::size_t f = segmentFeatures[s];
     const Label label = labelOfFeature(static_cast<int>(f));
+    const LabelVolume& volume = layers[layerOf[f]];
     for (std::size_t k = 0; k < slices; ++k) {
       if (!present[f][k]) continue;
       for (int j = 0; j < ct.rows; ++j)

@@ -50,6 +50,12 @@ struct LabelEntry {
 // segments in 3D Slicer. Replaced atomically. Errors: Errc::Io naming the path.
 Result<void> writeNrrd(const std::filesystem::path& path, const RegularLabelVolume& volume, const std::vector<LabelEntry>& table);
 
+// The same for a segmentation in layers (3D Slicer's seg.nrrd convention): one layer is a 3-D
+// volume; several are a 4-D volume with the list axis first (kinds: list domain domain domain).
+// table[s] is in layers[layerOf[s]]; each segment's Extent is the bounding box of its voxels.
+Result<void> writeSegmentationNrrd(const std::filesystem::path& path, const std::vector<RegularLabelVolume>& layers,
+                                   const std::vector<LabelEntry>& table, const std::vector<int>& layerOf);
+
 // Writes the label table in 3D Slicer's colour-table format (`label name R G B A` per line,
 // 0 = background). Replaced atomically. Errors: Errc::Io naming the path.
 Result<void> writeLabelTable(const std::filesystem::path& path, const std::vector<LabelEntry>& table);

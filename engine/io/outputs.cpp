@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <optional>
 #include <cctype>
 
 #include "geometry/compact_mesh.h"
@@ -11,6 +12,7 @@
 #include "io/ct_series.h"
 #include "io/dicom_seg_writer.h"
 #include "io/draco_writer.h"
+#include "io/run_volumes.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_writers.h"
 #include "io/nifti_writer.h"
@@ -238,6 +240,15 @@ Result<void> writeTableFile(const fs::path& path, VolumeFormat format, const std
   return writeLabelTable(path, table);
 }
 
+// A run's label volume: masks in layers for NRRD, the partition for NIfTI.
+Result<void> writeRunVolume(const fs::path& path, VolumeFormat format, const ContourSet& contours, const RunVolumes& volumes,
+                            const std::vector<LabelEntry>& table) {
+  if (format == VolumeFormat::Nifti) return writeNifti(path, volumes.partition, contours.units);
+  std::vector<int> layerOf;
+  for (const LabelEntry& e : table) layerOf.push_back(volumes.maskLayerOf[static_cast<std::size_t>(featureOfLabel(e.label))]);
+  return writeSegmentationNrrd(path, volumes.masks, table, layerOf);
+}
+
 bool has(const std::vector<MeshFormat>& formats, MeshFormat f) {
   return std::find(formats.begin(), formats.end(), f) != formats.end();
 }
@@ -303,10 +314,27 @@ Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, 
   return writeTableFile(labelTablePathFor(path, format), format, table);
 }
 
+Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, const BuildResult& built,
+                              std::vector<std::string>* warnings) {
+  SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(path));
+  SCANSURF_ASSIGN_OR_RETURN(const RunVolumes volumes, runVolumes(contours, built));
+  if (warnings) warnings->insert(warnings->end(), volumes.warnings.begin(), volumes.warnings.end());
+  const std::vector<LabelEntry> table = labelTable(contours);
+  SCANSURF_TRY(writeRunVolume(path, format, contours, volumes, table));
+  return writeTableFile(labelTablePathFor(path, format), format, table);
+}
+
 Result<DicomSegSummary> writeDicomSeg(const fs::path& path, const ContourSet& contours, const LabelVolume& volume,
                                       const fs::path& referenceSeriesDir) {
   SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(referenceSeriesDir));
-  return writeDicomSegmentation(path, contours, volume, ct);
+  return writeDicomSegmentation(path, contours, {volume}, ct);
+}
+
+Result<DicomSegSummary> writeDicomSeg(const fs::path& path, const ContourSet& contours, const BuildResult& built,
+                                      const fs::path& referenceSeriesDir) {
+  SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(referenceSeriesDir));
+  SCANSURF_ASSIGN_OR_RETURN(const RunVolumes volumes, runVolumes(contours, built));
+  return writeDicomSegmentation(path, contours, volumes.masksOnGrid, ct);
 }
 
 Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
@@ -314,7 +342,9 @@ Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
 }
 
 Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
-                                           const Surfaces& surfaces, const LabelVolume& volume) {
+                                           const BuildResult& built) {
+  const Surfaces& surfaces = built.surfaces;
+  const LabelVolume& volume = built.volume;
   const std::size_t featureCount = contours.features.size();
   SurfaceOutputs out;
   out.files.resize(featureCount);
@@ -339,11 +369,16 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
     for (std::size_t f = 0; f < featureCount; ++f)
       if (surfaces.features[f].triangleCount() > 0) out.files[f].push_back(target);
   }
+  std::optional<RunVolumes> volumes;
+  if (!plan.labelVolume.empty() || !plan.dicomSeg.empty()) {
+    SCANSURF_ASSIGN_OR_RETURN(volumes, runVolumes(contours, built));
+    if (!plan.labelVolume.empty()) out.warnings.insert(out.warnings.end(), volumes->warnings.begin(), volumes->warnings.end());
+  }
   if (!plan.labelVolume.empty()) {
     SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(plan.labelVolume));
     const std::vector<LabelEntry> table = labelTable(contours);
-    SCANSURF_TRY(staging.stage(
-        plan.labelVolume, [&](const fs::path& p) { return writeVolumeFile(p, format, contours, regularize(volume), table); }));
+    SCANSURF_TRY(staging.stage(plan.labelVolume,
+                               [&](const fs::path& p) { return writeRunVolume(p, format, contours, *volumes, table); }));
     SCANSURF_TRY(staging.stage(labelTablePathFor(plan.labelVolume, format),
                                [&](const fs::path& p) { return writeTableFile(p, format, table); }));
   }
@@ -352,7 +387,7 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
       return makeError(Errc::InvalidArgument, "DICOM SEG output '" + plan.dicomSeg.string() + "' needs a reference series");
     SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(plan.referenceSeries));
     SCANSURF_TRY(staging.stage(plan.dicomSeg, [&](const fs::path& p) -> Result<void> {
-      SCANSURF_ASSIGN_OR_RETURN(DicomSegSummary seg, writeDicomSegmentation(p, contours, volume, ct));
+      SCANSURF_ASSIGN_OR_RETURN(DicomSegSummary seg, writeDicomSegmentation(p, contours, volumes->masksOnGrid, ct));
       out.warnings.insert(out.warnings.end(), seg.warnings.begin(), seg.warnings.end());
       return {};
     }));

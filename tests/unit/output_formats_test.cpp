@@ -31,6 +31,7 @@
 #include "io/nrrd_writer.h"
 #include "io/png_writer.h"
 #include "scansurf/outputs.h"
+#include "support/nrrd_reader.h"
 #include "scansurf/report.h"
 #include "scansurf/version.h"
 #include "scansurf/nesting.h"
@@ -315,7 +316,7 @@ TEST_F(OutputFormatsTest, GlbSceneShowsRightInAViewer) {
     for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
       float v[3];
       positions->GetMappedValue(p, v);
-      for (int a = 0; a < 3; ++a) centre[a] += v[a] / mesh.num_points();
+      for (int a = 0; a < 3; ++a) centre[a] += v[a] / static_cast<double>(mesh.num_points());
     }
     std::size_t outward = 0;
     for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
@@ -411,48 +412,8 @@ TEST_F(OutputFormatsTest, BinaryStlRoundTripWithOutwardNormals) {
   EXPECT_NEAR(volume, computeMeshStats(m.positions, m.triangles).volume, 1e-6 * volume);
 }
 
-std::string gunzip(const std::string& data) {
-  z_stream z{};
-  EXPECT_EQ(inflateInit2(&z, 15 + 32), Z_OK);
-  std::string out;
-  char buf[1 << 15];
-  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  z.avail_in = static_cast<uInt>(data.size());
-  int rc;
-  do {
-    z.next_out = reinterpret_cast<Bytef*>(buf);
-    z.avail_out = sizeof buf;
-    rc = inflate(&z, Z_NO_FLUSH);
-    out.append(buf, sizeof buf - z.avail_out);
-  } while (rc == Z_OK);
-  EXPECT_EQ(rc, Z_STREAM_END);
-  inflateEnd(&z);
-  return out;
-}
-
-struct Nrrd {
-  std::map<std::string, std::string> fields;
-  std::string data;
-};
-Nrrd readNrrd(const fs::path& path) {
-  const std::string bytes = readFile(path);
-  const std::size_t end = bytes.find("\n\n");
-  EXPECT_NE(end, std::string::npos);
-  Nrrd n;
-  std::istringstream in(bytes.substr(0, end));
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "NRRD0004");
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const std::size_t kv = line.find(":=");
-    const std::size_t colon = line.find(": ");
-    if (kv != std::string::npos && (colon == std::string::npos || kv < colon)) n.fields[line.substr(0, kv)] = line.substr(kv + 2);
-    else n.fields[line.substr(0, colon)] = line.substr(colon + 2);
-  }
-  n.data = gunzip(bytes.substr(end + 2));
-  return n;
-}
+using test::Nrrd;
+using test::readNrrd;
 
 std::vector<double> numbers(std::string s) {
   for (char& c : s)

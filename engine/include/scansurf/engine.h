@@ -74,6 +74,7 @@ struct BuildResult {
   // The device's sub-pixel precision of scan conversion (bits), with which the writers
   // rasterize each feature's own mask on the CPU exactly as the device did.
   int subPixelBits = 8;
+  double sliceTolerance = kDefaultSliceTolerance;  // BuildOptions::grid.sliceTolerance of the run
   std::vector<std::string> warnings;  // e.g. contours too small to cover a pixel centre
   std::vector<StageTime> timings;
 };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scansurf/contours.h"
+#include "scansurf/engine.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/preview.h"
 #include "scansurf/result.h"
@@ -94,6 +95,20 @@ std::filesystem::path labelTablePathFor(const std::filesystem::path& labelVolume
 // Errors: Errc::InvalidArgument for an unknown extension; Errc::Io naming the path.
 Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume);
 
+// The label volume of a run (Engine::build), as writeLabelVolume above but from each feature's
+// own region, rasterized exactly as the device did:
+// - NRRD / seg.nrrd: every feature's own mask, the region its contours enclose alone; features
+//   that share voxels (nested or overlapping) go to different layers: a 4-D volume with the list
+//   axis first when there is more than one layer (3D Slicer's seg.nrrd convention, with
+//   Segment{i}_Layer, _LabelValue and _Extent), 3-D otherwise.
+// - NIfTI: the single partition (one label per voxel, inner features first), what label-map
+//   tools expect.
+// With a reference series (ContourSet::reference) the file lies exactly on its lattice: same
+// size, origin, spacing and slices; voxels beyond it are dropped, and `warnings` (when given)
+// names each feature that lost some and how many.
+Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const BuildResult& built,
+                              std::vector<std::string>* warnings = nullptr);
+
 // What writeDicomSeg wrote.
 struct DicomSegSummary {
   int segments = 0;                   // one per feature with a voxel inside the CT
@@ -111,6 +126,10 @@ struct DicomSegSummary {
 // series cannot be read, or no feature has a voxel on it), Errc::Io naming the path,
 // Errc::Internal (DCMTK refused the object).
 Result<DicomSegSummary> writeDicomSeg(const std::filesystem::path& path, const ContourSet& contours, const LabelVolume& volume,
+                                      const std::filesystem::path& referenceSeriesDir);
+// The same for a run: each segment is its feature's own region (segments overlap where the
+// structures do).
+Result<DicomSegSummary> writeDicomSeg(const std::filesystem::path& path, const ContourSet& contours, const BuildResult& built,
                                       const std::filesystem::path& referenceSeriesDir);
 // An RGBA picture as PNG.
 Result<void> writePreview(const std::filesystem::path& path, const PreviewImage& image);
@@ -172,7 +191,7 @@ struct SurfaceOutputs {
 // preview). A feature with no triangles gets only its (empty) PLY, with a warning; the DICOM
 // SEG's warnings (writeDicomSeg) join them.
 Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
-                                           const Surfaces& surfaces, const LabelVolume& volume);
+                                           const BuildResult& built);
 
 // A file name from a feature name: letters, digits, '.', '-' and '_' kept, the rest '_';
 // made unique against `used` (and added to it).

@@ -1,0 +1,51 @@
+#include "io/run_volumes.h"
+
+#include "geometry/label_layers.h"
+#include "geometry/overlaps.h"
+
+namespace scansurf {
+namespace {
+
+// A volume on a lattice given by its grid (even or uneven layers) in the file's terms.
+RegularLabelVolume asFile(const LabelVolume& volume) { return regularize(volume); }
+
+// Cuts a volume to the reference lattice; per feature, the voxels dropped.
+Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridReference& reference, double tolerance,
+                                       std::size_t features, std::vector<std::size_t>* dropped) {
+  SCANSURF_ASSIGN_OR_RETURN(ReferenceCut cut, cutToReference(volume, reference, tolerance, features));
+  if (dropped)
+    for (std::size_t f = 0; f < features; ++f) (*dropped)[f] += cut.dropped[f];
+  return asFile(cut.volume);
+}
+
+}  // namespace
+
+Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& built) {
+  const Grid& grid = built.volume.grid;
+  const std::size_t n = contours.features.size();
+  if (built.overlaps.features.size() != n)
+    return makeError(Errc::InvalidArgument, "label volume: the build result is not that of the contour set");
+  const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, built.subPixelBits, built.sliceTolerance, 0);
+  RunVolumes out;
+  out.masksOnGrid = maskLayerVolumes(regions, grid, built.overlaps);
+  for (const FeatureVolumes& f : built.overlaps.features) out.maskLayerOf.push_back(f.maskLayer);
+  const LabelVolume partition = partitionVolume(regions, grid, built.nesting.order);
+  if (!contours.reference) {
+    for (const LabelVolume& m : out.masksOnGrid) out.masks.push_back(asFile(m));
+    out.partition = asFile(partition);
+    return out;
+  }
+  std::vector<std::size_t> dropped(n, 0);
+  for (const LabelVolume& m : out.masksOnGrid) {
+    SCANSURF_ASSIGN_OR_RETURN(RegularLabelVolume cut, onReference(m, *contours.reference, built.sliceTolerance, n, &dropped));
+    out.masks.push_back(std::move(cut));
+  }
+  SCANSURF_ASSIGN_OR_RETURN(out.partition, onReference(partition, *contours.reference, built.sliceTolerance, n, nullptr));
+  for (std::size_t f = 0; f < n; ++f)
+    if (dropped[f] > 0)
+      out.warnings.push_back("feature \"" + contours.features[f].name + "\": " + std::to_string(dropped[f]) +
+                             " voxel(s) beyond the reference CT are not in the label volume (it lies on the CT's grid)");
+  return out;
+}
+
+}  // namespace scansurf
