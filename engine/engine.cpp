@@ -141,16 +141,40 @@ void appendLayer(Surfaces& into, const Surfaces& layer, const OverlapReport& rep
   }
 }
 
+// The part of the grid a layer's features occupy, with one background voxel around them, on
+// the same lattice: later layers (usually a few planning volumes or marks) then cost what their
+// extent costs, not the whole volume. Layer 0 keeps the whole grid (BuildResult::volume).
+Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, const OverlapReport& report, int layer) {
+  if (layer == 0) return grid;
+  int i0 = grid.nx, i1 = -1, j0 = grid.ny, j1 = -1, k0 = grid.nz, k1 = -1;
+  for (std::size_t f = 0; f < regions.size(); ++f) {
+    const FeatureRegion& r = regions[f];
+    if (report.features[f].layer != layer || r.maxRow < r.minRow || r.layers.empty()) continue;
+    i0 = std::min(i0, r.minColumn), i1 = std::max(i1, r.maxColumn), j0 = std::min(j0, r.minRow), j1 = std::max(j1, r.maxRow);
+    k0 = std::min(k0, r.layers.front()), k1 = std::max(k1, r.layers.back());
+  }
+  if (i1 < 0) return grid;
+  i0 = std::max(0, i0 - 1), j0 = std::max(0, j0 - 1), k0 = std::max(0, k0 - 1);
+  i1 = std::min(grid.nx - 1, i1 + 1), j1 = std::min(grid.ny - 1, j1 + 1), k1 = std::min(grid.nz - 1, k1 + 1);
+  Grid sub = grid;
+  sub.nx = i1 - i0 + 1, sub.ny = j1 - j0 + 1, sub.nz = k1 - k0 + 1;
+  sub.originX = grid.originX + i0 * grid.spacingX;
+  sub.originY = grid.originY + j0 * grid.spacingY;
+  sub.layerZ.assign(grid.layerZ.begin() + k0, grid.layerZ.begin() + k1 + 1);
+  return sub;
+}
+
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
-Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const BuildOptions& options,
-                         BuildResult& out, StageClock& clock) {
+Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<FeatureRegion>& regions,
+                         const BuildOptions& options, BuildResult& out, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
   out.surfaces.convention = options.convention;
   out.surfaces.features.resize(contours.features.size());
   for (std::size_t f = 0; f < contours.features.size(); ++f) out.surfaces.features[f].feature = static_cast<int>(f);
   for (int layer = 0; layer < out.overlaps.layers; ++layer) {
     const ContourSet subset = layerContours(contours, out.overlaps, layer);
-    SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, grid, out.nesting.order, options.grid.sliceTolerance));
+    const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
+    SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
     clock.lap("scan conversion");
     SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfVolume(impl, volume, subset, out.nesting, options, clock));
     appendLayer(out.surfaces, surfaces, out.overlaps, layer);
@@ -276,7 +300,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
         warnAboutLosses(contours, out.overlaps, out.warnings);
       }
     } else {
-      SCANSURF_TRY(buildLayers(*impl_, contours, grid, options, out, clock));
+      SCANSURF_TRY(buildLayers(*impl_, contours, grid, regions, options, out, clock));
     }
     mergeStageTimes(out.timings);
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);

@@ -66,6 +66,24 @@ run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength nan)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --grid 0 0)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --threads 99999999999999999999)
 
+# Overlapping structures: two layers by default, each keeping its volume; the partition
+# reports the loss (with a warning above 1 %); an unknown mode is a usage error.
+run_scansurf(0 "${DATA}/overlapping.json" -o "${OUT}/overlap" --voxel-size 0.5 --report "${OUT}/overlap/r.json")
+expect_output("overlaps as layers: 2 layers")
+expect_output("overlap: organ and PTV share [0-9.]+ mm3 \\(surfaced in separate layers\\)")
+file(READ "${OUT}/overlap/r.json" overlap_report)
+string(JSON ptv_layer GET "${overlap_report}" features 1 layer)
+string(JSON ptv_contour GET "${overlap_report}" features 1 contour_volume)
+string(JSON ptv_surface GET "${overlap_report}" features 1 surface_volume)
+string(JSON ptv_overlap GET "${overlap_report}" features 1 overlaps 0 with)
+if(NOT ptv_layer EQUAL 1 OR NOT ptv_overlap STREQUAL "organ" OR NOT ptv_surface GREATER 0 OR NOT ptv_contour GREATER 0)
+  message(FATAL_ERROR "overlap report: layer ${ptv_layer}, overlaps ${ptv_overlap}")
+endif()
+run_scansurf(0 "${DATA}/overlapping.json" -o "${OUT}/overlap_partition" --voxel-size 0.5 --overlaps partition)
+expect_output("partition: PTV lost [0-9.]+ mm3 \\([0-9.]+ % of its contour volume\\) to organ")
+expect_output("warning: feature \"PTV\" lost [0-9]+ % of its contour volume to \"organ\"")
+run_scansurf(2 "${DATA}/overlapping.json" -o "${OUT}/x" --overlaps sideways)
+
 # Usage errors: exit 2.
 run_scansurf(2 "${EXAMPLES}/phantom.json")
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --convention sideways)

@@ -138,7 +138,9 @@ TEST_F(OverlapsTest, NestedPlusOverlappingAndAMarkOutsideTheBody) {
   EXPECT_EQ(r.layers, 2);
   EXPECT_GE(r.maskLayers, 2);
   for (const SharedVolume& s : r.shared)
-    if (s.a == 0 && s.b == 1) EXPECT_TRUE(s.nested);
+    if (s.a == 0 && s.b == 1) {
+      EXPECT_TRUE(s.nested);
+    }
   expectOwnVolumes(set, b);
 }
 
