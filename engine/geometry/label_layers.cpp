@@ -51,6 +51,9 @@ LabelVolume partitionVolume(const std::vector<FeatureRegion>& regions, const Gri
 Result<ReferenceCut> cutToReference(const LabelVolume& volume, const GridReference& reference, double sliceTolerance,
                                     std::size_t featureCount) {
   const Grid& g = volume.grid;
+  if (std::abs(g.spacingX - reference.spacingX) > 1e-9 * reference.spacingX ||
+      std::abs(g.spacingY - reference.spacingY) > 1e-9 * reference.spacingY)
+    return makeError(Errc::InvalidArgument, "the grid's pixel spacing is not the reference lattice's");
   SCANSURF_ASSIGN_OR_RETURN(const int ox, latticeOffset(reference.originX, g.originX, g.spacingX, "x"));
   SCANSURF_ASSIGN_OR_RETURN(const int oy, latticeOffset(reference.originY, g.originY, g.spacingY, "y"));
   if (ox + reference.nx > g.nx || oy + reference.ny > g.ny)

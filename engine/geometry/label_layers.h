@@ -25,7 +25,7 @@ LabelVolume partitionVolume(const std::vector<FeatureRegion>& regions, const Gri
 // A volume on the grid cut to the reference lattice it was built on (makeGrid's reference
 // grid holds it with a border): same size, origin, spacing and slices as the reference.
 // `dropped[f]` counts feature f's labelled voxels outside it. Errors: Errc::InvalidArgument
-// when the grid does not lie on the reference lattice.
+// when the grid does not lie on the reference lattice (other spacing, or an origin off it).
 struct ReferenceCut {
   LabelVolume volume;
   std::vector<std::size_t> dropped;  // per feature

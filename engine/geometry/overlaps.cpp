@@ -21,6 +21,10 @@ FeatureRegion rasterizeFeature(const Feature& feature, const Grid& grid, int bit
       region.minRow = std::min(region.minRow, r.row), region.maxRow = std::max(region.maxRow, r.row);
       region.minColumn = std::min(region.minColumn, r.begin), region.maxColumn = std::max(region.maxColumn, r.end - 1);
     }
+    if (!region.layers.empty() && region.layers.back() == k) {  // two slices on one layer (a wide tolerance): their union
+      region.runs.back() = unitePixelRuns(region.runs.back(), runs);
+      continue;
+    }
     region.layers.push_back(k);
     region.runs.push_back(std::move(runs));
   }
@@ -53,12 +57,16 @@ std::pair<std::size_t, double> sharedVoxels(const FeatureRegion& a, const Featur
 // Whether two regions that share no voxel have voxels sharing a face (in a layer or across
 // neighbouring layers).
 bool regionsTouch(const FeatureRegion& a, const FeatureRegion& b) {
-  for (std::size_t i = 0; i < a.layers.size(); ++i)
-    for (std::size_t j = 0; j < b.layers.size(); ++j) {
+  // Both layer lists are sorted: for each layer of a, only b's layers within one of it.
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < a.layers.size(); ++i) {
+    while (first < b.layers.size() && b.layers[first] < a.layers[i] - 1) ++first;
+    for (std::size_t j = first; j < b.layers.size() && b.layers[j] <= a.layers[i] + 1; ++j) {
       const int d = a.layers[i] - b.layers[j];
       if (d == 0 && touchInPlane(a.runs[i], b.runs[j])) return true;
-      if ((d == 1 || d == -1) && sharedPixels(a.runs[i], b.runs[j]) > 0) return true;
+      if (d != 0 && sharedPixels(a.runs[i], b.runs[j]) > 0) return true;
     }
+  }
   return false;
 }
 

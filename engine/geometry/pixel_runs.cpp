@@ -95,6 +95,19 @@ bool touchInPlane(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b
   return false;
 }
 
+std::vector<PixelRun> unitePixelRuns(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b) {
+  std::vector<PixelRun> all(a);
+  all.insert(all.end(), b.begin(), b.end());
+  std::sort(all.begin(), all.end(),
+            [](const PixelRun& x, const PixelRun& y) { return x.row != y.row ? x.row < y.row : x.begin < y.begin; });
+  std::vector<PixelRun> out;
+  for (const PixelRun& r : all) {
+    if (!out.empty() && out.back().row == r.row && out.back().end >= r.begin) out.back().end = std::max(out.back().end, r.end);
+    else out.push_back(r);
+  }
+  return out;
+}
+
 std::size_t pixelCount(const std::vector<PixelRun>& runs) {
   std::size_t n = 0;
   for (const PixelRun& r : runs) n += static_cast<std::size_t>(r.end - r.begin);

@@ -38,4 +38,7 @@ bool touchInPlane(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b
 
 std::size_t pixelCount(const std::vector<PixelRun>& runs);
 
+// Pixels in either run list, sorted and apart as rasterizeSlice returns them.
+std::vector<PixelRun> unitePixelRuns(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b);
+
 }  // namespace scansurf

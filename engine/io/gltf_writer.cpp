@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "core/utf8.h"
 #include "io/atomic_file.h"
 #include "io/glb_container.h"
 #include "scansurf/version.h"
@@ -66,19 +67,21 @@ std::unique_ptr<draco::Mesh> sceneMesh(const GltfFeature& f, const GlbOptions& o
 }
 
 void addFeature(draco::Scene& scene, const GltfFeature& f, const GlbOptions& options, int material) {
+  const std::string name = validUtf8(f.name);  // glTF's JSON is UTF-8; ROI names may be Latin-1
   const draco::MeshIndex meshIndex = scene.AddMesh(sceneMesh(f, options));
+  scene.GetMesh(meshIndex).SetName(name);
   draco::Material* m = scene.GetMaterialLibrary().MutableMaterial(material);
-  m->SetName(f.name);
+  m->SetName(name);
   m->SetColorFactor(draco::Vector4f(static_cast<float>(srgbToLinear(f.color[0])), static_cast<float>(srgbToLinear(f.color[1])),
                                     static_cast<float>(srgbToLinear(f.color[2])), std::clamp(f.opacity, 0.0f, 1.0f)));
   m->SetMetallicFactor(0.0f);
   m->SetRoughnessFactor(0.7f);
   if (f.opacity < 1) m->SetTransparencyMode(draco::Material::TRANSPARENCY_BLEND);
   const draco::MeshGroupIndex group = scene.AddMeshGroup();
-  scene.GetMeshGroup(group)->SetName(f.name);
+  scene.GetMeshGroup(group)->SetName(name);
   scene.GetMeshGroup(group)->AddMeshInstance({meshIndex, material});
   const draco::SceneNodeIndex node = scene.AddNode();
-  scene.GetNode(node)->SetName(f.name);
+  scene.GetNode(node)->SetName(name);
   scene.GetNode(node)->SetMeshGroupIndex(group);
   scene.AddRootNodeIndex(node);
 }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <optional>
 #include <cctype>
 
@@ -124,6 +125,13 @@ Result<void> checkOutputs(const OutputPlan& plan) {
   return {};
 }
 
+namespace {
+unsigned long nextStagingId() {
+  static std::atomic<unsigned long> next{1};
+  return next.fetch_add(1);
+}
+}  // namespace
+
 OutputStaging::~OutputStaging() {
   std::error_code ignored;
   for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
@@ -133,7 +141,10 @@ Result<fs::path> OutputStaging::reserve(const fs::path& target) {
   for (const auto& [staged, t] : files_)
     if (t == target) return makeError(Errc::InvalidArgument, "two outputs would be written to '" + target.string() + "'");
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  const fs::path dir = parent / (".scansurf-staging-" + std::to_string(::getpid()));
+  // One folder per OutputStaging (pid and a process-wide count): two runs in one process
+  // writing to one directory never share or remove each other's staged files.
+  if (id_ == 0) id_ = nextStagingId();
+  const fs::path dir = parent / (".scansurf-staging-" + std::to_string(::getpid()) + "-" + std::to_string(id_));
   if (std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) {
     std::error_code ec;
     fs::remove_all(dir, ec);
@@ -345,6 +356,8 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
                                            const BuildResult& built) {
   const Surfaces& surfaces = built.surfaces;
   const LabelVolume& volume = built.volume;
+  if (surfaces.features.size() != contours.features.size())
+    return makeError(Errc::InvalidArgument, "stageSurfaceOutputs: the build result is not that of the contour set");
   const std::size_t featureCount = contours.features.size();
   SurfaceOutputs out;
   out.files.resize(featureCount);

@@ -152,7 +152,8 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
   j["warnings"] = report.warnings;
   j["outputs"] = report.outputs;
 
-  const std::string text = j.dump(2) + "\n";
+  // Names are bytes from the input (an ROI name may be Latin-1): invalid UTF-8 is replaced.
+  const std::string text = j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
   return writeFileAtomically(path, text.data(), text.size());
 }
 

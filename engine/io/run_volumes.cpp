@@ -3,6 +3,8 @@
 #include "geometry/label_layers.h"
 #include "geometry/overlaps.h"
 
+#include <cmath>
+
 namespace scansurf {
 namespace {
 
@@ -30,7 +32,13 @@ Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& bui
   out.masksOnGrid = maskLayerVolumes(regions, grid, built.overlaps);
   for (const FeatureVolumes& f : built.overlaps.features) out.maskLayerOf.push_back(f.maskLayer);
   const LabelVolume partition = partitionVolume(regions, grid, built.nesting.order);
-  if (!contours.reference) {
+  // Only a grid built on the reference lattice (no --voxel-size / --grid of its own) is cut to it.
+  const bool onLattice = contours.reference && std::abs(grid.spacingX - contours.reference->spacingX) <= 1e-9 * grid.spacingX &&
+                           std::abs(grid.spacingY - contours.reference->spacingY) <= 1e-9 * grid.spacingY;
+  if (contours.reference && !onLattice)
+    out.warnings.push_back("the label volume lies on the run's grid, not on the reference CT's (a voxel size or pixel "
+                           "counts of its own were given)");
+  if (!onLattice) {
     for (const LabelVolume& m : out.masksOnGrid) out.masks.push_back(asFile(m));
     out.partition = asFile(partition);
     return out;

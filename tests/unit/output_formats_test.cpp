@@ -330,6 +330,20 @@ TEST_F(OutputFormatsTest, GlbSceneShowsRightInAViewer) {
   }
 }
 
+// Names are bytes from the input: a Latin-1 ROI name (R, 0xFC, ckenmark) must not break the
+// UTF-8 formats; the invalid byte becomes U+FFFD in the GLB and the report.
+TEST_F(OutputFormatsTest, NamesThatAreNotUtf8StillWrite) {
+  Built b = nested();
+  b.set.features[0].name = "R\xFC" "ckenmark";
+  ASSERT_TRUE(writeScene(dir_ / "latin1.glb", b.set, b.surfaces));
+  const Glb glb = parseGlb(readFile(dir_ / "latin1.glb"));
+  EXPECT_EQ(glb.json["meshes"][0]["name"], "R\xEF\xBF\xBD" "ckenmark");
+  RunReport r;
+  r.features.push_back({b.set.features[0].name, 1, {1, 2, 3}, {}, {}});
+  ASSERT_TRUE(writeReport(dir_ / "latin1.json", r));
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir_ / "latin1.json"))["features"][0]["name"], "R\xEF\xBF\xBD" "ckenmark");
+}
+
 CompactMesh readObj(const fs::path& path);
 
 // Every file records which scansurf made it.

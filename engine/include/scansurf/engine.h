@@ -4,7 +4,8 @@
 //   auto engine = scansurf::Engine::create({});
 //   auto built = engine->build(contours, {});      // nesting, grid, scan conversion, surfaces
 //
-// The same, stage by stage (exactly what build() gives, smoothing included):
+// The same, stage by stage (exactly what build() gives, smoothing included, when no features
+// partly overlap; with partial overlaps build() runs the stages once per layer):
 //   auto nesting = scansurf::computeNesting(contours, options.grid.sliceTolerance);
 //   auto grid = scansurf::makeGrid(contours, options.grid);
 //   auto volume = engine->scanConvert(contours, nesting, *grid, options);

@@ -103,9 +103,11 @@ Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSe
 //   Segment{i}_Layer, _LabelValue and _Extent), 3-D otherwise.
 // - NIfTI: the single partition (one label per voxel, inner features first), what label-map
 //   tools expect.
-// With a reference series (ContourSet::reference) the file lies exactly on its lattice: same
-// size, origin, spacing and slices; voxels beyond it are dropped, and `warnings` (when given)
-// names each feature that lost some and how many.
+// With a reference series (ContourSet::reference) and a grid built on it, the file lies exactly
+// on its lattice: same size, origin, spacing and slices (unevenly spaced CT slices are
+// resampled as above); voxels beyond it are dropped, and `warnings` (when given) names each
+// feature that lost some and how many. A grid of its own (voxel size, pixel counts) is written
+// as it is, with a warning.
 Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const BuildResult& built,
                               std::vector<std::string>* warnings = nullptr);
 
@@ -180,6 +182,7 @@ class OutputStaging {
   Result<std::filesystem::path> reserve(const std::filesystem::path& target);
   std::vector<std::filesystem::path> dirs_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // staged, target
+  unsigned long id_ = 0;  // names this staging's folders: .scansurf-staging-<pid>-<id>
 };
 
 struct SurfaceOutputs {

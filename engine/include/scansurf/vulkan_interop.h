@@ -41,7 +41,9 @@ struct ExternalVulkan {
 // `offset`, as `bitsPerLabel` unsigned integers (16 or 32; 32-bit values must be at most
 // 65535). Label 0 is background, label i + 1 is feature i; the outermost voxels of the grid
 // (its one-voxel border) must be background so that every surface closes.
-// The buffer needs VK_BUFFER_USAGE_TRANSFER_SRC_BIT and must be owned by the queue family
+// The buffer must hold offset + nx*ny*nz*bitsPerLabel/8 bytes (not checkable from the handle:
+// with validation on, a shorter buffer is reported by the layers), needs
+// VK_BUFFER_USAGE_TRANSFER_SRC_BIT and must be owned by the queue family
 // scansurf was given. Writes to it must be complete before the call: submitted earlier to the
 // same queue (scansurf's first command waits on them with a full memory barrier) or waited for
 // by the application. scansurf only reads it.
