@@ -1,6 +1,9 @@
 // Write-to-temporary-then-rename, the POSIX way to replace a file atomically.
 #include "io/atomic_file.h"
 
+#include <fstream>
+#include <sstream>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -156,6 +159,19 @@ Result<void> ensureWritableDirectory(const std::filesystem::path& directory) {
   Result<AtomicFile> probe = AtomicFile::create(directory / ".scansurf-probe");
   if (!probe) return ioError("output directory", directory, "is not writable: " + probe.error().message);
   return {};
+}
+
+}  // namespace scansurf
+
+namespace scansurf {
+
+Result<std::string> readWholeFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return makeError(Errc::Io, path.string() + ": cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return makeError(Errc::Io, path.string() + ": read error");
+  return text.str();
 }
 
 }  // namespace scansurf

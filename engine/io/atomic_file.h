@@ -59,6 +59,9 @@ Result<void> writeFileAtomically(const std::filesystem::path& target, const void
 Result<void> writeThroughTemporaryPath(const std::filesystem::path& target, const std::string& suffix,
                                        const std::function<Result<void>(const std::filesystem::path& temporary)>& write);
 
+// The whole file as bytes. Errors: Errc::Io naming the path ("cannot open the file", "read error").
+Result<std::string> readWholeFile(const std::filesystem::path& path);
+
 // Creates `directory` (and its parents) if missing and checks that files can be created in
 // it, so a run fails before its work rather than after. Errors (Errc::Io) name the path.
 Result<void> ensureWritableDirectory(const std::filesystem::path& directory);

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "geometry/validate.h"
+#include "io/atomic_file.h"
 #include "io/object_features.h"
 #include "io/rtstruct_reader.h"
 
@@ -82,15 +83,6 @@ struct ModelObject {
   std::vector<ModelContour> contours;
 };
 
-Result<std::string> readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return makeError(Errc::Io, path.string() + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return makeError(Errc::Io, path.string() + ": read error");
-  return text.str();
-}
-
 // "object 3 \"mito\"" (messages add the file in front).
 std::string objectLabel(int number, const std::string& name) {
   std::string label = "object " + std::to_string(number);
@@ -146,7 +138,7 @@ bool hasImodMagic(const fs::path& path) {
 
 Result<ImodModel> readImodModel(const fs::path& path, const ImodOptions& options) {
   const std::string file = path.string();
-  SCANSURF_ASSIGN_OR_RETURN(const std::string data, readFile(path));
+  SCANSURF_ASSIGN_OR_RETURN(const std::string data, readWholeFile(path));
   Bytes in(data, file);
   SCANSURF_TRY(in.need(8, "the file id (IMOD and the version)"));
   if (in.id() != "IMOD") return invalid(file + ": not an IMOD model (it does not start with \"IMOD\")");

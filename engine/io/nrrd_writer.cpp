@@ -34,13 +34,26 @@ Result<std::vector<unsigned char>> gzip(const void* data, std::size_t size, cons
   // windowBits 15 + 16: a gzip wrapper, which NRRD's "encoding: gzip" expects.
   if (deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
     return makeError(Errc::Internal, "cannot write '" + path.string() + "': zlib initialisation failed");
-  std::vector<unsigned char> out(deflateBound(&z, static_cast<uLong>(size)) + 64);
-  z.next_in = static_cast<Bytef*>(const_cast<void*>(data));
-  z.avail_in = static_cast<uInt>(size);
-  z.next_out = out.data();
-  z.avail_out = static_cast<uInt>(out.size());
-  const int rc = deflate(&z, Z_FINISH);
-  out.resize(z.total_out);
+  // zlib counts in 32 bits: feed and drain it in chunks so volumes over 4 GiB compress whole.
+  constexpr std::size_t kChunk = std::size_t{1} << 30;
+  std::vector<unsigned char> out;
+  std::vector<unsigned char> buffer(std::size_t{1} << 20);
+  const auto* in = static_cast<const unsigned char*>(data);
+  std::size_t left = size;
+  int rc = Z_OK;
+  while (rc != Z_STREAM_END) {
+    if (z.avail_in == 0 && left > 0) {
+      const std::size_t take = std::min(left, kChunk);
+      z.next_in = const_cast<Bytef*>(in);
+      z.avail_in = static_cast<uInt>(take);
+      in += take, left -= take;
+    }
+    z.next_out = buffer.data();
+    z.avail_out = static_cast<uInt>(buffer.size());
+    rc = deflate(&z, left == 0 ? Z_FINISH : Z_NO_FLUSH);
+    if (rc == Z_STREAM_ERROR) break;
+    out.insert(out.end(), buffer.data(), buffer.data() + (buffer.size() - z.avail_out));
+  }
   deflateEnd(&z);
   if (rc != Z_STREAM_END) return makeError(Errc::Internal, "cannot write '" + path.string() + "': zlib compression failed");
   return out;
@@ -77,13 +90,18 @@ RegularLabelVolume regularize(const LabelVolume& volume) {
     return out;
   }
   out.resampled = true;
-  out.nz = static_cast<int>(std::floor((last - first) / minGap + 1e-6)) + 1;
-  out.geometry.axes[2] = {0, 0, minGap};
+  // Planes at the smallest gap, but never more than kMaxResampling times the layers: one odd
+  // slice 0.01 mm from its neighbour must not ask for thousands of planes.
+  constexpr double kMaxResampling = 8;
+  const double planes = std::floor((last - first) / minGap + 1e-6) + 1;
+  out.nz = static_cast<int>(std::min(planes, kMaxResampling * g.nz));
+  const double step = (last - first) / (out.nz - 1);
+  out.geometry.axes[2] = {0, 0, step};
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   out.labels.resize(plane * static_cast<std::size_t>(out.nz));
   std::size_t layer = 0;
   for (int k = 0; k < out.nz; ++k) {
-    const double z = first + k * minGap;
+    const double z = first + k * step;
     while (layer + 1 < g.layerZ.size() && std::abs(g.layerZ[layer + 1] - z) < std::abs(g.layerZ[layer] - z)) ++layer;
     std::copy_n(volume.labels.begin() + static_cast<std::ptrdiff_t>(layer * plane), plane,
                 out.labels.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(k) * plane));

@@ -27,8 +27,9 @@ struct NrrdGeometry {
 
 // A label volume with a regular geometry, made from a Grid. Layers of a grid may be unevenly
 // spaced, which one NRRD spacing cannot express: then the volume is resampled along z onto
-// planes spaced by the smallest layer gap from the first layer to the last, each plane taking
-// the labels of the nearest layer (`resampled` says so). Evenly spaced layers (within 1e-4 of
+// planes spaced by the smallest layer gap from the first layer to the last (at most 8 times as
+// many planes as layers; the spacing then grows to fit), each plane taking the labels of the
+// nearest layer (`resampled` says so). Evenly spaced layers (within 1e-4 of
 // the mean gap, relative) are kept as they are.
 struct RegularLabelVolume {
   int nx = 0, ny = 0, nz = 0;

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "geometry/validate.h"
+#include "io/atomic_file.h"
 #include "io/object_features.h"
 
 namespace scansurf {
@@ -73,18 +74,9 @@ std::optional<Rgb> parseColor(const pugi::xml_attribute& attribute) {
   return rgb;
 }
 
-Result<std::string> readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return makeError(Errc::Io, path.string() + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return makeError(Errc::Io, path.string() + ": read error");
-  return text.str();
-}
-
 // Parses an XML file; errors give the line and pugixml's description.
 Result<void> loadXml(const fs::path& path, pugi::xml_document& doc) {
-  SCANSURF_ASSIGN_OR_RETURN(const std::string text, readFile(path));
+  SCANSURF_ASSIGN_OR_RETURN(const std::string text, readWholeFile(path));
   const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size());
   if (parsed) return {};
   const auto offset =

@@ -34,6 +34,12 @@ Feature halfDiscFeature(const std::string& name, double radius, bool left, int s
   return f;
 }
 
+// BODY holding an organ, a margin partly over the organ, a skin mark half outside BODY.
+std::vector<Feature> mixedFeatures() {
+  return {circleFeature("BODY", {0, 0}, 30, 8), circleFeature("organ", {0, 0}, 10, 8), circleFeature("margin", {8, 0}, 6, 8),
+          circleFeature("mark", {30, 0}, 3, 8)};
+}
+
 class OverlapsTest : public EngineTest {
  protected:
   static BuildResult build(const ContourSet& set, OverlapMode mode, double voxelSize = 0.5) {
@@ -130,8 +136,7 @@ TEST_F(OverlapsTest, PlanningVolumeOverTwoAbuttingOrgans) {
 TEST_F(OverlapsTest, NestedPlusOverlappingAndAMarkOutsideTheBody) {
   ContourSet set;
   set.source = "mixed";
-  set.features = {circleFeature("BODY", {0, 0}, 30, 8), circleFeature("organ", {0, 0}, 10, 8),
-                  circleFeature("margin", {8, 0}, 6, 8), circleFeature("mark", {30, 0}, 3, 8)};
+  set.features = mixedFeatures();
   const BuildResult b = build(set, OverlapMode::Layers);
   const OverlapReport& r = b.overlaps;
   EXPECT_EQ(r.partialOverlaps().size(), 2u) << "organ-margin and BODY-mark";
@@ -148,8 +153,7 @@ TEST_F(OverlapsTest, NestedPlusOverlappingAndAMarkOutsideTheBody) {
 TEST_F(OverlapsTest, PartitionReportsExactlyWhatEachFeatureLost) {
   ContourSet set;
   set.source = "partition";
-  set.features = {circleFeature("BODY", {0, 0}, 30, 8), circleFeature("organ", {0, 0}, 10, 8),
-                  circleFeature("margin", {8, 0}, 6, 8), circleFeature("mark", {30, 0}, 3, 8)};
+  set.features = mixedFeatures();
   const BuildResult b = build(set, OverlapMode::Partition);
   EXPECT_EQ(b.overlaps.layers, 1);
   for (std::size_t f = 0; f < set.features.size(); ++f) {

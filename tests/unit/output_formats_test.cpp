@@ -496,6 +496,19 @@ TEST_F(OutputFormatsTest, UnevenLayersAreResampledOntoTheSmallestGap) {
   EXPECT_EQ(r.labels, expected);
 }
 
+// One slice 0.01 mm from its neighbour among 1 mm slices: at most 8 planes per layer.
+TEST_F(OutputFormatsTest, AnOddSliceCannotBlowTheResamplingUp) {
+  LabelVolume v;
+  v.grid.nx = 1, v.grid.ny = 1, v.grid.nz = 301;
+  for (int k = 0; k < 300; ++k) v.grid.layerZ.push_back(k);
+  v.grid.layerZ.insert(v.grid.layerZ.begin() + 101, 100.01);
+  v.labels.assign(301, 1);
+  const RegularLabelVolume r = regularize(v);
+  EXPECT_TRUE(r.resampled);
+  EXPECT_LE(r.nz, 8 * 301);
+  EXPECT_NEAR(r.geometry.axes[2][2] * (r.nz - 1), 299.0, 1e-9);
+}
+
 TEST_F(OutputFormatsTest, ReportJsonCarriesStatisticsParametersAndTimings) {
   const Built& b = nested();
   RunReport r;
