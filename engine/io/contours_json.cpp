@@ -19,6 +19,27 @@ using Json = nlohmann::json;
 
 Unexpected invalid(std::string message) { return makeError(Errc::InvalidInput, std::move(message)); }
 
+// The format nests 8 deep (document, features, feature, slices, slice, contours, contour,
+// point); anything far deeper is hostile and is refused while parsing, before a recursive
+// walk (dump, destruction) could exhaust the stack.
+constexpr int kMaxDepth = 64;
+struct TooDeep {
+  std::size_t depth;
+};
+
+// The parser's own message quotes the last token read, which may be megabytes long.
+std::string shortened(std::string message) {
+  if (message.size() > 200) message = message.substr(0, 197) + "...";
+  return message;
+}
+
+// A value quoted in an error message, cut short: never a megabyte of JSON in a message.
+std::string quoted(const Json& j) {
+  std::string text = j.dump(-1, ' ', false, Json::error_handler_t::replace);
+  if (text.size() > 60) text = text.substr(0, 57) + "...";
+  return text;
+}
+
 const char* typeName(const Json& j) { return j.type_name(); }
 
 // Where in the file a structural error is: builds the prefix as far as it is known.
@@ -57,7 +78,7 @@ Result<Rgb> parseColor(const Json& j, const Location& at) {
     const Json& c = j[i];
     if (!c.is_number_integer())
       return invalid(at.text() + ": \"color\" must be an array of 3 integers in 0..255, component " +
-                     std::to_string(i) + " is " + c.dump());
+                     std::to_string(i) + " is " + quoted(c));
     const std::int64_t v = c.is_number_unsigned() ? static_cast<std::int64_t>(std::min<std::uint64_t>(c.get<std::uint64_t>(), 1000))
                                                   : c.get<std::int64_t>();
     if (v < 0 || v > 255)
@@ -76,7 +97,7 @@ Result<Contour> parseContour(const Json& j, Location at) {
     const Json& point = j[p];
     if (!point.is_array() || point.size() != 2 || !point[0].is_number() || !point[1].is_number()) {
       at.point = static_cast<int>(p);
-      return invalid(at.text() + ": a point must be an array of 2 numbers, found " + point.dump());
+      return invalid(at.text() + ": a point must be an array of 2 numbers, found " + quoted(point));
     }
     contour.points.push_back(Point2{point[0].get<double>(), point[1].get<double>()});
   }
@@ -137,7 +158,7 @@ Result<ContourSet> parseDocument(const Json& root, std::string source) {
   const auto version = root.find("version");
   if (version == root.end()) return invalid(set.source + ": missing \"version\" (expected 1)");
   if (!version->is_number_integer() || version->get<std::int64_t>() != 1)
-    return invalid(set.source + ": unsupported \"version\" " + version->dump() + " (expected 1)");
+    return invalid(set.source + ": unsupported \"version\" " + quoted(*version) + " (expected 1)");
 
   if (const auto units = root.find("units"); units != root.end()) {
     if (!units->is_string()) return invalid(set.source + ": \"units\" must be a string, found " + typeName(*units));
@@ -160,7 +181,7 @@ Result<ContourSet> parseDocument(const Json& root, std::string source) {
       const Json& entry = (*order)[i];
       if (!entry.is_string())
         return invalid(set.source + ": \"order\" entry " + std::to_string(i) + " must be a feature name, found " +
-                       entry.dump());
+                       quoted(entry));
       const std::string name = entry.get<std::string>();
       int index = -1;
       for (std::size_t f = 0; f < set.features.size() && index < 0; ++f)
@@ -184,12 +205,19 @@ Result<ContourSet> parseDocument(const Json& root, std::string source) {
 Result<ContourSet> parseContoursJson(std::string_view text, std::string source) {
   Json root;
   try {
-    root = Json::parse(text.begin(), text.end());
+    root = Json::parse(text.begin(), text.end(), [](int depth, Json::parse_event_t event, Json&) {
+      if (depth > kMaxDepth && (event == Json::parse_event_t::object_start || event == Json::parse_event_t::array_start))
+        throw TooDeep{static_cast<std::size_t>(depth)};
+      return true;
+    });
+  } catch (const TooDeep&) {
+    return invalid(source + ": values nested more than " + std::to_string(kMaxDepth) +
+                   " deep (the contour format nests 8 deep): refused");
   } catch (const Json::parse_error& e) {
-    return invalid(source + ": not valid JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+    return invalid(source + ": not valid JSON at byte " + std::to_string(e.byte) + ": " + shortened(e.what()));
   } catch (const Json::exception& e) {
     // e.g. a number too large for a double: nlohmann reports it without a position.
-    return invalid(source + ": not valid JSON: " + e.what());
+    return invalid(source + ": not valid JSON: " + shortened(e.what()));
   }
   try {
     return parseDocument(root, std::move(source));
@@ -210,17 +238,19 @@ Result<ContourSet> readContoursJson(const std::filesystem::path& path) {
 namespace {
 
 std::string number(double v) { return Json(v).dump(); }
+// A JSON string; bytes that are not UTF-8 (a Latin-1 name) become U+FFFD instead of throwing.
+std::string text(const std::string& s) { return Json(s).dump(-1, ' ', false, Json::error_handler_t::replace); }
 
 }  // namespace
 
 std::string formatContoursJson(const ContourSet& contours) {
   // Hand-laid-out so the file stays readable and diffable: one line per contour.
   std::string out;
-  out += "{\n  \"version\": 1,\n  \"units\": " + Json(contours.units).dump() + ",\n  \"features\": [";
+  out += "{\n  \"version\": 1,\n  \"units\": " + text(contours.units) + ",\n  \"features\": [";
   for (std::size_t f = 0; f < contours.features.size(); ++f) {
     const Feature& feature = contours.features[f];
     out += f ? ",\n" : "\n";
-    out += "    {\n      \"name\": " + Json(feature.name).dump() + ",\n";
+    out += "    {\n      \"name\": " + text(feature.name) + ",\n";
     if (feature.color) {
       const Rgb& c = *feature.color;
       out += "      \"color\": [" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
@@ -249,7 +279,7 @@ std::string formatContoursJson(const ContourSet& contours) {
     out += ",\n  \"order\": [";
     for (std::size_t i = 0; i < contours.order.size(); ++i) {
       if (i) out += ", ";
-      out += Json(contours.features[contours.order[i]].name).dump();
+      out += text(contours.features[contours.order[i]].name);
     }
     out += "]";
   }

@@ -303,5 +303,25 @@ TEST(ContoursJson, BundledPhantomParsesAndValidates) {
   EXPECT_EQ(computeNesting(*r).parent, (std::vector<int>{-1, 0, 0, 1, 0, 0}));
 }
 
+// Hostile nesting (issue 15): 200 000 levels inside "version" or a point is refused while
+// parsing, with a message, never a stack overflow; quoted values are cut short.
+TEST(ContoursJson, DeepNestingIsRefusedNotFatal) {
+  const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+  for (const std::string& doc : {"{\"version\": " + deep + ", \"features\": []}",
+                                 "{\"version\": 1, \"features\": [{\"name\": \"a\", \"slices\": [{\"z\": 0, "
+                                 "\"contours\": [[[0, 0], [1, 0], " + deep + "]]}]}]}"}) {
+    const auto r = parseContoursJson(doc, "deep.json");
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, Errc::InvalidInput);
+    EXPECT_NE(r.error().message.find("nested more than 64 deep"), std::string::npos) << r.error().message.substr(0, 200);
+  }
+  std::string wide = "[1";
+  for (int i = 0; i < 50000; ++i) wide += ",1";
+  wide += "]";
+  const auto r = parseContoursJson("{\"version\": " + wide + ", \"features\": []}", "wide.json");
+  ASSERT_FALSE(r);
+  EXPECT_LT(r.error().message.size(), 200u) << "the value is quoted short";
+}
+
 }  // namespace
 }  // namespace scansurf
