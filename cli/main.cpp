@@ -16,6 +16,7 @@
 #include "options.h"
 #include "progress.h"
 #include "roi_list.h"
+#include "safe_text.h"
 #include "scansurf/scansurf.h"
 #include "summary.h"
 
@@ -28,7 +29,7 @@ int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 
 int fail(const Error& error) {
   if (::isatty(STDERR_FILENO)) std::fputs("\r\033[K", stderr);  // over a progress line
-  std::fprintf(stderr, "scansurf: error: %s\n", error.message.c_str());
+  std::fprintf(stderr, "scansurf: error: %s\n", cli::printable(error.message).c_str());
   return exitCode(error.code);
 }
 
@@ -136,9 +137,9 @@ int run(const cli::CliOptions& o) {
   laps.begin("read");
   auto contours = readContours(o.input, o.read);
   if (!contours) return fail(contours.error());
-  for (const std::string& w : contours->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
+  for (const std::string& w : contours->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", cli::printable(w).c_str());
   if (!o.quiet)
-    for (const std::string& note : contours->notes) std::printf("%s\n", note.c_str());
+    for (const std::string& note : contours->notes) std::printf("%s\n", cli::printable(note).c_str());
   laps.lap("read");
 
   auto built = buildSurfaces(o, *contours, laps);
@@ -178,7 +179,7 @@ int run(const cli::CliOptions& o) {
   progress.finish(0);
 
   std::fflush(stdout);  // warnings after what was already printed
-  for (const std::string& w : result.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
+  for (const std::string& w : result.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", cli::printable(w).c_str());
   if (!o.quiet) cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
   return 0;
 }

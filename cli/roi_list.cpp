@@ -1,6 +1,8 @@
 // scansurf CLI: --list-rois and --list-objects.
 #include "roi_list.h"
 
+#include "safe_text.h"
+
 #include <cstdio>
 
 #include "scansurf/input.h"
@@ -25,7 +27,7 @@ Result<void> printRoiList(const std::string& path, const std::vector<std::string
         std::string("--list-rois applies to DICOM RTSTRUCT input, not to ") + inputFormatName(format) + " " + path +
             (format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel ? " (use --list-objects)" : ""));
   SCANSURF_ASSIGN_OR_RETURN(const StructureSetInfo rt, listRois(path, roiPatterns));
-  std::printf("%s: RT Structure Set \"%s\", %zu ROIs (z in mm, patient coordinates)\n", path.c_str(), rt.label.c_str(),
+  std::printf("%s: RT Structure Set \"%s\", %zu ROIs (z in mm, patient coordinates)\n", path.c_str(), printable(rt.label).c_str(),
               rt.rois.size());
   std::printf("  %6s  %-24s %-12s %-28s %6s  %-20s %s\n", "number", "name", "type", "contours", "slices", "z range", "selected");
   for (const RoiInfo& roi : rt.rois) {
@@ -37,8 +39,8 @@ Result<void> printRoiList(const std::string& path, const std::vector<std::string
     }
     if (contours.empty()) contours = "none";
     const std::string range = total > 0 ? formatZ(roi.zMin) + " .. " + formatZ(roi.zMax) : "-";
-    std::printf("  %6d  %-24s %-12s %-28s %6d  %-20s %s\n", roi.number, roi.name.c_str(),
-                roi.interpretedType.empty() ? "-" : roi.interpretedType.c_str(), contours.c_str(), roi.slices, range.c_str(),
+    std::printf("  %6d  %-24s %-12s %-28s %6d  %-20s %s\n", roi.number, printable(roi.name).c_str(),
+                roi.interpretedType.empty() ? std::string("-").c_str() : printable(roi.interpretedType).c_str(), contours.c_str(), roi.slices, range.c_str(),
                 roi.selected ? (roi.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
   }
   return {};
@@ -51,14 +53,14 @@ Result<void> printObjectList(const std::string& path, const std::vector<std::str
                                                 inputFormatName(format) + " " + path +
                                                 (format == InputFormat::RtStruct ? " (use --list-rois)" : ""));
   SCANSURF_ASSIGN_OR_RETURN(const ObjectListing listing, listObjects(path, objectPatterns));
-  for (const std::string& w : listing.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", w.c_str());
+  for (const std::string& w : listing.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", printable(w).c_str());
   const char* planes = listing.format == InputFormat::ReconstructSeries ? "sections" : "slices";
-  std::printf("%s: %s, %zu objects (x, y, z in %s)\n", path.c_str(), listing.description.c_str(), listing.objects.size(),
-              listing.units.c_str());
+  std::printf("%s: %s, %zu objects (x, y, z in %s)\n", path.c_str(), printable(listing.description).c_str(), listing.objects.size(),
+              printable(listing.units).c_str());
   std::printf("  %6s  %-24s %9s %9s %9s  %-20s %s\n", "number", "name", "contours", "skipped", planes, "z range", "selected");
   for (const ObjectInfo& object : listing.objects) {
     const std::string range = object.slices > 0 ? formatZ(object.zMin) + " .. " + formatZ(object.zMax) : "-";
-    std::printf("  %6d  %-24s %9d %9d %9d  %-20s %s\n", object.number, object.name.c_str(), object.contours, object.skipped,
+    std::printf("  %6d  %-24s %9d %9d %9d  %-20s %s\n", object.number, printable(object.name).c_str(), object.contours, object.skipped,
                 object.slices, range.c_str(),
                 object.selected ? (object.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
   }

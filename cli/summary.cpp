@@ -1,5 +1,7 @@
 #include "summary.h"
 
+#include "safe_text.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -11,6 +13,12 @@ namespace scansurf::cli {
 const char* conventionName(SurfaceConvention c) { return c == SurfaceConvention::Enclosing ? "enclosing" : "partition"; }
 
 namespace {
+
+std::vector<std::string> printableNames(const ContourSet& set) {
+  std::vector<std::string> names;
+  for (const Feature& f : set.features) names.push_back(printable(f.name));
+  return names;
+}
 
 // One decimal for mm-scale volumes; four significant digits for small ones (µm³ of EM data).
 std::string formatVolume(double volume) {
@@ -28,8 +36,10 @@ std::string volumeFlag(double surface, double contour) {
 }
 
 void printOverlaps(const ContourSet& set, const OverlapReport& report) {
-  const auto name = [&](int f) { return set.features[static_cast<std::size_t>(f)].name.c_str(); };
-  const char* units = set.units.c_str();
+  const std::vector<std::string> names = printableNames(set);
+  const auto name = [&](int f) { return names[static_cast<std::size_t>(f)].c_str(); };
+  const std::string unitText = printable(set.units);
+  const char* units = unitText.c_str();
   for (const SharedVolume& s : report.partialOverlaps())
     std::printf("overlap: %s and %s share %s %s3 (%s)\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
                 report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
@@ -49,18 +59,19 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   const BuildResult& built = *facts.built;
   const Grid& g = built.volume.grid;
   std::printf("grid: %d x %d x %d voxels (%g x %g %s pixels, %d slices, 1-voxel background border)\n", g.nx, g.ny, g.nz,
-              g.spacingX, g.spacingY, set.units.c_str(), g.nz - 2);
+              g.spacingX, g.spacingY, printable(set.units).c_str(), g.nz - 2);
   std::printf("nesting order (%s, innermost first):", built.nesting.userOrder ? "from input" : "computed");
-  for (int f : built.nesting.order) std::printf(" %s", set.features[static_cast<std::size_t>(f)].name.c_str());
+  for (int f : built.nesting.order) std::printf(" %s", printable(set.features[static_cast<std::size_t>(f)].name).c_str());
   std::printf("\nsurfaces (%s convention, overlaps as %s: %d layer%s): %zu vertices, %zu triangles in the multi-label mesh\n",
               conventionName(facts.convention), overlapModeName(built.overlaps.mode), built.overlaps.layers,
               built.overlaps.layers == 1 ? "" : "s", built.surfaces.mesh.vertexCount(), built.surfaces.mesh.triangleCount());
   std::printf("  %-20s %6s %5s %10s %14s %14s %10s %6s %s\n", "feature", "label", "layer", "triangles",
-              ("volume " + set.units + "3").c_str(), ("contour " + set.units + "3").c_str(), "components", "genus", "closed");
+              ("volume " + printable(set.units) + "3").c_str(), ("contour " + printable(set.units) + "3").c_str(), "components",
+              "genus", "closed");
   for (std::size_t f = 0; f < set.features.size(); ++f) {
     const MeshStats& s = facts.stats[f];
     const FeatureVolumes& v = built.overlaps.features[f];
-    std::printf("  %-20s %6d %5d %10zu %14s %14s %10d %6d %s%s\n", set.features[f].name.c_str(),
+    std::printf("  %-20s %6d %5d %10zu %14s %14s %10d %6d %s%s\n", printable(set.features[f].name).c_str(),
                 labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, formatVolume(s.volume).c_str(),
                 formatVolume(v.contour).c_str(), s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO",
                 volumeFlag(s.volume, v.contour).c_str());

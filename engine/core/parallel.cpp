@@ -5,6 +5,7 @@
 #include <exception>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -43,7 +44,13 @@ void parallelChunks(std::size_t count, int threads,
   };
   std::vector<std::thread> workers;
   workers.reserve(static_cast<std::size_t>(chunks - 1));
-  for (int c = 1; c < chunks; ++c) workers.emplace_back(run, c);
+  for (int c = 1; c < chunks; ++c) {
+    try {
+      workers.emplace_back(run, c);
+    } catch (const std::system_error&) {
+      run(c);  // no thread to be had (a thread limit): this one does the chunk, same result
+    }
+  }
   run(0);
   for (std::thread& t : workers) t.join();
   if (failure) std::rethrow_exception(failure);

@@ -84,6 +84,16 @@ expect_output("partition: PTV lost [0-9.]+ mm3 \\([0-9.]+ % of its contour volum
 expect_output("warning: feature \"PTV\" lost [0-9]+ % of its contour volume to \"organ\"")
 run_scansurf(2 "${DATA}/overlapping.json" -o "${OUT}/x" --overlaps sideways)
 
+# Control characters in a name (ESC, newline) are printed escaped: no forged lines, no
+# terminal control sequences.
+run_scansurf(0 "${DATA}/control_chars.json" -o "${OUT}/control" --voxel-size 0.5 --overlaps partition)
+string(ASCII 27 esc)
+string(FIND "${last_output}" "${esc}" raw_escape)
+if(NOT raw_escape EQUAL -1 OR last_output MATCHES "\nscansurf: error: forged")
+  message(FATAL_ERROR "a control character in a name reached the terminal:\n${last_output}")
+endif()
+expect_output("organ\\\\x1B\\[2J\\\\x0Ascansurf: error: forged")
+
 # Usage errors: exit 2.
 run_scansurf(2 "${EXAMPLES}/phantom.json")
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --convention sideways)
