@@ -176,6 +176,10 @@ std::vector<fs::path> OutputStaging::targets() const {
 Result<std::vector<fs::path>> OutputStaging::commit() {
   std::vector<fs::path> written;
   std::error_code ec;
+  // A target that is a directory would stop the moves half way: find it before any move.
+  for (const auto& [staged, target] : files_)
+    if (fs::is_directory(target, ec))
+      return makeError(Errc::Io, "cannot write '" + target.string() + "': a directory is in the way; nothing was replaced");
   for (const auto& [staged, target] : files_) {
     fs::rename(staged, target, ec);
     if (ec)

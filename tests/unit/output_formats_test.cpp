@@ -568,6 +568,31 @@ TEST_F(OutputFormatsTest, UnwritablePathsFailNamingThePathAndLeaveNothing) {
   EXPECT_EQ(fileCount(), 1u);
 }
 
+// A directory where an output should go (vertebra.ply/) stops the run before anything is
+// replaced: every other target keeps its old contents.
+TEST_F(OutputFormatsTest, ADirectoryInTheWayReplacesNothing) {
+  std::ofstream(dir_ / "a.ply") << "old a";
+  fs::create_directories(dir_ / "b.ply");
+  {
+    OutputStaging staging;
+    const auto write = [](const std::string& text) {
+      return [text](const fs::path& p) -> Result<void> {
+        std::ofstream(p) << text;
+        return {};
+      };
+    };
+    ASSERT_TRUE(staging.stage(dir_ / "a.ply", write("new a")));
+    ASSERT_TRUE(staging.stage(dir_ / "b.ply", write("new b")));
+    auto committed = staging.commit();
+    ASSERT_FALSE(committed);
+    EXPECT_EQ(committed.error().code, Errc::Io);
+    EXPECT_NE(committed.error().message.find("b.ply"), std::string::npos);
+  }
+  EXPECT_EQ(readFile(dir_ / "a.ply"), "old a");
+  EXPECT_TRUE(fs::is_directory(dir_ / "b.ply"));
+  EXPECT_EQ(fileCount(), 2u) << "the staging folder is gone";
+}
+
 // A full disk, simulated with a file-size limit: the write fails, nothing partial remains and
 // the previous file is untouched.
 TEST_F(OutputFormatsTest, FullDiskLeavesThePreviousFileIntact) {

@@ -173,7 +173,8 @@ class OutputStaging {
   // staged, Errc::Io, or write's error.
   Result<void> stage(const std::filesystem::path& target,
                      const std::function<Result<void>(const std::filesystem::path& staged)>& write);
-  // Moves every staged file into place; returns the final paths in staging order.
+  // Moves every staged file into place; returns the final paths in staging order. A target
+  // that is a directory is found before anything moves (Errc::Io, nothing replaced).
   Result<std::vector<std::filesystem::path>> commit();
   // The final paths staged so far.
   std::vector<std::filesystem::path> targets() const;
