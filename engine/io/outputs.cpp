@@ -1,7 +1,12 @@
 // scansurf: every output of a run, one file at a time or all or nothing (scansurf/outputs.h).
 #include "scansurf/outputs.h"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <string_view>
 
 #include <algorithm>
 #include <atomic>
@@ -132,6 +137,24 @@ unsigned long nextStagingId() {
 }
 }  // namespace
 
+// Staging folders of processes that died (killed during their write stage) are removed by
+// the next run into the same place: the pid in the name is no longer alive.
+void removeStaleStaging(const fs::path& parent) {
+  constexpr std::string_view kPrefix = ".scansurf-staging-";
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kPrefix, 0) != 0) continue;
+    const std::string rest = name.substr(kPrefix.size());
+    const long pid = std::strtol(rest.c_str(), nullptr, 10);
+    if (pid <= 0 || pid == ::getpid()) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove_all(it->path(), ignored);
+    }
+  }
+}
+
 OutputStaging::~OutputStaging() {
   std::error_code ignored;
   for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
@@ -146,6 +169,7 @@ Result<fs::path> OutputStaging::reserve(const fs::path& target) {
   if (id_ == 0) id_ = nextStagingId();
   const fs::path dir = parent / (".scansurf-staging-" + std::to_string(::getpid()) + "-" + std::to_string(id_));
   if (std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) {
+    removeStaleStaging(parent);
     std::error_code ec;
     fs::remove_all(dir, ec);
     if (!fs::create_directory(dir, ec)) return makeError(Errc::Io, "cannot create " + dir.string() + ": " + ec.message());

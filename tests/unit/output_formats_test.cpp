@@ -7,6 +7,8 @@
 #include <png.h>
 #include <sys/resource.h>
 #include <unistd.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -591,6 +593,29 @@ TEST_F(OutputFormatsTest, ADirectoryInTheWayReplacesNothing) {
   EXPECT_EQ(readFile(dir_ / "a.ply"), "old a");
   EXPECT_TRUE(fs::is_directory(dir_ / "b.ply"));
   EXPECT_EQ(fileCount(), 2u) << "the staging folder is gone";
+}
+
+// A run killed during its write stage leaves its staging folder; the next run into the same
+// place removes it (its pid is dead), and leaves a live process's alone.
+TEST_F(OutputFormatsTest, StaleStagingOfADeadProcessIsRemoved) {
+  pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);  // a pid that is certainly dead now
+  const fs::path stale = dir_ / (".scansurf-staging-" + std::to_string(child) + "-1");
+  const fs::path live = dir_ / (".scansurf-staging-" + std::to_string(::getppid()) + "-1");
+  fs::create_directories(stale);
+  fs::create_directories(live);
+  std::ofstream(stale / "0-big.ply") << "partial";
+  OutputStaging staging;
+  ASSERT_TRUE(staging.stage(dir_ / "x.ply", [](const fs::path& p) -> Result<void> {
+    std::ofstream(p) << "x";
+    return {};
+  }));
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(live));
+  ASSERT_TRUE(staging.commit());
+  fs::remove_all(live);
 }
 
 // A full disk, simulated with a file-size limit: the write fails, nothing partial remains and
