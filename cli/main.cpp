@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <string>
 
+#include "interrupts.h"
 #include "options.h"
 #include "progress.h"
 #include "roi_list.h"
@@ -152,6 +153,7 @@ int run(const cli::CliOptions& o) {
     for (const FeatureSurface& f : result.surfaces.features) stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
 
   OutputStaging staging;
+  cli::InterruptScope interruptible(staging);  // an interrupt from here on discards what is staged
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
   auto files = stageSurfaceOutputs(staging, *plan, *contours, result);
@@ -174,7 +176,7 @@ int run(const cli::CliOptions& o) {
   // With --validation, a validation message means the device's results are suspect: write nothing.
   if (const auto messages = built->engine.validationMessageCount(); messages > 0)
     return fail({Errc::Vulkan, std::to_string(messages) + " Vulkan validation message(s); see above"});
-  auto written = staging.commit();
+  auto written = interruptible.commit();
   if (!written) return fail(written.error());
   progress.finish(0);
 
@@ -187,6 +189,7 @@ int run(const cli::CliOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli::installInterruptHandling();
   // Nothing may escape as an abort: whatever is left over is an internal error, exit 7.
   try {
     const cli::ParsedCommandLine parsed = cli::parseCommandLine(argc, argv);

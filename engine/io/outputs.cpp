@@ -155,7 +155,9 @@ void removeStaleStaging(const fs::path& parent) {
   }
 }
 
-OutputStaging::~OutputStaging() {
+OutputStaging::~OutputStaging() { discard(); }
+
+void OutputStaging::discard() noexcept {
   std::error_code ignored;
   for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
 }

@@ -94,6 +94,21 @@ if(NOT raw_escape EQUAL -1 OR last_output MATCHES "\nscansurf: error: forged")
 endif()
 expect_output("organ\\\\x1B\\[2J\\\\x0Ascansurf: error: forged")
 
+# SIGTERM at any stage (here after 3 s of a ~10 s run, whichever stage that is) leaves
+# nothing behind: no staging folder, no partial file, the old output untouched.
+find_program(TIMEOUT timeout)
+if(TIMEOUT)
+  file(MAKE_DIRECTORY "${OUT}/term")
+  file(WRITE "${OUT}/term/BODY.ply" "previous result")
+  execute_process(COMMAND ${TIMEOUT} -s TERM 3 ${SCANSURF} "${EXAMPLES}/phantom.json" -o "${OUT}/term" --voxel-size 0.25
+                          --format ply,obj -q RESULT_VARIABLE term_code OUTPUT_QUIET ERROR_QUIET)
+  file(GLOB term_left RELATIVE "${OUT}/term" "${OUT}/term/*" "${OUT}/term/.*")
+  file(READ "${OUT}/term/BODY.ply" term_kept)
+  if(term_code EQUAL 124 AND (NOT term_left STREQUAL "BODY.ply" OR NOT term_kept STREQUAL "previous result"))
+    message(FATAL_ERROR "SIGTERM left ${term_left} (BODY.ply: ${term_kept})")
+  endif()
+endif()
+
 # Usage errors: exit 2.
 run_scansurf(2 "${EXAMPLES}/phantom.json")
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --convention sideways)

@@ -178,6 +178,8 @@ class OutputStaging {
   Result<std::vector<std::filesystem::path>> commit();
   // The final paths staged so far.
   std::vector<std::filesystem::path> targets() const;
+  // Removes everything staged now (as the destructor does); for an interrupted run.
+  void discard() noexcept;
 
  private:
   Result<std::filesystem::path> reserve(const std::filesystem::path& target);
