@@ -195,6 +195,14 @@ void warnAboutLosses(const ContourSet& contours, const OverlapReport& report, st
   }
 }
 
+// Every vertex is finite before anything is written; anything else is a bug of ours.
+Result<void> checkFinite(const MultiLabelMesh& mesh) {
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!std::isfinite(mesh.positions[i]))
+      return makeError(Errc::Internal, "vertex " + std::to_string(i / 3) + " of the surfaces is not finite");
+  return {};
+}
+
 // One entry per stage name, the times of every layer added up, in first-seen order.
 void mergeStageTimes(std::vector<StageTime>& timings) {
   std::vector<StageTime> merged;
@@ -304,6 +312,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     }
     mergeStageTimes(out.timings);
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);
+    SCANSURF_TRY(checkFinite(out.surfaces.mesh));
     return out;
   });
 }

@@ -81,6 +81,9 @@ Result<void> validateAndNormalize(ContourSet& contours) {
       FeatureSlice& slice = feature.slices[s];
       if (!std::isfinite(slice.z))
         return invalid(describeFeature(contours, f) + ", slice #" + std::to_string(s) + ": non-finite z");
+      if (std::abs(slice.z) > kMaxCoordinate)
+        return invalid(describeFeature(contours, f) + ", slice #" + std::to_string(s) + ": z = " + formatNumber(slice.z) +
+                       " is beyond " + formatNumber(kMaxCoordinate) + " units from the origin");
       if (slice.contours.empty()) return invalid(describeSlice(contours, f, s, slice.z) + ": no contours");
       for (int c = 0; c < static_cast<int>(slice.contours.size()); ++c) {
         Contour& contour = slice.contours[c];
@@ -88,6 +91,10 @@ Result<void> validateAndNormalize(ContourSet& contours) {
           if (!std::isfinite(contour.points[p].x) || !std::isfinite(contour.points[p].y))
             return invalid(describeContour(contours, f, s, slice.z, c) + ", point " + std::to_string(p) +
                            ": non-finite coordinate");
+          if (std::abs(contour.points[p].x) > kMaxCoordinate || std::abs(contour.points[p].y) > kMaxCoordinate)
+            return invalid(describeContour(contours, f, s, slice.z, c) + ", point " + std::to_string(p) + ": (" +
+                           formatNumber(contour.points[p].x) + ", " + formatNumber(contour.points[p].y) + ") is beyond " +
+                           formatNumber(kMaxCoordinate) + " units from the origin");
         }
         dropRepeatedPoints(contour);
         if (contour.points.size() < 3 || countDistinct(contour) < 3)

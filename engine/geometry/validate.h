@@ -8,13 +8,18 @@
 
 namespace scansurf {
 
+// Coordinates farther from the origin than this (input units: 10 km in mm, 10 m in µm) are
+// refused: float32 surface positions could not resolve a voxel there, and no anatomy or
+// specimen is that large.
+inline constexpr double kMaxCoordinate = 1e7;
+
 // Checks a freshly read contour set and normalizes it in place:
 // - drops consecutive duplicate points and a repeated closing point;
 // - sorts each feature's slices by z and merges slices whose z lie within
 //   kDefaultSliceTolerance of the first of their group (their contours combine).
 // Errors (Errc::InvalidInput), each naming contours.source and the feature, slice and contour
 // at fault: no features; more than kMaxFeatures; an empty or duplicate feature name; a
-// non-finite z or coordinate; a contour of fewer than 3 distinct points; a slice without
+// non-finite z or coordinate, or one beyond kMaxCoordinate; a contour of fewer than 3 distinct points; a slice without
 // contours; an `order` that does not name every feature exactly once.
 Result<void> validateAndNormalize(ContourSet& contours);
 

@@ -303,6 +303,22 @@ TEST(ContoursJson, BundledPhantomParsesAndValidates) {
   EXPECT_EQ(computeNesting(*r).parent, (std::vector<int>{-1, 0, 0, 1, 0, 0}));
 }
 
+// Coordinates of 1e300 or z at 1e308 (issue 15): refused, naming feature, slice and point.
+TEST(ContoursJson, AstronomicalCoordinatesAreRefused) {
+  const auto far = parseContoursJson(
+      R"({"version": 1, "features": [{"name": "a", "slices": [{"z": 0, "contours": [[[0, 0], [1e300, 0], [0, 1]]]}]}]})",
+      "far.json");
+  ASSERT_FALSE(far);
+  EXPECT_NE(far.error().message.find("feature \"a\""), std::string::npos) << far.error().message;
+  EXPECT_NE(far.error().message.find("point 1"), std::string::npos) << far.error().message;
+  EXPECT_NE(far.error().message.find("beyond"), std::string::npos) << far.error().message;
+  const auto high = parseContoursJson(
+      R"({"version": 1, "features": [{"name": "a", "slices": [{"z": 1e308, "contours": [[[0, 0], [1, 0], [0, 1]]]}]}]})",
+      "high.json");
+  ASSERT_FALSE(high);
+  EXPECT_NE(high.error().message.find("z = 1e+308"), std::string::npos) << high.error().message;
+}
+
 // Hostile nesting (issue 15): 200 000 levels inside "version" or a point is refused while
 // parsing, with a message, never a stack overflow; quoted values are cut short.
 TEST(ContoursJson, DeepNestingIsRefusedNotFatal) {
