@@ -104,13 +104,15 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
                          ": no surface (no slices, smaller than a pixel, or covered by features of higher priority)");
 }
 
-// Classification and the CPU stages for one scan-converted volume.
-Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const LabelVolume& volume, const ContourSet& contours,
-                                  const Nesting& nesting, const BuildOptions& options, StageClock& clock) {
+// Classification and the CPU stages for one label volume, on the host (LabelVolume) or
+// already on the device (DeviceLabelVolume).
+template <typename Volume>
+Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
+                                  const BuildOptions& options, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
   clock.lap("classification");
-  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, &contours, clock);
+  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock);
 }
 
 // The contour set with only `layer`'s features drawn: the others keep their index (and so
@@ -176,7 +178,7 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfVolume(impl, volume, subset, out.nesting, options, clock));
+    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfVolume(impl, volume, &subset, out.nesting, options, clock));
     appendLayer(out.surfaces, surfaces, out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -222,10 +224,7 @@ Result<Surfaces> extractFrom(Engine::Impl& impl, const Volume& volume, const Nes
     SCANSURF_TRY(checkNesting(nesting));
     std::vector<StageTime> timings;
     StageClock clock(timings, options);
-    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
-    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
-    clock.lap("classification");
-    return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock);
+    return surfacesOfVolume(impl, volume, contours, nesting, options, clock);
   });
 }
 
@@ -302,7 +301,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
       out.overlaps.layers = 1;
       SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfVolume(*impl_, out.volume, contours, out.nesting, options, clock));
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfVolume(*impl_, out.volume, &contours, out.nesting, options, clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);

@@ -54,7 +54,6 @@ void addNormals(draco::Mesh& mesh, const std::vector<float>& normals) {
 std::unique_ptr<draco::Mesh> sceneMesh(const GltfFeature& f, const GlbOptions& options) {
   std::unique_ptr<draco::Mesh> mesh = toDracoMesh(*f.mesh);
   addNormals(*mesh, vertexNormals(*f.mesh));
-  mesh->SetName(f.name);
   if (options.draco) {
     draco::DracoCompressionOptions compression;
     compression.compression_level = options.dracoOptions.compressionLevel;

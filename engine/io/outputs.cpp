@@ -358,7 +358,7 @@ Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, 
 Result<void> writeLabelVolume(const fs::path& path, const ContourSet& contours, const BuildResult& built,
                               std::vector<std::string>* warnings) {
   SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(path));
-  SCANSURF_ASSIGN_OR_RETURN(const RunVolumes volumes, runVolumes(contours, built));
+  SCANSURF_ASSIGN_OR_RETURN(const RunVolumes volumes, runVolumes(contours, built, format == VolumeFormat::Nifti));
   if (warnings) warnings->insert(warnings->end(), volumes.warnings.begin(), volumes.warnings.end());
   const std::vector<LabelEntry> table = labelTable(contours);
   SCANSURF_TRY(writeRunVolume(path, format, contours, volumes, table));
@@ -374,7 +374,7 @@ Result<DicomSegSummary> writeDicomSeg(const fs::path& path, const ContourSet& co
 Result<DicomSegSummary> writeDicomSeg(const fs::path& path, const ContourSet& contours, const BuildResult& built,
                                       const fs::path& referenceSeriesDir) {
   SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(referenceSeriesDir));
-  SCANSURF_ASSIGN_OR_RETURN(const RunVolumes volumes, runVolumes(contours, built));
+  SCANSURF_ASSIGN_OR_RETURN(const RunVolumes volumes, runVolumes(contours, built, false));
   return writeDicomSegmentation(path, contours, volumes.masksOnGrid, ct);
 }
 
@@ -414,7 +414,8 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   }
   std::optional<RunVolumes> volumes;
   if (!plan.labelVolume.empty() || !plan.dicomSeg.empty()) {
-    SCANSURF_ASSIGN_OR_RETURN(volumes, runVolumes(contours, built));
+    const auto format = plan.labelVolume.empty() ? Result<VolumeFormat>(VolumeFormat::Nrrd) : volumeFormatOf(plan.labelVolume);
+    SCANSURF_ASSIGN_OR_RETURN(volumes, runVolumes(contours, built, format && *format == VolumeFormat::Nifti));
     if (!plan.labelVolume.empty()) out.warnings.insert(out.warnings.end(), volumes->warnings.begin(), volumes->warnings.end());
   }
   if (!plan.labelVolume.empty()) {

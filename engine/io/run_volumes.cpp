@@ -8,21 +8,18 @@
 namespace scansurf {
 namespace {
 
-// A volume on a lattice given by its grid (even or uneven layers) in the file's terms.
-RegularLabelVolume asFile(const LabelVolume& volume) { return regularize(volume); }
-
 // Cuts a volume to the reference lattice; per feature, the voxels dropped.
 Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridReference& reference, double tolerance,
                                        std::size_t features, std::vector<std::size_t>* dropped) {
   SCANSURF_ASSIGN_OR_RETURN(ReferenceCut cut, cutToReference(volume, reference, tolerance, features));
   if (dropped)
     for (std::size_t f = 0; f < features; ++f) (*dropped)[f] += cut.dropped[f];
-  return asFile(cut.volume);
+  return regularize(cut.volume);
 }
 
 }  // namespace
 
-Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& built) {
+Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& built, bool withPartition) {
   const Grid& grid = built.volume.grid;
   const std::size_t n = contours.features.size();
   if (built.overlaps.features.size() != n)
@@ -31,7 +28,8 @@ Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& bui
   RunVolumes out;
   out.masksOnGrid = maskLayerVolumes(regions, grid, built.overlaps);
   for (const FeatureVolumes& f : built.overlaps.features) out.maskLayerOf.push_back(f.maskLayer);
-  const LabelVolume partition = partitionVolume(regions, grid, built.nesting.order);
+  // The partition only for a file that holds one (NIfTI): it is another whole volume.
+  const LabelVolume partition = withPartition ? partitionVolume(regions, grid, built.nesting.order) : LabelVolume{};
   // Only a grid built on the reference lattice (no --voxel-size / --grid of its own) is cut to it.
   const bool onLattice = contours.reference && std::abs(grid.spacingX - contours.reference->spacingX) <= 1e-9 * grid.spacingX &&
                            std::abs(grid.spacingY - contours.reference->spacingY) <= 1e-9 * grid.spacingY;
@@ -39,8 +37,8 @@ Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& bui
     out.warnings.push_back("the label volume lies on the run's grid, not on the reference CT's (a voxel size or pixel "
                            "counts of its own were given)");
   if (!onLattice) {
-    for (const LabelVolume& m : out.masksOnGrid) out.masks.push_back(asFile(m));
-    out.partition = asFile(partition);
+    for (const LabelVolume& m : out.masksOnGrid) out.masks.push_back(regularize(m));
+    if (withPartition) out.partition = regularize(partition);
     return out;
   }
   std::vector<std::size_t> dropped(n, 0);
@@ -48,7 +46,9 @@ Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& bui
     SCANSURF_ASSIGN_OR_RETURN(RegularLabelVolume cut, onReference(m, *contours.reference, built.sliceTolerance, n, &dropped));
     out.masks.push_back(std::move(cut));
   }
-  SCANSURF_ASSIGN_OR_RETURN(out.partition, onReference(partition, *contours.reference, built.sliceTolerance, n, nullptr));
+  if (withPartition) {
+    SCANSURF_ASSIGN_OR_RETURN(out.partition, onReference(partition, *contours.reference, built.sliceTolerance, n, nullptr));
+  }
   for (std::size_t f = 0; f < n; ++f)
     if (dropped[f] > 0)
       out.warnings.push_back("feature \"" + contours.features[f].name + "\": " + std::to_string(dropped[f]) +

@@ -17,11 +17,12 @@ namespace scansurf {
 struct RunVolumes {
   std::vector<LabelVolume> masksOnGrid;      // mask layers on the build's grid (with its border)
   std::vector<RegularLabelVolume> masks;     // the same as a file holds them
-  RegularLabelVolume partition;              // one label per voxel, inner features first
+  RegularLabelVolume partition;              // one label per voxel, inner features first (when asked for)
   std::vector<int> maskLayerOf;              // per feature
   std::vector<std::string> warnings;         // voxels of a feature beyond the reference CT
 };
 
-Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& built);
+// withPartition: also the single partition (for NIfTI); the masks are always made.
+Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& built, bool withPartition);
 
 }  // namespace scansurf

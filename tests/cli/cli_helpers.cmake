@@ -17,3 +17,13 @@ function(expect_output pattern)
     message(FATAL_ERROR "output does not match '${pattern}':\n${last_output}")
   endif()
 endfunction()
+
+# Fails when a failed run left anything in `dir` (which may not exist).
+function(expect_nothing_left dir)
+  if(EXISTS "${dir}")
+    file(GLOB leftovers "${dir}/*")
+    if(leftovers)
+      message(FATAL_ERROR "failed runs left output behind: ${leftovers}")
+    endif()
+  endif()
+endfunction()
