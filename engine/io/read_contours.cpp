@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "core/guard.h"
+#include "geometry/validate.h"
 #include "io/contours_json.h"
 #include "io/ct_series.h"
 #include "io/imod_reader.h"
@@ -18,12 +19,6 @@ namespace {
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
-}
-
-std::string formatNumber(double z) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", z);
-  return buffer;
 }
 
 // The frame of reference and referenced series must agree before the CT's lattice is used.
