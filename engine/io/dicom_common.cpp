@@ -3,6 +3,7 @@
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcdict.h>
+#include <dcmtk/dcmdata/dcvr.h>
 #include <dcmtk/oflog/oflog.h>
 
 #include <fstream>
@@ -16,7 +17,12 @@ namespace scansurf {
 Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPixelData) {
   static std::once_flag quietLogs;
   // DCMTK logs parser warnings to stderr by default; a library reports through its Results.
-  std::call_once(quietLogs, [] { OFLog::configure(OFLogger::OFF_LOG_LEVEL); });
+  // A value longer than 64 KiB (a long Contour Data) cannot keep its 16-bit-length VR in explicit
+  // VR; writers then store it as UN. Read such values with the VR the dictionary gives the tag.
+  std::call_once(quietLogs, [] {
+    OFLog::configure(OFLogger::OFF_LOG_LEVEL);
+    dcmEnableUnknownVRConversion.set(OFTrue);
+  });
   const std::string file = path.string();
   if (!std::ifstream(path, std::ios::binary).is_open())
     return makeError(Errc::Io, file + ": cannot open the file");

@@ -1,6 +1,7 @@
 // scansurf: DICOM RT Structure Set input (DICOM PS3.3 C.8.8.5 Structure Set, C.8.8.6 ROI
-// Contour, C.8.8.8 RT ROI Observations), read with DCMTK: dcmdata parses the file, dcmrt's
-// DRTStructureSetIOD gives typed access to the sequences.
+// Contour, C.8.8.8 RT ROI Observations), read with DCMTK's dcmdata. Linear in the file's size:
+// sequences are walked item after item (never indexed, which costs a walk from the start each
+// time), ROIs are found by number in a hash map, and Contour Data is parsed once from its text.
 #include "io/rtstruct_reader.h"
 
 #include <dcmtk/config/osconfig.h>
@@ -8,15 +9,19 @@
 #include <dcmtk/dcmdata/dcdict.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
-#include <dcmtk/dcmrt/drtstrct.h>
+#include <dcmtk/dcmdata/dcitem.h>
+#include <dcmtk/dcmdata/dcsequen.h>
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <span>
+#include <unordered_map>
 
 #include "geometry/validate.h"
 #include "io/dicom_common.h"
@@ -85,60 +90,105 @@ std::size_t distinctPoints(std::vector<Point2> pts) {
       std::unique(pts.begin(), pts.end(), [](Point2 a, Point2 b) { return a.x == b.x && a.y == b.y; }) - pts.begin());
 }
 
-// Reads the ROI Contour Sequence item of one ROI into `roi`.
-Result<void> readRoiContours(const std::string& file, DRTROIContourSequence::Item& item, RawRoi& roi,
-                             const RtStructOptions& options) {
-  roi.hasContourItem = true;
-  Sint32 rgb[3];
-  if (item.getROIDisplayColor(rgb[0], 0).good() && item.getROIDisplayColor(rgb[1], 1).good() &&
-      item.getROIDisplayColor(rgb[2], 2).good()) {
-    Rgb color;
-    bool ok = true;
-    for (int c = 0; c < 3; ++c) {
-      ok = ok && rgb[c] >= 0 && rgb[c] <= 255;
-      color[c] = static_cast<std::uint8_t>(std::clamp<Sint32>(rgb[c], 0, 255));
-    }
-    if (ok) roi.info.color = color;
+// The items of parent's sequence `tag`, in order (none when it is absent), found in one walk.
+std::vector<DcmItem*> itemsOf(DcmItem& parent, const DcmTagKey& tag) {
+  std::vector<DcmItem*> items;
+  DcmSequenceOfItems* sequence = nullptr;
+  if (parent.findAndGetSequence(tag, sequence).bad() || !sequence) return items;
+  items.reserve(sequence->card());
+  for (DcmObject* o = sequence->nextInContainer(nullptr); o; o = sequence->nextInContainer(o))
+    items.push_back(static_cast<DcmItem*>(o));
+  return items;
+}
+
+std::string stringOf(DcmItem& item, const DcmTagKey& tag) {
+  OFString value;
+  item.findAndGetOFString(tag, value);
+  return str(value);
+}
+
+// The whole value of a multi-valued string element (values joined by backslashes), empty when absent.
+std::string_view rawValue(DcmItem& item, const DcmTagKey& tag) {
+  const char* text = nullptr;
+  if (item.findAndGetString(tag, text).bad() || !text) return {};
+  return text;
+}
+
+// Decimal String values (PS3.5 6.2: backslash-separated, optional spaces and leading '+'), parsed
+// once, in order. Nullopt when one is not a number.
+std::optional<std::vector<double>> parseDecimalStrings(std::string_view text) {
+  std::vector<double> values;
+  values.reserve(text.size() / 8 + 1);
+  while (true) {
+    const std::size_t end = std::min(text.find('\\'), text.size());
+    std::string_view v = text.substr(0, end);
+    while (!v.empty() && (v.front() == ' ' || v.front() == '\0')) v.remove_prefix(1);
+    while (!v.empty() && (v.back() == ' ' || v.back() == '\0')) v.remove_suffix(1);
+    if (!v.empty() && v.front() == '+') v.remove_prefix(1);
+    double value = 0;
+    const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
+    if (v.empty() || ec != std::errc() || ptr != v.data() + v.size()) return std::nullopt;
+    values.push_back(value);
+    if (end == text.size()) return values;
+    text.remove_prefix(end + 1);
   }
-  DRTContourSequence& contours = item.getContourSequence();
+}
+
+// ROI Display Color (3006,002A), when it holds three values 0..255.
+std::optional<Rgb> displayColor(DcmItem& item) {
+  Sint32 rgb[3];
+  Rgb color;
+  for (unsigned long c = 0; c < 3; ++c) {
+    if (item.findAndGetSint32(DCM_ROIDisplayColor, rgb[c], c).bad() || rgb[c] < 0 || rgb[c] > 255) return std::nullopt;
+    color[c] = static_cast<std::uint8_t>(rgb[c]);
+  }
+  return color;
+}
+
+// One Contour Sequence item: its points checked (triplets, finite) and, when CLOSED_PLANAR
+// and axial, added to roi.closed.
+Result<void> readContourItem(const std::string& where, DcmItem& contour, RawRoi& roi, bool& anyPoint,
+                             const RtStructOptions& options) {
+  const std::string type = stringOf(contour, DCM_ContourGeometricType);
+  if (type.empty()) return invalid(where + ": missing Contour Geometric Type (3006,0042)");
+  ++roi.info.contoursByType[type];
+  const std::string_view text = rawValue(contour, DCM_ContourData);
+  if (text.empty()) return invalid(where + ": missing Contour Data (3006,0050)");
+  const std::optional<std::vector<double>> parsed = parseDecimalStrings(text);
+  if (!parsed) return invalid(where + ": Contour Data (3006,0050) is not a list of numbers");
+  const std::vector<double>& data = *parsed;
+  if (data.size() % 3 != 0)
+    return invalid(where + ": Contour Data (3006,0050) holds " + std::to_string(data.size()) +
+                   " values, not a multiple of 3 (x, y, z triplets)");
+  for (std::size_t v = 0; v < data.size(); ++v)
+    if (!std::isfinite(data[v]))
+      return invalid(where + ", point " + std::to_string(v / 3) + ": non-finite coordinate in Contour Data (3006,0050)");
+  double zMin = data[2], zMax = data[2];
+  for (std::size_t v = 2; v < data.size(); v += 3) zMin = std::min(zMin, data[v]), zMax = std::max(zMax, data[v]);
+  if (!anyPoint) roi.info.zMin = zMin, roi.info.zMax = zMax;
+  roi.info.zMin = std::min(roi.info.zMin, zMin);
+  roi.info.zMax = std::max(roi.info.zMax, zMax);
+  anyPoint = true;
+  if (type != "CLOSED_PLANAR") return {};
+  if (zMax - zMin > options.sliceTolerance)
+    return invalid(where + ": " + notAxialReason(data, zMin, zMax, options.sliceTolerance));
+  RawContour raw;
+  raw.z = data[2];
+  raw.points.reserve(data.size() / 3);
+  for (std::size_t v = 0; v < data.size(); v += 3) raw.points.push_back({data[v], data[v + 1]});
+  roi.closed.push_back(std::move(raw));
+  return {};
+}
+
+// Reads the ROI Contour Sequence item of one ROI into `roi`.
+Result<void> readRoiContours(const std::string& file, DcmItem& item, RawRoi& roi, const RtStructOptions& options) {
+  roi.hasContourItem = true;
+  if (const auto color = displayColor(item)) roi.info.color = *color;
   bool anyPoint = false;
   std::size_t index = 0;
-  for (std::size_t cIndex = 0; cIndex < contours.getNumberOfItems(); ++cIndex) {
-    ++index;
-    DRTContourSequence::Item& contour = contours.getItem(cIndex);
-    const std::string where = describeRoi(file, roi.info) + ", contour item " + std::to_string(index);
-    OFString typeText;
-    if (contour.getContourGeometricType(typeText).bad() || typeText.empty())
-      return invalid(where + ": missing Contour Geometric Type (3006,0042)");
-    const std::string type = str(typeText);
-    ++roi.info.contoursByType[type];
-    // dcmrt models an absent element as an empty one: both are "missing".
-    OFString text;
-    if (contour.getContourData(text, -1).bad() || text.empty()) return invalid(where + ": missing Contour Data (3006,0050)");
-    OFVector<Float64> data;
-    if (!contour.getContourData(data).good() || data.empty())
-      return invalid(where + ": Contour Data (3006,0050) is not a list of numbers");
-    if (data.size() % 3 != 0)
-      return invalid(where + ": Contour Data (3006,0050) holds " + std::to_string(data.size()) +
-                     " values, not a multiple of 3 (x, y, z triplets)");
-    for (std::size_t v = 0; v < data.size(); ++v)
-      if (!std::isfinite(data[v]))
-        return invalid(where + ", point " + std::to_string(v / 3) + ": non-finite coordinate in Contour Data (3006,0050)");
-    double zMin = data[2], zMax = data[2];
-    for (std::size_t v = 2; v < data.size(); v += 3) zMin = std::min(zMin, data[v]), zMax = std::max(zMax, data[v]);
-    if (!anyPoint) roi.info.zMin = zMin, roi.info.zMax = zMax;
-    roi.info.zMin = std::min(roi.info.zMin, zMin);
-    roi.info.zMax = std::max(roi.info.zMax, zMax);
-    anyPoint = true;
-    if (type != "CLOSED_PLANAR") continue;
-    std::vector<double> xyz(data.begin(), data.end());
-    if (zMax - zMin > options.sliceTolerance)
-      return invalid(where + ": " + notAxialReason(xyz, zMin, zMax, options.sliceTolerance));
-    RawContour raw;
-    raw.z = data[2];
-    raw.points.reserve(data.size() / 3);
-    for (std::size_t v = 0; v < data.size(); v += 3) raw.points.push_back({data[v], data[v + 1]});
-    roi.closed.push_back(std::move(raw));
+  for (DcmItem* contour : itemsOf(item, DCM_ContourSequence)) {
+    const std::string where = describeRoi(file, roi.info) + ", contour item " + std::to_string(++index);
+    SCANSURF_TRY(readContourItem(where, *contour, roi, anyPoint, options));
   }
   return {};
 }
@@ -165,68 +215,52 @@ Result<void> checkIsRtStruct(const std::string& file, DcmDataset& dataset) {
 }
 
 // The structure set's label, its frame of reference and the image series it refers to.
-void readStructureSetHeader(DRTStructureSetIOD& iod, RtStructure& out) {
-  OFString label;
-  iod.getStructureSetLabel(label);
-  out.label = str(label);
-  DRTReferencedFrameOfReferenceSequence& frames = iod.getReferencedFrameOfReferenceSequence();
-  for (std::size_t cIndex = 0; cIndex < frames.getNumberOfItems(); ++cIndex) {
-    auto& frame = frames.getItem(cIndex);
-    OFString uid;
-    if (out.frameOfReferenceUid.empty() && frame.getFrameOfReferenceUID(uid).good()) out.frameOfReferenceUid = str(uid);
-    auto& studies = frame.getRTReferencedStudySequence();
-    for (std::size_t sIndex = 0; sIndex < studies.getNumberOfItems(); ++sIndex) {
-      auto& series = studies.getItem(sIndex).getRTReferencedSeriesSequence();
-      for (std::size_t rIndex = 0; rIndex < series.getNumberOfItems(); ++rIndex) {
-        OFString seriesUid;
-        if (series.getItem(rIndex).getSeriesInstanceUID(seriesUid).good() && !seriesUid.empty())
-          out.referencedSeriesUids.push_back(str(seriesUid));
-      }
-    }
+void readStructureSetHeader(DcmDataset& dataset, RtStructure& out) {
+  out.label = stringOf(dataset, DCM_StructureSetLabel);
+  for (DcmItem* frame : itemsOf(dataset, DCM_ReferencedFrameOfReferenceSequence)) {
+    if (out.frameOfReferenceUid.empty()) out.frameOfReferenceUid = stringOf(*frame, DCM_FrameOfReferenceUID);
+    for (DcmItem* study : itemsOf(*frame, DCM_RTReferencedStudySequence))
+      for (DcmItem* series : itemsOf(*study, DCM_RTReferencedSeriesSequence))
+        if (std::string uid = stringOf(*series, DCM_SeriesInstanceUID); !uid.empty())
+          out.referencedSeriesUids.push_back(std::move(uid));
   }
 }
 
+using RoiIndex = std::unordered_map<Sint32, std::size_t>;  // ROI Number -> position in the ROI list
+
 // Structure Set ROI Sequence: numbers and names, in file order; a number used twice is an error.
-Result<std::vector<RawRoi>> readRoiDefinitions(const std::string& file, DRTStructureSetIOD& iod) {
+Result<std::vector<RawRoi>> readRoiDefinitions(const std::string& file, DcmDataset& dataset, RoiIndex& byNumber) {
   std::vector<RawRoi> rois;
-  DRTStructureSetROISequence& seq = iod.getStructureSetROISequence();
   std::size_t index = 0;
-  for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+  for (DcmItem* item : itemsOf(dataset, DCM_StructureSetROISequence)) {
     ++index;
-    auto& item = seq.getItem(cIndex);
     RawRoi roi;
     Sint32 number = 0;
-    if (item.getROINumber(number).bad())
+    if (item->findAndGetSint32(DCM_ROINumber, number).bad())
       return invalid(file + ": Structure Set ROI Sequence item " + std::to_string(index) + ": missing ROI Number (3006,0022)");
     roi.info.number = number;
-    OFString name;
-    item.getROIName(name);
-    roi.info.name = str(name);
+    roi.info.name = stringOf(*item, DCM_ROIName);
     if (roi.info.name.empty()) roi.info.name = "ROI-" + std::to_string(number);
-    for (const RawRoi& other : rois)
-      if (other.info.number == number)
-        return invalid(file + ": ROI Number " + std::to_string(number) + " is used twice (\"" + other.info.name +
-                       "\" and \"" + roi.info.name + "\")");
+    const auto [at, added] = byNumber.emplace(number, rois.size());
+    if (!added)
+      return invalid(file + ": ROI Number " + std::to_string(number) + " is used twice (\"" + rois[at->second].info.name +
+                     "\" and \"" + roi.info.name + "\")");
     rois.push_back(std::move(roi));
   }
   return rois;
 }
 
-RawRoi* findRoi(std::vector<RawRoi>& rois, Sint32 number) {
-  for (RawRoi& r : rois)
-    if (r.info.number == number) return &r;
-  return nullptr;
+RawRoi* findRoi(std::vector<RawRoi>& rois, const RoiIndex& byNumber, Sint32 number) {
+  const auto at = byNumber.find(number);
+  return at == byNumber.end() ? nullptr : &rois[at->second];
 }
 
 // RT ROI Observations Sequence: each ROI's interpreted type (EXTERNAL, ORGAN, ...).
-void readInterpretedTypes(DRTStructureSetIOD& iod, std::vector<RawRoi>& rois) {
-  DRTRTROIObservationsSequence& seq = iod.getRTROIObservationsSequence();
-  for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
-    auto& item = seq.getItem(cIndex);
+void readInterpretedTypes(DcmDataset& dataset, const RoiIndex& byNumber, std::vector<RawRoi>& rois) {
+  for (DcmItem* item : itemsOf(dataset, DCM_RTROIObservationsSequence)) {
     Sint32 number = 0;
-    OFString type;
-    if (item.getReferencedROINumber(number).good() && item.getRTROIInterpretedType(type).good())
-      if (RawRoi* roi = findRoi(rois, number)) roi->info.interpretedType = str(type);
+    if (item->findAndGetSint32(DCM_ReferencedROINumber, number).bad()) continue;
+    if (RawRoi* roi = findRoi(rois, byNumber, number)) roi->info.interpretedType = stringOf(*item, DCM_RTROIInterpretedType);
   }
 }
 
@@ -253,24 +287,22 @@ Result<void> selectRois(const std::string& file, const std::vector<std::string>&
 
 // ROI Contour Sequence: the contours of each ROI. An item for an undefined ROI is skipped
 // with a warning.
-Result<void> readAllRoiContours(const std::string& file, DRTStructureSetIOD& iod, const RtStructOptions& options,
-                                std::vector<RawRoi>& rois, std::vector<std::string>& warnings) {
-  DRTROIContourSequence& seq = iod.getROIContourSequence();
+Result<void> readAllRoiContours(const std::string& file, DcmDataset& dataset, const RtStructOptions& options,
+                                const RoiIndex& byNumber, std::vector<RawRoi>& rois, std::vector<std::string>& warnings) {
   std::size_t index = 0;
-  for (std::size_t cIndex = 0; cIndex < seq.getNumberOfItems(); ++cIndex) {
+  for (DcmItem* item : itemsOf(dataset, DCM_ROIContourSequence)) {
     ++index;
-    auto& item = seq.getItem(cIndex);
     Sint32 number = 0;
-    if (item.getReferencedROINumber(number).bad())
+    if (item->findAndGetSint32(DCM_ReferencedROINumber, number).bad())
       return invalid(file + ": ROI Contour Sequence item " + std::to_string(index) +
                      ": missing Referenced ROI Number (3006,0084)");
-    RawRoi* roi = findRoi(rois, number);
+    RawRoi* roi = findRoi(rois, byNumber, number);
     if (!roi) {
       warnings.push_back(file + ": ROI Contour Sequence item " + std::to_string(index) + " refers to ROI number " +
                          std::to_string(number) + ", which the Structure Set ROI Sequence does not define; skipped");
       continue;
     }
-    SCANSURF_TRY(readRoiContours(file, item, *roi, options));
+    SCANSURF_TRY(readRoiContours(file, *item, *roi, options));
   }
   return {};
 }
@@ -443,20 +475,15 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
   DcmDataset& dataset = dicom.dataset();
   SCANSURF_TRY(checkIsRtStruct(file, dataset));
 
-  DRTStructureSetIOD iod;
-  // dcmrt reads leniently (missing attributes are logged, not fatal); the checks in
-  // readRoiDefinitions, readAllRoiContours and readRoiContours decide what is required for surfacing.
-  if (OFCondition c = iod.read(dataset); c.bad())
-    return invalid(file + ": cannot read the RT Structure Set: " + std::string(c.text()));
-
   RtStructure out;
   out.contours.source = file;
   out.contours.units = "mm";
-  readStructureSetHeader(iod, out);
-  SCANSURF_ASSIGN_OR_RETURN(std::vector<RawRoi> rois, readRoiDefinitions(file, iod));
-  readInterpretedTypes(iod, rois);
+  readStructureSetHeader(dataset, out);
+  RoiIndex byNumber;
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<RawRoi> rois, readRoiDefinitions(file, dataset, byNumber));
+  readInterpretedTypes(dataset, byNumber, rois);
   SCANSURF_TRY(selectRois(file, options.roiPatterns, rois));
-  SCANSURF_TRY(readAllRoiContours(file, iod, options, rois, out.warnings));
+  SCANSURF_TRY(readAllRoiContours(file, dataset, options, byNumber, rois, out.warnings));
   addFeatures(file, options.sliceTolerance, rois, out);
   for (RawRoi& r : rois) out.rois.push_back(std::move(r.info));
 

@@ -1,4 +1,4 @@
-// scansurf: DICOM RT Structure Set (RTSTRUCT) input, read with DCMTK's dcmrt module.
+// scansurf: DICOM RT Structure Set (RTSTRUCT) input, read with DCMTK (dcmdata).
 //
 // Each ROI with CLOSED_PLANAR contours becomes a feature named by its ROI Name, coloured by
 // its ROI Display Color. Coordinates stay in DICOM patient space (LPS, mm): a contour point

@@ -447,6 +447,37 @@ TEST_F(Dicom, NonAxialAndNonPlanarContoursNamed) {
   EXPECT_NE(message.find("contour item 2: it is not planar: its points span z 0 .. 1 mm"), std::string::npos) << message;
 }
 
+// Issue 15, cause 4: Contour Data is parsed once and sequences are walked, never indexed, so
+// reading is linear in the file's size (a quadratic reader takes minutes on either).
+TEST_F(Dicom, ContourOf200000PointsReads) {
+  constexpr int kPoints = 200000;
+  std::vector<Point2> circle;
+  for (int i = 0; i < kPoints; ++i) {
+    const double a = 2 * 3.14159265358979 * i / kPoints;
+    circle.push_back({40 * std::cos(a), 40 * std::sin(a)});
+  }
+  TestRtStruct rt;
+  rt.rois.push_back(TestRoi{1, "Big", "ORGAN", std::nullopt, {closedContour(circle, 0), closedContour(circle, 2)}});
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features.size(), 1u);
+  EXPECT_EQ(r->contours.features[0].slices[0].contours[0].points.size(), static_cast<std::size_t>(kPoints));
+}
+
+TEST_F(Dicom, TenThousandRoisRead) {
+  constexpr int kRois = 10000;
+  TestRtStruct rt;
+  for (int i = 0; i < kRois; ++i) {
+    const double x = 3.0 * (i % 100), y = 3.0 * (i / 100);
+    rt.rois.push_back(TestRoi{i + 1, "R" + std::to_string(i), "ORGAN", std::nullopt,
+                              {closedContour(square(x, y, x + 2, y + 2), 0)}});
+  }
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->contours.features.size(), static_cast<std::size_t>(kRois));
+  EXPECT_EQ(r->contours.features.back().name, "R9999");
+}
+
 TEST_F(Dicom, NeverCrashesOnTruncatedFiles) {
   TestRtStruct rt = oneRoi(closedContour(square(0, 0, 4, 4), 1));
   const fs::path p = write(rt);
