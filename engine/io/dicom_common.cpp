@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 
+#include "io/dicom_nesting.h"
 #include "io/rtstruct_reader.h"
 
 namespace scansurf {
@@ -30,6 +31,8 @@ Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPi
   if (!dcmDataDict.isDictionaryLoaded())
     return makeError(Errc::Internal, "DCMTK's DICOM data dictionary is not loaded (is libdcmtk installed? see DCMDICTPATH)");
 
+  // DCMTK's parser recurses into sequences: a hostile nesting depth would overflow the stack.
+  SCANSURF_TRY(checkDicomNesting(path, stopAtPixelData));
   const bool preamble = hasDicomPreamble(path);
   DicomFile dicom;
   const OFCondition status =

@@ -478,6 +478,38 @@ TEST_F(Dicom, TenThousandRoisRead) {
   EXPECT_EQ(r->contours.features.back().name, "R9999");
 }
 
+// A bare implicit-VR data set claiming to be an RTSTRUCT whose ROI Contour Sequence nests
+// `depth` levels deep (sequence, item, sequence, ...), every length undefined.
+std::string deeplyNestedRtStruct(int depth) {
+  std::string bytes;
+  auto u16 = [&](unsigned v) { bytes += static_cast<char>(v & 0xff), bytes += static_cast<char>(v >> 8 & 0xff); };
+  auto u32 = [&](std::uint32_t v) { u16(v & 0xffff), u16(v >> 16); };
+  auto element = [&](unsigned group, unsigned elem, const std::string& value) {
+    u16(group), u16(elem), u32(static_cast<std::uint32_t>(value.size())), bytes += value;
+  };
+  element(0x0008, 0x0016, std::string("1.2.840.10008.5.1.4.1.1.481.3") + '\0');
+  element(0x0008, 0x0060, "RTSTRUCT");
+  for (int i = 0; i < depth; ++i) u16(0x3006), u16(0x0039), u32(0xffffffff), u16(0xfffe), u16(0xe000), u32(0xffffffff);
+  for (int i = 0; i < depth; ++i) u16(0xfffe), u16(0xe00d), u32(0), u16(0xfffe), u16(0xe0dd), u32(0);
+  return bytes;
+}
+
+// Issue 15, cause 1: DCMTK's parser recurses per sequence level; a hostile depth is refused
+// before it is parsed, not a stack overflow.
+TEST_F(Dicom, DeeplyNestedSequencesRefusedBeforeParsing) {
+  const fs::path p = dir_ / "deep.dcm";
+  std::ofstream(p, std::ios::binary) << deeplyNestedRtStruct(200000);
+  auto r = readRtStruct(p);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, Errc::InvalidInput);
+  EXPECT_NE(r.error().message.find("deep.dcm: DICOM sequences nested more than 64 deep"), std::string::npos) << r.error().message;
+  // A shallow nesting is parsed and judged on its content.
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << deeplyNestedRtStruct(8);
+  r = readRtStruct(p);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().message.find("nested"), std::string::npos) << r.error().message;
+}
+
 TEST_F(Dicom, NeverCrashesOnTruncatedFiles) {
   TestRtStruct rt = oneRoi(closedContour(square(0, 0, 4, 4), 1));
   const fs::path p = write(rt);

@@ -1,0 +1,21 @@
+// scansurf: how deeply a DICOM file nests its sequences, found without recursion, so that a
+// hostile file cannot overflow the stack of DCMTK's recursive parser (issue 15, cause 1).
+#pragma once
+
+#include <filesystem>
+
+#include "scansurf/result.h"
+
+namespace scansurf {
+
+// Real RT Structure Sets and CT images nest sequences 4 to 6 deep; DCMTK's parser spends a few
+// stack frames per level. 64 leaves room for any real object and little stack.
+inline constexpr int kMaxDicomNesting = 64;
+
+// Walks the file's elements (Part 10 or bare data set; implicit or explicit VR, little or big
+// endian; deflated data sets inflated in memory), stopping at Pixel Data when stopAtPixelData,
+// and fails with Errc::InvalidInput naming the file and the depth when sequences nest deeper
+// than maxDepth. Bytes it cannot make sense of end the walk quietly: judging them is DCMTK's job.
+Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth = kMaxDicomNesting);
+
+}  // namespace scansurf
