@@ -4,7 +4,8 @@
 //   scansurf INPUT -o OUTDIR|NAME.glb [options]     (scansurf --help lists them)
 //
 // Exit codes: 0 success; 2 bad command line or option; 3 invalid input file; 4 file I/O
-// error; 5 no usable Vulkan device; 6 Vulkan failure; 7 internal error; 8 out of memory.
+// error; 5 no usable Vulkan device; 6 Vulkan failure; 7 internal error; 8 out of memory;
+// 9 resource limit (refused before the work: more memory needed than allowed).
 #include <unistd.h>
 
 #include <chrono>
@@ -144,6 +145,8 @@ int run(const cli::CliOptions& o) {
   laps.lap("read");
 
   auto built = buildSurfaces(o, *contours, laps);
+  if (!built && built.error().code == Errc::ResourceLimit)
+    return fail({Errc::ResourceLimit, built.error().message + "; choose a coarser --voxel-size or --grid, or set --max-memory"});
   if (!built) return fail(built.error());
   BuildResult& result = built->result;
 

@@ -2,8 +2,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <optional>
 
 #include "scansurf/version.h"
 
@@ -16,7 +20,7 @@ constexpr const char* kFooter =
     "with --format (glb: one scene OUTDIR/<input name>.glb); -o NAME.glb writes one Draco-compressed glTF scene instead;\n"
     "--label-volume (.nrrd, .seg.nrrd, .nii, .nii.gz) and --dicom-seg (needs --reference) write the label volume.\n"
     "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal,\n"
-    "8 out of memory.\n"
+    "8 out of memory, 9 resource limit (the run would need more memory than --max-memory allows).\n"
     "Environment: SCANSURF_DEVICE (device index or name), SCANSURF_VALIDATION=1, SCANSURF_THREADS.";
 
 // A finite number with lo < value <= hi (lo < value when openLow, else lo <= value), parsed
@@ -32,6 +36,25 @@ CLI::Validator numberIn(double lo, double hi, bool openLow, const std::string& d
       description);
 }
 
+// A memory size: a number with an optional binary unit, K, M, G or T (KiB, MiB, GiB, TiB; "B",
+// "iB" and lower case accepted): "8G", "1.5GiB", "512m". Zero or less, or beyond 1 EiB: nullopt.
+std::optional<std::uint64_t> parseMemorySize(const std::string& text) {
+  char* end = nullptr;
+  const double number = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !std::isfinite(number) || number <= 0) return std::nullopt;
+  std::string unit(end);
+  for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (const char* suffix : {"IB", "B"})
+    if (unit.size() > std::strlen(suffix) && unit.ends_with(suffix)) unit.resize(unit.size() - std::strlen(suffix));
+  const std::string units = "KMGT";
+  double scale = 1;
+  if (unit.size() == 1 && units.find(unit[0]) != std::string::npos) scale = std::ldexp(1.0, 10 * (1 + static_cast<int>(units.find(unit[0]))));
+  else if (!unit.empty() && unit != "B") return std::nullopt;
+  const double bytes = number * scale;
+  if (bytes < 1 || bytes > std::ldexp(1.0, 60)) return std::nullopt;
+  return static_cast<std::uint64_t>(bytes);
+}
+
 // Local flags the struct does not hold directly.
 struct Flags {
   std::vector<int> grid;
@@ -40,6 +63,7 @@ struct Flags {
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
   std::string reference;
   std::string gltfFrame = "gltf";
+  std::string maxMemory;
 };
 
 void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
@@ -70,6 +94,12 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
   app.add_option("--threads", o.build.threads, "CPU threads for assembly and smoothing (default: all)")->check(CLI::Range(0, 1024));
+  app.add_option("--max-memory", f.maxMemory,
+                 "host memory the run may use, e.g. 8G or 512M (default: what the machine has available); a run that "
+                 "would need more is refused before it starts (exit 9)")
+      ->check(CLI::Validator(
+          [](std::string& text) { return parseMemorySize(text) ? std::string() : "'" + text + "' is not a memory size such as 8G or 512M"; },
+          "SIZE"));
   app.add_flag("-q,--quiet", o.quiet, "print errors and warnings only");
   app.add_flag("--json-progress", o.jsonProgress, "progress as JSON lines on stderr, for scripts");
 }
@@ -144,6 +174,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.scene.draco = !f.noDraco;
   o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
+  if (!f.maxMemory.empty()) o.build.memoryLimit = *parseMemorySize(f.maxMemory);
 }
 
 }  // namespace

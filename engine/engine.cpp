@@ -7,9 +7,11 @@
 #include <cmath>
 
 #include "core/guard.h"
+#include "core/memory.h"
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
 #include "geometry/feature_surfaces.h"
+#include "geometry/footprint.h"
 #include "geometry/overlaps.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
@@ -205,6 +207,35 @@ Result<void> checkFinite(const MultiLabelMesh& mesh) {
   return {};
 }
 
+// "950", "44 k", "3.3 M": a count for people.
+std::string formatCount(std::uint64_t n) {
+  if (n < 10000) return std::to_string(n);
+  if (n < 10000000) return std::to_string((n + 500) / 1000) + " k";
+  return std::to_string((n + 500000) / 1000000) + " M";
+}
+
+// Refuses a build that would need more host memory than the limit or more device memory than
+// the device has, before anything large is allocated: a clear error instead of bad_alloc or
+// the kernel's OOM killer.
+Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, const BuildOptions& options,
+                               const DeviceInfo& device, BuildResult& out) {
+  const Footprint need = estimateFootprint(contours, grid);
+  HostMemory limit{options.memoryLimit, "the limit asked for"};
+  if (limit.bytes == 0) limit = availableHostMemory();
+  out.estimatedMemory = need.hostBytes;
+  out.memoryLimit = limit.bytes;
+  const std::string what = "the surfaces of " + contours.source + " on a grid of " + describeGrid(grid);
+  if (limit.bytes > 0 && need.hostBytes > limit.bytes)
+    return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.hostBytes) + " of memory (label volume " +
+                                              formatBytes(need.labelVoxels * sizeof(Label)) + ", about " +
+                                              formatCount(need.surfaceVertices) + " surface vertices); " +
+                                              formatBytes(limit.bytes) + " may be used: " + limit.source);
+  if (device.deviceMemory > 0 && need.deviceBytes > device.deviceMemory)
+    return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.deviceBytes) +
+                                              " of device memory for one layer; the device has " + formatBytes(device.deviceMemory));
+  return {};
+}
+
 // One entry per stage name, the times of every layer added up, in first-seen order.
 void mergeStageTimes(std::vector<StageTime>& timings) {
   std::vector<StageTime> merged;
@@ -287,6 +318,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     out.nesting = computeNesting(contours, tolerance);
     clock.lap("nesting");
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
+    SCANSURF_TRY(checkMemoryBudget(contours, grid, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(contours, grid);
     clock.lap("grid");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());

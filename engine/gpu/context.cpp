@@ -278,6 +278,9 @@ Result<void> Context::finishSetup() {
   info_.type = typeName(properties_.deviceType);
   info_.driver = std::string(driver.driverName) + " " + driver.driverInfo;
   info_.apiVersion = properties_.apiVersion;
+  for (std::uint32_t h = 0; h < memory_.memoryHeapCount; ++h)
+    if (memory_.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      info_.deviceMemory = std::max<std::uint64_t>(info_.deviceMemory, memory_.memoryHeaps[h].size);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;

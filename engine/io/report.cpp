@@ -74,6 +74,8 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
     r.features.push_back(std::move(rf));
   }
   addOverlapFacts(r, contours, built.overlaps);
+  r.estimatedMemory = built.estimatedMemory;
+  r.memoryLimit = built.memoryLimit;
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
@@ -108,6 +110,7 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
                {"spacing_xy", {g.spacingX, g.spacingY}},
                {"layer_z", g.layerZ}};
   j["nesting"] = {{"order", report.nestingOrder}, {"from_input", report.userOrder}};
+  j["memory"] = {{"estimated_bytes", report.estimatedMemory}, {"limit_bytes", report.memoryLimit}};
   j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
   ordered_json features = ordered_json::array();
   for (const ReportFeature& f : report.features) {

@@ -66,6 +66,25 @@ run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength nan)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --grid 0 0)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --threads 99999999999999999999)
 
+# The memory budget (issue 15, cause 2): a grid that cannot fit is refused before anything is
+# allocated, with exit 9 and a message that says what it needs and what to change; so is a run
+# over --max-memory. Nothing is written.
+run_scansurf(9 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --grid 16384 16384)
+expect_output("error: the surfaces of .*phantom.json on a grid of 16384 x 16384 x 42 voxels need about [0-9.]+ GiB of memory \\(label volume 21.0 GiB")
+expect_output("choose a coarser --voxel-size or --grid, or set --max-memory")
+run_scansurf(9 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --voxel-size 0.0078)
+run_scansurf(9 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --max-memory 20M)
+expect_output("need about [0-9.]+ MiB of memory .* 20.0 MiB may be used: the limit asked for")
+expect_nothing_left("${OUT}/budget")
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --max-memory 8X)
+expect_output("'8X' is not a memory size")
+run_scansurf(0 "${DATA}/overlapping.json" -o "${OUT}/budget" --voxel-size 0.5 --max-memory 2G --report "${OUT}/budget/r.json")
+file(READ "${OUT}/budget/r.json" budget_report)
+string(JSON budget_limit GET "${budget_report}" memory limit_bytes)
+if(NOT budget_limit EQUAL 2147483648)
+  message(FATAL_ERROR "report memory.limit_bytes is ${budget_limit}, expected 2147483648")
+endif()
+
 # Overlapping structures: two layers by default, each keeping its volume; the partition
 # reports the loss (with a warning above 1 %); an unknown mode is a usage error.
 run_scansurf(0 "${DATA}/overlapping.json" -o "${OUT}/overlap" --voxel-size 0.5 --report "${OUT}/overlap/r.json")

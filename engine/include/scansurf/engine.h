@@ -56,6 +56,11 @@ struct BuildOptions {
   // feature enclosing its own contours' region. Partition: one label per voxel, as the seed.
   OverlapMode overlaps = OverlapMode::Layers;
   int threads = 0;  // CPU threads for assembly and smoothing; 0 = all (or SCANSURF_THREADS)
+  // Host memory build() may use, in bytes; 0 = what the machine has available when the build
+  // starts (MemAvailable, lowered by a cgroup limit and rlimits). Before anything large is
+  // allocated, build() estimates the label volume, mesh and device needs from the contours and
+  // the grid, and refuses with Errc::ResourceLimit when they exceed this or the device's memory.
+  std::uint64_t memoryLimit = 0;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
   // Called after each stage with its name and time (progress reports), on the calling thread.
@@ -76,6 +81,9 @@ struct BuildResult {
   // rasterize each feature's own mask on the CPU exactly as the device did.
   int subPixelBits = 8;
   double sliceTolerance = kDefaultSliceTolerance;  // BuildOptions::grid.sliceTolerance of the run
+  // The budget check: estimated peak host memory, and the limit it was held to (bytes).
+  std::uint64_t estimatedMemory = 0;
+  std::uint64_t memoryLimit = 0;
   std::vector<std::string> warnings;  // e.g. contours too small to cover a pixel centre
   std::vector<StageTime> timings;
 };

@@ -17,6 +17,7 @@ enum class Errc {
   Vulkan = 5,           // a Vulkan call failed
   Internal = 6,         // a broken invariant: a bug in scansurf
   OutOfMemory = 7,      // a host or device allocation failed; the message names what and how much
+  ResourceLimit = 8,    // refused before starting: the run would need more memory than allowed
 };
 
 // A short lower-case name of the category ("invalid argument", "out of memory", ...).
@@ -29,6 +30,7 @@ inline const char* errcName(Errc code) noexcept {
     case Errc::Vulkan: return "Vulkan error";
     case Errc::Internal: return "internal error";
     case Errc::OutOfMemory: return "out of memory";
+    case Errc::ResourceLimit: return "resource limit";
   }
   return "error";
 }

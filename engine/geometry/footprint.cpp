@@ -1,0 +1,70 @@
+// scansurf: memory estimate of a build (see footprint.h).
+#include "geometry/footprint.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/polygon.h"
+#include "scansurf/label_volume.h"
+
+namespace scansurf {
+namespace {
+
+// Pixel boundaries a closed polygon crosses: its Manhattan perimeter in pixels.
+double pixelCrossings(const Contour& contour, const Grid& grid) {
+  double crossings = 0;
+  const std::size_t n = contour.points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 a = contour.points[i], b = contour.points[(i + 1) % n];
+    crossings += std::abs(b.x - a.x) / grid.spacingX + std::abs(b.y - a.y) / grid.spacingY;
+  }
+  return crossings;
+}
+
+// Crossings of one feature: each slice's contours, and the area that changes from slice to
+// slice (the first and last slices' whole area: the caps).
+double featureCrossings(const Feature& feature, const Grid& grid) {
+  const double pixelArea = grid.spacingX * grid.spacingY;
+  double crossings = 0, previousArea = 0;
+  for (const FeatureSlice& slice : feature.slices) {
+    double area = 0;
+    for (const Contour& c : slice.contours) crossings += pixelCrossings(c, grid), area += std::abs(signedArea(c));
+    crossings += std::abs(area - previousArea) / pixelArea;
+    previousArea = area;
+  }
+  return crossings + previousArea / pixelArea;
+}
+
+// Per estimated vertex, at the peak (smoothing): positions as floats and doubles, lattice key,
+// carrier and role, neighbour lists, about two triangles with their label pairs, and each
+// triangle again in the two feature surfaces it bounds.
+// Measured peaks: 185 MB for 443 k vertices (phantom), 770 MB for 3.3 M (pelvis), each with
+// the Vulkan driver's own ~100 MB (kBaseline).
+constexpr double kBytesPerVertex = 300;
+constexpr double kBaseline = 128.0 * (1 << 20);
+// Vertices per crossing, measured (tests/unit/footprint_test.cpp) on the test shapes at 1 and
+// 0.5 mm pixels: 2.1 (torus) to 3.8 (branching); rounded up, so the estimate bounds the mesh.
+constexpr double kVerticesPerCrossing = 4;
+// The device's slab budget of scan conversion, and per pixel of one slab layer what it holds:
+// label image, depth-stencil image and the readback buffer.
+constexpr std::uint64_t kSlabBudget = std::uint64_t{64} << 20;
+constexpr std::uint64_t kDeviceBytesPerPixel = 16;
+
+}  // namespace
+
+Footprint estimateFootprint(const ContourSet& contours, const Grid& grid) {
+  Footprint f;
+  const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
+  f.labelVoxels = plane * static_cast<std::uint64_t>(grid.nz);
+  double crossings = 0;
+  for (const Feature& feature : contours.features) crossings += featureCrossings(feature, grid);
+  f.surfaceVertices = static_cast<std::uint64_t>(std::min(crossings * kVerticesPerCrossing, 1e18));
+  // The label volume, once on the host and once as it arrives from the device, plus the mesh.
+  const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) +
+                      static_cast<double>(f.surfaceVertices) * kBytesPerVertex;
+  f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
+  f.deviceBytes = std::max(kSlabBudget, plane * kDeviceBytesPerPixel);
+  return f;
+}
+
+}  // namespace scansurf

@@ -1,0 +1,26 @@
+// scansurf: the memory a build will need, estimated from the contours and the grid before
+// anything large is allocated (issue 15: refuse clearly instead of bad_alloc or an OOM kill).
+#pragma once
+
+#include <cstdint>
+
+#include "scansurf/contours.h"
+#include "scansurf/grid.h"
+
+namespace scansurf {
+
+struct Footprint {
+  std::uint64_t labelVoxels = 0;      // voxels of the label volume (one layer of features)
+  std::uint64_t surfaceVertices = 0;  // estimated vertices of the multi-label mesh
+  std::uint64_t hostBytes = 0;        // estimated peak host memory of build()
+  std::uint64_t deviceBytes = 0;      // device memory scan conversion and classification need at least
+};
+
+// The separating surface crosses the grid where a contour crosses pixel boundaries on its
+// layer and where a feature's area changes between layers (caps included); vertices scale with
+// those crossings. Calibrated on the bench sets and the phantom (docs/benchmarks.md), on the
+// generous side: the peak counts the label volume, the classification records, the mesh with
+// its smoothing state and the feature surfaces.
+Footprint estimateFootprint(const ContourSet& contours, const Grid& grid);
+
+}  // namespace scansurf
