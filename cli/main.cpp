@@ -133,6 +133,12 @@ int run(const cli::CliOptions& o) {
   // Every output is checked before the work, so a typo does not cost a whole run.
   auto plan = planOutputs(o);
   if (!plan) return fail(plan.error());
+  // One run at a time into one place, decided now rather than after the work; from here on an
+  // interrupt discards what is staged and the run locks.
+  OutputStaging staging;
+  cli::InterruptScope interruptible(staging);
+  for (const fs::path& dir : outputDirectories(*plan))
+    if (auto locked = staging.lock(dir); !locked) return fail(locked.error());
   cli::Progress progress(cli::chooseProgressMode(o.quiet, o.jsonProgress));
   Laps laps(progress);
 
@@ -155,8 +161,6 @@ int run(const cli::CliOptions& o) {
   if (!o.quiet || !o.report.empty())
     for (const FeatureSurface& f : result.surfaces.features) stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
 
-  OutputStaging staging;
-  cli::InterruptScope interruptible(staging);  // an interrupt from here on discards what is staged
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
   auto files = stageSurfaceOutputs(staging, *plan, *contours, result);

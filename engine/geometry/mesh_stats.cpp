@@ -138,10 +138,15 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
   std::sort(componentVertices.begin(), componentVertices.end());
   componentVertices.erase(std::unique(componentVertices.begin(), componentVertices.end()), componentVertices.end());
   for (std::uint64_t cv : componentVertices) chi[cv >> 32] += 1;
-  std::vector<char> used(n, 0);
-  for (std::uint32_t v : triangles)
-    if (v < n) used[v] = 1;
-  stats.vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), 1));
+  // The surface's own vertices, sorted: everything below costs what the surface costs, not
+  // the whole shared mesh (thousands of small features share one mesh).
+  std::vector<std::uint32_t> vertices(triangles.begin(), triangles.end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  stats.vertices = static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), n) - vertices.begin());
+  auto local = [&](std::uint32_t v) {
+    return static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
+  };
   stats.components = componentCount;
   long long genus = 0;
   for (long long c : chi) genus += (2 - c) / 2;
@@ -150,16 +155,17 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
   // Manifold: closed, and every vertex's link (the edges opposite it) is one connected fan.
   bool manifold = closed;
   if (manifold) {
-    std::vector<std::uint32_t> start(n + 1, 0);
-    for (std::uint32_t v : triangles) ++start[v + 1];
+    const std::size_t m = vertices.size();
+    std::vector<std::uint32_t> start(m + 1, 0);
+    for (std::uint32_t v : triangles) ++start[local(v) + 1];
     std::partial_sum(start.begin(), start.end(), start.begin());
     std::vector<std::array<std::uint32_t, 2>> link(3 * t);
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (std::size_t f = 0; f < t; ++f)
       for (int c = 0; c < 3; ++c)
-        link[fill[triangles[3 * f + c]]++] = {triangles[3 * f + (c + 1) % 3], triangles[3 * f + (c + 2) % 3]};
+        link[fill[local(triangles[3 * f + c])]++] = {triangles[3 * f + (c + 1) % 3], triangles[3 * f + (c + 2) % 3]};
     std::vector<std::uint32_t> scratch;
-    for (std::size_t v = 0; v < n && manifold; ++v) {
+    for (std::size_t v = 0; v < m && manifold; ++v) {
       if (start[v] == start[v + 1]) continue;
       manifold = singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch);
     }

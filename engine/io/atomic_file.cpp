@@ -29,7 +29,25 @@ Unexpected ioError(const std::string& what, const std::filesystem::path& path, c
   return makeError(Errc::Io, what + " '" + path.string() + "': " + why);
 }
 
+thread_local bool syncDeferred = false;
+
+// fsync unless a DeferredSync on this thread promised one sync for all.
+bool syncUnlessDeferred(int fd) { return syncDeferred || ::fsync(fd) == 0; }
+
 }  // namespace
+
+DeferredSync::DeferredSync() : previous_(std::exchange(syncDeferred, true)) {}
+DeferredSync::~DeferredSync() { syncDeferred = previous_; }
+
+Result<void> syncFileSystemOf(const std::filesystem::path& directory) {
+  errno = 0;
+  const int fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  const bool synced = fd >= 0 && ::syncfs(fd) == 0 && ::fsync(fd) == 0;
+  const int err = errno;
+  if (fd >= 0) ::close(fd);
+  if (!synced) return ioError("cannot sync", directory, systemError(err));
+  return {};
+}
 
 AtomicFile::AtomicFile(std::filesystem::path target, std::filesystem::path temp, std::FILE* file)
     : target_(std::move(target)), temp_(std::move(temp)), file_(file) {}
@@ -82,7 +100,7 @@ Result<void> AtomicFile::write(const void* data, std::size_t size) {
 Result<void> AtomicFile::commit() {
   if (!file_) return ioError("commit after close of", target_, "file is not open");
   errno = 0;
-  const bool flushed = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
+  const bool flushed = std::fflush(file_) == 0 && syncUnlessDeferred(::fileno(file_));
   const int flushError = errno;
   const bool closed = std::fclose(file_) == 0;
   const int closeError = errno;
@@ -133,7 +151,7 @@ Result<void> writeThroughTemporaryPath(const std::filesystem::path& target, cons
   }
   errno = 0;
   const int fd = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC);
-  const bool synced = fd >= 0 && ::fsync(fd) == 0;
+  const bool synced = fd >= 0 && syncUnlessDeferred(fd);
   const int syncError = errno;
   if (fd >= 0) ::close(fd);
   if (!synced) {

@@ -59,6 +59,24 @@ Result<void> writeFileAtomically(const std::filesystem::path& target, const void
 Result<void> writeThroughTemporaryPath(const std::filesystem::path& target, const std::string& suffix,
                                        const std::function<Result<void>(const std::filesystem::path& temporary)>& write);
 
+// While one lives on a thread, AtomicFile and writeThroughTemporaryPath on that thread skip
+// their per-file fsync: OutputStaging writes many files and syncs them once, before its moves
+// (thousands of features would otherwise spend minutes in fsync).
+class DeferredSync {
+ public:
+  DeferredSync();
+  ~DeferredSync();
+  DeferredSync(const DeferredSync&) = delete;
+  DeferredSync& operator=(const DeferredSync&) = delete;
+
+ private:
+  bool previous_;
+};
+
+// Makes everything written to the file system holding `directory` durable (syncfs), then the
+// directory entry itself. Errors: Errc::Io naming the directory.
+Result<void> syncFileSystemOf(const std::filesystem::path& directory);
+
 // The whole file as bytes. Errors: Errc::Io naming the path ("cannot open the file", "read error").
 Result<std::string> readWholeFile(const std::filesystem::path& path);
 

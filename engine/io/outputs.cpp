@@ -1,11 +1,15 @@
 // scansurf: every output of a run, one file at a time or all or nothing (scansurf/outputs.h).
 #include "scansurf/outputs.h"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <string_view>
 
 #include <algorithm>
@@ -46,12 +50,33 @@ bool hasExtension(const fs::path& path, const std::string& ext) {
 
 }  // namespace
 
+namespace {
+
+bool equalIgnoringCase(const std::string& a, const std::string& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](unsigned char x, unsigned char y) { return std::tolower(x) == std::tolower(y); });
+}
+
+// FNV-1a, 32 bits, as 8 hex digits: tells cut names apart.
+std::string nameHash(const std::string& name) {
+  std::uint32_t h = 2166136261u;
+  for (unsigned char c : name) h = (h ^ c) * 16777619u;
+  char text[9];
+  std::snprintf(text, sizeof text, "%08x", h);
+  return text;
+}
+
+}  // namespace
+
 std::string fileStem(const std::string& name, std::vector<std::string>& used) {
   std::string stem;
   for (unsigned char c : name) stem += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
   if (stem.empty() || stem.front() == '.') stem = "feature" + stem;
+  if (stem.size() > kMaxFileStem) stem = stem.substr(0, kMaxFileStem - 9) + "_" + nameHash(name);
+  auto taken = [&](const std::string& candidate) {
+    return std::any_of(used.begin(), used.end(), [&](const std::string& u) { return equalIgnoringCase(u, candidate); });
+  };
   std::string unique = stem;
-  for (int n = 2; std::find(used.begin(), used.end(), unique) != used.end(); ++n) unique = stem + "_" + std::to_string(n);
+  for (int n = 2; taken(unique); ++n) unique = stem + "_" + std::to_string(n);
   used.push_back(unique);
   return unique;
 }
@@ -111,6 +136,18 @@ Result<void> checkFile(const fs::path& path, const char* what, const std::string
 
 }  // namespace
 
+std::vector<fs::path> outputDirectories(const OutputPlan& plan) {
+  std::vector<fs::path> dirs;
+  auto add = [&](const fs::path& dir) {
+    const fs::path d = dir.empty() ? fs::path(".") : dir;
+    if (std::find(dirs.begin(), dirs.end(), d) == dirs.end()) dirs.push_back(d);
+  };
+  if (!plan.dir.empty()) add(plan.dir);
+  for (const fs::path* file : {&plan.glbFile, &plan.labelVolume, &plan.dicomSeg, &plan.report, &plan.preview})
+    if (!file->empty()) add(file->parent_path());
+  return dirs;
+}
+
 Result<void> checkOutputs(const OutputPlan& plan) {
   std::vector<fs::path> seen;
   if (!plan.dir.empty()) SCANSURF_TRY(ensureWritableDirectory(plan.dir));
@@ -155,22 +192,75 @@ void removeStaleStaging(const fs::path& parent) {
   }
 }
 
-OutputStaging::~OutputStaging() { discard(); }
+constexpr const char* kLockName = ".scansurf.lock";
+
+// Removes the lock file's name if it still is the file `fd` locked (a later run may have made a
+// new one after an earlier removal).
+void unlinkOwnLock(const fs::path& dir, int fd) {
+  const fs::path file = dir / kLockName;
+  struct stat held {}, named {};
+  if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino && held.st_dev == named.st_dev)
+    ::unlink(file.c_str());
+}
+
+OutputStaging::~OutputStaging() {
+  discard();
+  for (const auto& [dir, fd] : locks_) ::close(fd);  // releases the flock
+}
+
+Result<void> OutputStaging::lock(const fs::path& directory) {
+  const fs::path dir = directory.empty() ? fs::path(".") : directory;
+  for (const auto& held : locks_)
+    if (held.first == dir) return {};
+  const fs::path file = dir / kLockName;
+  int fd = -1;
+  bool busy = false;
+  for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
+    fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) return makeError(Errc::Io, "cannot open the run lock '" + file.string() + "': " + std::strerror(errno));
+    busy = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
+    struct stat held {}, named {};
+    if (busy || (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+                 held.st_dev == named.st_dev))
+      break;  // held by another run, or locked and still the file of that name
+    ::close(fd);  // its last holder unlinked it meanwhile: lock the new one
+    fd = -1;
+  }
+  if (fd < 0) return makeError(Errc::Io, "cannot take the run lock '" + file.string() + "'");
+  if (busy) {
+    char pid[32] = {};
+    const ssize_t n = ::pread(fd, pid, sizeof pid - 1, 0);
+    ::close(fd);
+    const std::string holder = n > 0 ? " (pid " + std::string(pid, static_cast<std::size_t>(n)) + ")" : "";
+    return makeError(Errc::Io, "another scansurf run" + holder + " is writing into '" + dir.string() +
+                                   "'; wait for it to finish or choose another output location");
+  }
+  const std::string self = std::to_string(::getpid());
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, self.data(), self.size(), 0) < 0) {
+    // The pid is only a courtesy for the message of a run that waits; the lock holds without it.
+  }
+  locks_.emplace_back(dir, fd);
+  return {};
+}
 
 void OutputStaging::discard() noexcept {
   std::error_code ignored;
   for (const fs::path& dir : dirs_) fs::remove_all(dir, ignored);
+  // Unlinked while still held, so nothing is left behind, also by an interrupted run, and a
+  // run that opens the name next makes a fresh file (lock() checks it locked the named one).
+  for (const auto& [dir, fd] : locks_) unlinkOwnLock(dir, fd);
 }
 
 Result<fs::path> OutputStaging::reserve(const fs::path& target) {
-  for (const auto& [staged, t] : files_)
-    if (t == target) return makeError(Errc::InvalidArgument, "two outputs would be written to '" + target.string() + "'");
+  if (!targets_.insert(target).second)
+    return makeError(Errc::InvalidArgument, "two outputs would be written to '" + target.string() + "'");
   const fs::path parent = target.has_parent_path() ? target.parent_path() : fs::path(".");
   // One folder per OutputStaging (pid and a process-wide count): two runs in one process
   // writing to one directory never share or remove each other's staged files.
   if (id_ == 0) id_ = nextStagingId();
   const fs::path dir = parent / (".scansurf-staging-" + std::to_string(::getpid()) + "-" + std::to_string(id_));
   if (std::find(dirs_.begin(), dirs_.end(), dir) == dirs_.end()) {
+    SCANSURF_TRY(lock(parent));
     removeStaleStaging(parent);
     std::error_code ec;
     fs::remove_all(dir, ec);
@@ -184,6 +274,7 @@ Result<fs::path> OutputStaging::reserve(const fs::path& target) {
 
 Result<void> OutputStaging::stage(const fs::path& target, const std::function<Result<void>(const fs::path& staged)>& write) {
   SCANSURF_ASSIGN_OR_RETURN(const fs::path staged, reserve(target));
+  const DeferredSync oneSyncAtCommit;
   Result<void> written = write(staged);
   if (written) return written;
   // Name the file the user asked for, not the staging path.
@@ -206,6 +297,8 @@ Result<std::vector<fs::path>> OutputStaging::commit() {
   for (const auto& [staged, target] : files_)
     if (fs::is_directory(target, ec))
       return makeError(Errc::Io, "cannot write '" + target.string() + "': a directory is in the way; nothing was replaced");
+  // Everything staged reaches the disk before the first move (one sync, not one per file).
+  for (const fs::path& dir : dirs_) SCANSURF_TRY(syncFileSystemOf(dir));
   for (const auto& [staged, target] : files_) {
     fs::rename(staged, target, ec);
     if (ec)
@@ -213,6 +306,8 @@ Result<std::vector<fs::path>> OutputStaging::commit() {
                                      ec.message());
     written.push_back(target);
   }
+  // The moves themselves: each destination directory's entries.
+  for (const fs::path& dir : dirs_) SCANSURF_TRY(syncFileSystemOf(dir.parent_path()));
   return written;
 }
 
@@ -382,6 +477,23 @@ Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
   return writePng(path, image.width, image.height, image.rgba);
 }
 
+namespace {
+
+// A feature whose files are not named after it as such says so: a name too long for a file
+// system, or one that differs from another only in case or in characters a file name cannot hold.
+void warnAboutFileStem(const std::string& name, const std::string& stem, std::vector<std::string>& warnings) {
+  std::string sanitized;
+  for (unsigned char c : name) sanitized += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
+  if (sanitized.size() > kMaxFileStem)
+    warnings.push_back("feature \"" + name.substr(0, 40) + "...\": its name is too long for a file name; its files are " + stem +
+                       ".* (the report keeps the whole name)");
+  else if (stem != sanitized && stem.rfind(sanitized + "_", 0) == 0)
+    warnings.push_back("feature \"" + name + "\": another feature's file name differs only in case or in characters a file name "
+                       "cannot hold; its files are " + stem + ".*");
+}
+
+}  // namespace
+
 Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
                                            const BuildResult& built) {
   const Surfaces& surfaces = built.surfaces;
@@ -399,8 +511,11 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   for (std::size_t f = 0; f < featureCount; ++f) {
     const std::string& name = contours.features[f].name;
     SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surfaces.features[f]));
-    if (!plan.dir.empty())
-      SCANSURF_TRY(stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, fileStem(name, used), draco, out));
+    if (!plan.dir.empty()) {
+      const std::string stem = fileStem(name, used);
+      warnAboutFileStem(name, stem, out.warnings);
+      SCANSURF_TRY(stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, draco, out));
+    }
     if (!scenes.empty()) compact.push_back(std::move(mesh));
   }
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)

@@ -113,6 +113,37 @@ if(NOT raw_escape EQUAL -1 OR last_output MATCHES "\nscansurf: error: forged")
 endif()
 expect_output("organ\\\\x1B\\[2J\\\\x0Ascansurf: error: forged")
 
+# File names (issue 15, cause 7): names equal but for case get distinct files on any file
+# system, a 251-character name a shortened one, each with a warning; the report keeps the name.
+run_scansurf(0 "${DATA}/file_names.json" -o "${OUT}/names" --voxel-size 0.5 --report "${OUT}/names/r.json")
+expect_output("feature \"BODY\": another feature's file name differs only in case .* its files are BODY_2")
+expect_output("feature \"LLLL[L]*...\": its name is too long for a file name; its files are L+_[0-9a-f]+\\.\\*")
+foreach(file Body.ply BODY_2.ply)
+  if(NOT EXISTS "${OUT}/names/${file}")
+    message(FATAL_ERROR "missing ${OUT}/names/${file}")
+  endif()
+endforeach()
+file(GLOB long_names "${OUT}/names/LLLL*.ply")
+list(LENGTH long_names long_count)
+file(READ "${OUT}/names/r.json" names_report)
+string(JSON long_name GET "${names_report}" features 2 name)
+string(LENGTH "${long_name}" long_length)
+if(NOT long_count EQUAL 1 OR NOT long_length EQUAL 251)
+  message(FATAL_ERROR "long name: ${long_count} files, report name of ${long_length} characters")
+endif()
+
+# The run lock: a second run into a directory another run is writing to fails at once, before
+# any work, and leaves that directory alone; a finished run leaves no lock file.
+if(NOT EXISTS "${OUT}/names/.scansurf.lock")
+  execute_process(COMMAND flock "${OUT}/names/.scansurf.lock" ${SCANSURF} "${EXAMPLES}/phantom.json" -o "${OUT}/names"
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT code EQUAL 4 OR NOT "${out}${err}" MATCHES "another scansurf run is writing into '.*names'")
+    message(FATAL_ERROR "a locked output directory: exit ${code}\n${out}${err}")
+  endif()
+else()
+  message(FATAL_ERROR "a finished run left its lock file in ${OUT}/names")
+endif()
+
 # SIGTERM at any stage (here after 3 s of a ~10 s run, whichever stage that is) leaves
 # nothing behind: no staging folder, no partial file, the old output untouched.
 find_program(TIMEOUT timeout)

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -151,6 +152,9 @@ struct OutputPlan {
   std::filesystem::path preview;      // .png; empty = none
 };
 
+// Every directory the plan writes into (for OutputStaging::lock), each once.
+std::vector<std::filesystem::path> outputDirectories(const OutputPlan& plan);
+
 // Checks, before any work, that every output of the plan can be written: directories exist or
 // can be created and accept files, extensions are known, no two outputs share a path, a DICOM
 // SEG has its reference series.
@@ -178,13 +182,22 @@ class OutputStaging {
   Result<std::vector<std::filesystem::path>> commit();
   // The final paths staged so far.
   std::vector<std::filesystem::path> targets() const;
-  // Removes everything staged now (as the destructor does); for an interrupted run.
+  // Removes everything staged now, and the run locks' files (as the destructor does); for an
+  // interrupted run.
   void discard() noexcept;
+  // Holds `directory`'s run lock (an flock on directory/.scansurf.lock, released when this
+  // object dies, also when the process is killed) so that two runs into one place cannot
+  // interleave their files. stage() takes it for every directory it writes into; take it
+  // before the work to fail early. Errors: Errc::Io naming the directory and, when another
+  // run holds it, that run's pid.
+  Result<void> lock(const std::filesystem::path& directory);
 
  private:
   Result<std::filesystem::path> reserve(const std::filesystem::path& target);
   std::vector<std::filesystem::path> dirs_;
+  std::vector<std::pair<std::filesystem::path, int>> locks_;  // directory, open lock file
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // staged, target
+  std::set<std::filesystem::path> targets_;  // the targets of files_, to find a clash at once
   unsigned long id_ = 0;  // names this staging's folders: .scansurf-staging-<pid>-<id>
 };
 
@@ -199,8 +212,12 @@ struct SurfaceOutputs {
 Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputPlan& plan, const ContourSet& contours,
                                            const BuildResult& built);
 
-// A file name from a feature name: letters, digits, '.', '-' and '_' kept, the rest '_';
-// made unique against `used` (and added to it).
+// A file name from a feature name: letters, digits, '.', '-' and '_' kept, the rest '_'; over
+// kMaxFileStem bytes, cut and ended with a hash of the whole name (every file system takes the
+// result with any extension, staging and temporary suffix); made unique against `used`
+// ignoring case ("Body" and "BODY" become Body and BODY_2, which case-insensitive file
+// systems keep apart), and added to it.
+inline constexpr std::size_t kMaxFileStem = 160;
 std::string fileStem(const std::string& name, std::vector<std::string>& used);
 
 }  // namespace scansurf
