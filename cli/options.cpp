@@ -2,12 +2,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <thread>
 
 #include "scansurf/version.h"
 
@@ -93,7 +95,8 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
       ->capture_default_str();
   app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
-  app.add_option("--threads", o.build.threads, "CPU threads for assembly and smoothing (default: all)")->check(CLI::Range(0, 1024));
+  app.add_option("--threads", o.build.threads, "CPU threads for assembly and smoothing (default and at most: the machine's cores)")
+      ->check(CLI::Range(0, 1024));
   app.add_option("--max-memory", f.maxMemory,
                  "host memory the run may use, e.g. 8G or 512M (default: what the machine has available); a run that "
                  "would need more is refused before it starts (exit 9)")
@@ -175,6 +178,9 @@ void apply(const Flags& f, CliOptions& o) {
   o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
   if (!f.maxMemory.empty()) o.build.memoryLimit = *parseMemorySize(f.maxMemory);
+  // More threads than cores only costs memory and switches (results do not depend on it).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.build.threads = std::min(o.build.threads, cores);
 }
 
 }  // namespace
