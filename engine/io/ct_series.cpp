@@ -78,6 +78,9 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
     for (unsigned long i = 0; i < 3; ++i) {
       SCANSURF_ASSIGN_OR_RETURN(image.position[i],
                                 getDouble(ds, DCM_ImagePositionPatient, i, file, "Image Position (Patient) (0020,0032)"));
+      if (std::abs(image.position[i]) > kMaxCoordinate)
+        return invalid(file + ": Image Position (Patient) (0020,0032) value " + formatNumber(image.position[i]) +
+                       " is beyond " + formatNumber(kMaxCoordinate) + " mm from the origin");
     }
     for (unsigned long i = 0; i < 2; ++i) {
       SCANSURF_ASSIGN_OR_RETURN(image.spacing[i], getDouble(ds, DCM_PixelSpacing, i, file, "Pixel Spacing (0028,0030)"));

@@ -629,6 +629,16 @@ TEST_F(Dicom, ReferenceSeriesErrors) {
             std::string::npos)
       << r.error().message;
 
+  // Issue 15, cause 2: one slice moved by 1e12 mm is refused, naming the file.
+  test::TestCt far;
+  far.sliceZ = {0, 1, 1e12};
+  test::writeTestCtSeries(far, dir_ / "far");
+  r = readCtSeries(dir_ / "far");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("ct_2.dcm: Image Position (Patient) (0020,0032) value 1e+12 is beyond 1e+07 mm"),
+            std::string::npos)
+      << r.error().message;
+
   test::TestCt a, b;
   a.sliceZ = {0, 1};
   b.sliceZ = {2};
