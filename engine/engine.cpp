@@ -315,12 +315,13 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     BuildResult out;
     StageClock clock(out.timings, options);
     const double tolerance = options.grid.sliceTolerance;
-    out.nesting = computeNesting(contours, tolerance);
-    clock.lap("nesting");
+    // The grid and the budget first: a run that cannot fit is refused before any real work.
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
     SCANSURF_TRY(checkMemoryBudget(contours, grid, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(contours, grid);
     clock.lap("grid");
+    out.nesting = computeNesting(contours, tolerance);
+    clock.lap("nesting");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     out.subPixelBits = scanner->subPixelBits();
     out.sliceTolerance = tolerance;
