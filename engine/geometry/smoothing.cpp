@@ -55,6 +55,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/parallel.h"
@@ -161,104 +162,112 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
   adj.start.assign(vertexCount + 1, 0);  // counts first (at v + 1), then offsets
 
   struct Scratch {
+    std::vector<std::uint32_t> tris;                              // v's triangles
+    std::vector<std::uint32_t> sorted;                            // v's neighbours, ascending
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (neighbour, label pair)
     std::vector<std::pair<std::uint32_t, std::uint32_t>> link;   // (a, b) of each triangle (v, a, b)
     std::vector<std::array<std::uint32_t, 3>> pinched;
   };
-  // The neighbours of v (sheet or curve), written to out (room for capacity) when not null;
-  // returns their count.
-  const auto classify = [&](std::size_t v, Scratch& scratch, std::uint32_t* out, std::uint32_t capacity) -> std::uint32_t {
+  // Classifies v and writes its neighbours to out, which may be v's own range of triList: a
+  // sheet vertex has one neighbour per triangle (each of its edges has two), a curve vertex two
+  // and at least three triangles. Returns their count.
+  const auto classify = [&](std::size_t v, Scratch& scratch, std::uint32_t* out) -> std::uint32_t {
+    std::vector<std::uint32_t>& tris = scratch.tris;
+    tris.assign(triList.begin() + triStart[v], triList.begin() + triStart[v + 1]);
     std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges = scratch.edges;
     edges.clear();
     bool onePair = true;
     std::uint32_t firstPair = 0;
-    for (std::uint32_t i = triStart[v]; i < triStart[v + 1]; ++i) {
-      const std::uint32_t t = triList[i];
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const std::uint32_t t = tris[i];
       const std::uint32_t pair = mesh.labels[2 * t] | (static_cast<std::uint32_t>(mesh.labels[2 * t + 1]) << 16);
-      if (i == triStart[v]) firstPair = pair;
+      if (i == 0) firstPair = pair;
       onePair &= pair == firstPair;
       for (int c = 0; c < 3; ++c)
         if (mesh.triangles[3 * t + c] != v) edges.push_back({mesh.triangles[3 * t + c], pair});
     }
     std::sort(edges.begin(), edges.end());
-    std::uint32_t all = 0, curve = 0;
+    std::vector<std::uint32_t>& sorted = scratch.sorted;
+    sorted.clear();
+    std::uint32_t curve = 0;
     std::uint32_t curveNeighbours[2] = {0, 0};
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t e = i;
       while (e < edges.size() && edges[e].first == edges[i].first) ++e;
       const bool junctionEdge = e - i != 2 || edges[i].second != edges[e - 1].second;
-      if (out && onePair && all < capacity) out[all] = edges[i].first;
-      ++all;
+      sorted.push_back(edges[i].first);
       if (junctionEdge) {
         if (curve < 2) curveNeighbours[curve] = edges[i].first;
         ++curve;
       }
       i = e;
     }
-    if (onePair && curve == 0) {
+    const std::uint32_t all = static_cast<std::uint32_t>(sorted.size());
+    if (onePair && curve == 0 && all <= tris.size()) {
       adj.kind[v] = static_cast<std::uint8_t>(Role::Sheet);
-      if (out) {
-        // out holds the neighbours sorted; reorder them along the link cycle from the least.
-        std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
-        link.clear();
-        for (std::uint32_t i = triStart[v]; i < triStart[v + 1]; ++i) {
-          const std::uint32_t* t = &mesh.triangles[3 * triList[i]];
-          const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-          link.push_back({t[(c + 1) % 3], t[(c + 2) % 3]});
-        }
-        std::sort(link.begin(), link.end());
-        bool cycle = link.size() == all;
-        for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == out[i];  // each neighbour once a start
-        std::uint32_t steps = 0;
-        if (cycle) {
-          std::uint32_t a = out[0];
-          do {
-            edges[steps].first = a;  // reuse as the ordered list
-            const std::size_t i = static_cast<std::size_t>(std::lower_bound(out, out + all, a) - out);
-            a = link[i].second;
-            ++steps;
-          } while (a != out[0] && steps < all && std::binary_search(out, out + all, a));
-          cycle = a == out[0] && steps == all;
-        }
-        if (cycle) {
-          for (std::uint32_t i = 0; i < all; ++i) out[i] = edges[i].first;
-        } else {
-          adj.kind[v] |= kPinched;
-          for (const auto& [a, b] : link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
-        }
+      // Order the neighbours along the link cycle from the least.
+      std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
+      link.clear();
+      for (std::uint32_t t : tris) {
+        const std::uint32_t* c3 = &mesh.triangles[3 * t];
+        const int c = c3[0] == v ? 0 : c3[1] == v ? 1 : 2;
+        link.push_back({c3[(c + 1) % 3], c3[(c + 2) % 3]});
+      }
+      std::sort(link.begin(), link.end());
+      const std::uint32_t* first = sorted.data();
+      bool cycle = link.size() == all;
+      for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == first[i];  // each neighbour once a start
+      std::uint32_t steps = 0;
+      if (cycle) {
+        std::uint32_t a = first[0];
+        do {
+          edges[steps].first = a;  // reuse as the ordered list
+          const std::size_t i = static_cast<std::size_t>(std::lower_bound(first, first + all, a) - first);
+          a = link[i].second;
+          ++steps;
+        } while (a != first[0] && steps < all && std::binary_search(first, first + all, a));
+        cycle = a == first[0] && steps == all;
+      }
+      if (cycle) {
+        for (std::uint32_t i = 0; i < all; ++i) out[i] = edges[i].first;
+      } else {
+        adj.kind[v] |= kPinched;
+        std::copy(sorted.begin(), sorted.end(), out);
+        for (const auto& [a, b] : link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
       }
       return all;
     }
-    if (junctions && curve == 2) {
+    if (junctions && curve == 2 && tris.size() >= 2) {
       adj.kind[v] = static_cast<std::uint8_t>(Role::Curve);
-      if (out) out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
+      out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
       return 2;
     }
     adj.kind[v] = static_cast<std::uint8_t>(Role::Fixed);
     return 0;
   };
 
-  parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-    Scratch scratch;
-    for (std::size_t v = begin; v < end; ++v) {
-      adj.start[v + 1] = classify(v, scratch, nullptr, 0);
-      if (triStart[v] < triStart[v + 1]) {
-        const std::uint32_t t = triList[triStart[v]];
-        adj.labels[2 * v] = mesh.labels[2 * t];
-        adj.labels[2 * v + 1] = mesh.labels[2 * t + 1];
-      }
-    }
-  });
-  for (std::size_t v = 0; v < vertexCount; ++v) adj.start[v + 1] += adj.start[v];
-  adj.neighbours.resize(adj.start.back());
+  // One pass writes each vertex's neighbours over its own triangles in triList; they then
+  // close up from the front, and triList becomes the neighbour list.
   std::vector<std::vector<std::array<std::uint32_t, 3>>> pinched(static_cast<std::size_t>(chunkCount(vertexCount, threads)));
   parallelChunks(vertexCount, threads, [&](int chunk, std::size_t begin, std::size_t end) {
     Scratch scratch;
-    for (std::size_t v = begin; v < end; ++v)
-      if (adj.start[v] < adj.start[v + 1])
-        classify(v, scratch, adj.neighbours.data() + adj.start[v], adj.start[v + 1] - adj.start[v]);
+    for (std::size_t v = begin; v < end; ++v) {
+      if (triStart[v] == triStart[v + 1]) continue;
+      const std::uint32_t t = triList[triStart[v]];
+      adj.labels[2 * v] = mesh.labels[2 * t];
+      adj.labels[2 * v + 1] = mesh.labels[2 * t + 1];
+      adj.start[v + 1] = classify(v, scratch, triList.data() + triStart[v]);
+    }
     pinched[static_cast<std::size_t>(chunk)] = std::move(scratch.pinched);
   });
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    const std::uint32_t count = adj.start[v + 1];
+    adj.start[v + 1] += adj.start[v];
+    if (count && adj.start[v] != triStart[v])  // start[v] <= triStart[v]: ranges may overlap
+      std::memmove(triList.data() + adj.start[v], triList.data() + triStart[v], count * sizeof(std::uint32_t));
+  }
+  triList.resize(adj.start.back());
+  adj.neighbours = std::move(triList);
   for (const auto& p : pinched) adj.pinchedLinks.insert(adj.pinchedLinks.end(), p.begin(), p.end());
   return adj;
 }

@@ -13,7 +13,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <optional>
 
@@ -111,8 +113,16 @@ int main(int argc, char** argv) {
       bestWall = std::min(bestWall, std::chrono::duration<double>(Clock::now() - t).count());
       bestCpu = std::min(bestCpu, cpuSeconds() - c);
     }
-    std::printf("smoothing, %d thread(s): %.2f s wall, %.2f s CPU, %d sweeps (%zu sheet, %zu fitted, %zu junction, %zu fixed vertices)\n",
-                threads == 0 ? defaultThreadCount() : threads, bestWall, bestCpu, r.sweeps, r.sheet, r.fitted, r.curve, r.fixed);
+    std::uint64_t hash = 14695981039346656037ull;  // FNV-1a of the positions' bytes: equal results, equal hashes
+    for (float x : mesh.positions) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      for (int k = 0; k < 4; ++k) hash = (hash ^ ((bits >> (8 * k)) & 0xff)) * 1099511628211ull;
+    }
+    std::printf("smoothing, %d thread(s): %.2f s wall, %.2f s CPU, %d sweeps (%zu sheet, %zu fitted, %zu junction, %zu fixed vertices), "
+                "positions %016llx\n",
+                threads == 0 ? defaultThreadCount() : threads, bestWall, bestCpu, r.sweeps, r.sheet, r.fitted, r.curve, r.fixed,
+                static_cast<unsigned long long>(hash));
     if (first.empty())
       first = mesh.positions;
     else
