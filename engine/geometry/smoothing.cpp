@@ -61,6 +61,7 @@
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
+#include "geometry/huge_pages.h"
 
 namespace scansurf {
 namespace {
@@ -133,12 +134,12 @@ Role roleOf(std::uint8_t kind) { return static_cast<Role>(kind & kRoleMask); }
 
 struct Adjacency {
   std::vector<std::uint8_t> kind;    // Role | kOnEdge | kPinched
-  std::vector<std::uint32_t> start;  // size V + 1, into neighbours
+  HugeVector<std::uint32_t> start;  // size V + 1, into neighbours
   // A sheet vertex's neighbours in the order of its link cycle (each triangle (v, a, b) of v,
   // counter-clockwise, is a consecutive a, b, the last neighbour followed by the first), so
   // its area-weighted normal is the sum of cross(a - v, b - v) over consecutive pairs; a curve
   // vertex's two curve neighbours.
-  std::vector<std::uint32_t> neighbours;
+  HugeVector<std::uint32_t> neighbours;
   std::vector<Label> labels;  // 2 per vertex: the pair of its first triangle
   // Sheet vertices whose link is not one cycle (kPinched; rare): {v, a, b} per triangle
   // (v, a, b), sorted by v, for their normals.
@@ -149,11 +150,11 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
   Adjacency adj;
   // Incident triangles per vertex, only while building.
-  std::vector<std::uint32_t> triStart(vertexCount + 1, 0), triList(3 * triangleCount);
+  HugeVector<std::uint32_t> triStart(vertexCount + 1, 0), triList(3 * triangleCount);
   for (std::uint32_t v : mesh.triangles) ++triStart[v + 1];
   for (std::size_t v = 0; v < vertexCount; ++v) triStart[v + 1] += triStart[v];
   {
-    std::vector<std::uint32_t> fill(triStart.begin(), triStart.end() - 1);
+    HugeVector<std::uint32_t> fill(triStart.begin(), triStart.end() - 1);
     for (std::size_t t = 0; t < triangleCount; ++t)
       for (int c = 0; c < 3; ++c) triList[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
   }
@@ -379,19 +380,19 @@ class Relaxation {
   const std::uint64_t* const keys_;
   const float stepX_, stepY_;     // grid spacing, the x and y extent of a carrier edge
   const float bending_, tension_;  // kBending and kTension at the options' strength
-  std::vector<Float4> cur_;        // positions before the sweep
+  HugeVector<Float4> cur_;        // positions before the sweep
   // After it; before it, the positions of the sweep before cur_ (a stage's second term).
   // Fixed and fitted vertices hold the same value in both.
-  std::vector<Float4> next_;
+  HugeVector<Float4> next_;
   // Umbrella operator U(v) = mean of neighbours - v (last lane unused); zero where a vertex has
   // none.
-  std::vector<Float4> umbrella_;
+  HugeVector<Float4> umbrella_;
   // A sheet vertex on its carrier edge a -> b is a + t (b - a), t in its position's last lane:
   // edgeStart holds a and (b - a).z, kStepX and kStepY say whether b - a has x, y components
   // (one grid spacing), and slope, while the vertex slides along the normal n, holds
   // n / ((b - a) . n). Zero for other vertices.
-  std::vector<Float4> edgeStart_;
-  std::vector<Float4> slope_;
+  HugeVector<Float4> edgeStart_;
+  HugeVector<Float4> slope_;
 };
 
 Relaxation::Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads)
@@ -549,10 +550,10 @@ Float4 Relaxation::intoCarrier(std::size_t v, const Float4& p, const Float4& d) 
 }
 
 void Relaxation::storeInto(MultiLabelMesh& mesh) {
-  std::vector<Float4>().swap(next_);
-  std::vector<Float4>().swap(umbrella_);
-  std::vector<Float4>().swap(slope_);
-  std::vector<Float4>().swap(edgeStart_);
+  HugeVector<Float4>().swap(next_);
+  HugeVector<Float4>().swap(umbrella_);
+  HugeVector<Float4>().swap(slope_);
+  HugeVector<Float4>().swap(edgeStart_);
   mesh.positions.resize(3 * vertexCount_);
   for (std::size_t v = 0; v < vertexCount_; ++v)
     for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = cur_[v][k];
