@@ -30,17 +30,39 @@
 // edge to where the target's tangent plane cuts it (tangential drift would otherwise turn into
 // normal error on slanted edges); junction vertices take the nearest point of their carrier.
 // Vertices fitted to the contours (geometry/contour_fit.h) stay.
+//
+// Schedule: the relaxation is a low-pass filter, not a solver run to convergence. Its fixed
+// point is worse than its 150th sweep (the tension shrinks and the fairing extrapolates caps:
+// after 1200 sweeps the torus of smoothing_test.cpp loses 4 % of its volume and lies up to
+// 0.96 mm off, against 0.77 % and 0.25 mm after 150), and about a third of the vertices never
+// settle (on pelvis they keep moving by up to 0.14 voxel a sweep, 0.6 on the sweeps that
+// refresh the slide slopes), so no residual can say when to stop. The amount of smoothing is
+// the option's sweep count, read as a diffusion time: we integrate that time with
+// Runge-Kutta-Legendre super-steps
+// (RKL1 of Meyer, Balsara and Aslam, "A stabilized Runge-Kutta-Legendre method for explicit
+// super-time-stepping of parabolic and mixed equations", J. Comput. Phys. 257, 2014; after
+// Alexiades, Amiez and Gremaud's super-time-stepping, 1996). Stage j of an s-stage super-step
+// of length tau (in plain sweeps) is Y_j = mu_j Y_{j-1} + nu_j Y_{j-2} + mu_j w1 tau S(Y_{j-1}),
+// mu_j = (2j - 1) / j, nu_j = (1 - j) / j, w1 = 2 / (s^2 + s), S one plain sweep's step: a
+// shifted Legendre polynomial in the sweep operator, stable while tau |lambda| <= s^2 + s, so
+// s stages cover about s^2 / 2 sweeps of smoothing. Every stage ends in the carrier projection
+// as a plain sweep does, so positions stay inside their carriers and the argument above holds
+// unchanged; mu_j + nu_j = 1, so an edge vertex's stage stays on its edge's line. The 150
+// sweeps of the default run as 5 super-steps of 7 stages (35 sweeps); no accuracy figure of
+// smoothing_test.cpp gets worse by more than 2 % (docs/benchmarks.md).
 #include "geometry/smoothing.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
+#include "geometry/huge_pages.h"
 
 namespace scansurf {
 namespace {
@@ -49,6 +71,8 @@ constexpr double kMargin = 0.02;  // least barycentric weight inside a carrier
 constexpr double kBending = 0.45;  // bi-Laplacian step at strength 1
 constexpr double kTension = 0.0875;  // Laplacian step at strength 1
 constexpr int kNormalPeriod = 4;     // sweeps between vertex normal updates
+constexpr int kSuperStep = 30;       // most plain sweeps' worth of smoothing in one super-step
+constexpr double kStability = 1.15;  // least ratio of a super-step's stability bound to its need
 
 enum class Role : std::uint8_t { Sheet, Curve, Fixed, Fitted };
 
@@ -111,12 +135,12 @@ Role roleOf(std::uint8_t kind) { return static_cast<Role>(kind & kRoleMask); }
 
 struct Adjacency {
   std::vector<std::uint8_t> kind;    // Role | kOnEdge | kPinched
-  std::vector<std::uint32_t> start;  // size V + 1, into neighbours
+  HugeVector<std::uint32_t> start;  // size V + 1, into neighbours
   // A sheet vertex's neighbours in the order of its link cycle (each triangle (v, a, b) of v,
   // counter-clockwise, is a consecutive a, b, the last neighbour followed by the first), so
   // its area-weighted normal is the sum of cross(a - v, b - v) over consecutive pairs; a curve
   // vertex's two curve neighbours.
-  std::vector<std::uint32_t> neighbours;
+  HugeVector<std::uint32_t> neighbours;
   std::vector<Label> labels;  // 2 per vertex: the pair of its first triangle
   // Sheet vertices whose link is not one cycle (kPinched; rare): {v, a, b} per triangle
   // (v, a, b), sorted by v, for their normals.
@@ -127,11 +151,11 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
   Adjacency adj;
   // Incident triangles per vertex, only while building.
-  std::vector<std::uint32_t> triStart(vertexCount + 1, 0), triList(3 * triangleCount);
+  HugeVector<std::uint32_t> triStart(vertexCount + 1, 0), triList(3 * triangleCount);
   for (std::uint32_t v : mesh.triangles) ++triStart[v + 1];
   for (std::size_t v = 0; v < vertexCount; ++v) triStart[v + 1] += triStart[v];
   {
-    std::vector<std::uint32_t> fill(triStart.begin(), triStart.end() - 1);
+    HugeVector<std::uint32_t> fill(triStart.begin(), triStart.end() - 1);
     for (std::size_t t = 0; t < triangleCount; ++t)
       for (int c = 0; c < 3; ++c) triList[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
   }
@@ -140,104 +164,112 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
   adj.start.assign(vertexCount + 1, 0);  // counts first (at v + 1), then offsets
 
   struct Scratch {
+    std::vector<std::uint32_t> tris;                              // v's triangles
+    std::vector<std::uint32_t> sorted;                            // v's neighbours, ascending
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (neighbour, label pair)
     std::vector<std::pair<std::uint32_t, std::uint32_t>> link;   // (a, b) of each triangle (v, a, b)
     std::vector<std::array<std::uint32_t, 3>> pinched;
   };
-  // The neighbours of v (sheet or curve), written to out (room for capacity) when not null;
-  // returns their count.
-  const auto classify = [&](std::size_t v, Scratch& scratch, std::uint32_t* out, std::uint32_t capacity) -> std::uint32_t {
+  // Classifies v and writes its neighbours to out, which may be v's own range of triList: a
+  // sheet vertex has one neighbour per triangle (each of its edges has two), a curve vertex two
+  // and at least three triangles. Returns their count.
+  const auto classify = [&](std::size_t v, Scratch& scratch, std::uint32_t* out) -> std::uint32_t {
+    std::vector<std::uint32_t>& tris = scratch.tris;
+    tris.assign(triList.begin() + triStart[v], triList.begin() + triStart[v + 1]);
     std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges = scratch.edges;
     edges.clear();
     bool onePair = true;
     std::uint32_t firstPair = 0;
-    for (std::uint32_t i = triStart[v]; i < triStart[v + 1]; ++i) {
-      const std::uint32_t t = triList[i];
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      const std::uint32_t t = tris[i];
       const std::uint32_t pair = mesh.labels[2 * t] | (static_cast<std::uint32_t>(mesh.labels[2 * t + 1]) << 16);
-      if (i == triStart[v]) firstPair = pair;
+      if (i == 0) firstPair = pair;
       onePair &= pair == firstPair;
       for (int c = 0; c < 3; ++c)
         if (mesh.triangles[3 * t + c] != v) edges.push_back({mesh.triangles[3 * t + c], pair});
     }
     std::sort(edges.begin(), edges.end());
-    std::uint32_t all = 0, curve = 0;
+    std::vector<std::uint32_t>& sorted = scratch.sorted;
+    sorted.clear();
+    std::uint32_t curve = 0;
     std::uint32_t curveNeighbours[2] = {0, 0};
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t e = i;
       while (e < edges.size() && edges[e].first == edges[i].first) ++e;
       const bool junctionEdge = e - i != 2 || edges[i].second != edges[e - 1].second;
-      if (out && onePair && all < capacity) out[all] = edges[i].first;
-      ++all;
+      sorted.push_back(edges[i].first);
       if (junctionEdge) {
         if (curve < 2) curveNeighbours[curve] = edges[i].first;
         ++curve;
       }
       i = e;
     }
-    if (onePair && curve == 0) {
+    const std::uint32_t all = static_cast<std::uint32_t>(sorted.size());
+    if (onePair && curve == 0 && all <= tris.size()) {
       adj.kind[v] = static_cast<std::uint8_t>(Role::Sheet);
-      if (out) {
-        // out holds the neighbours sorted; reorder them along the link cycle from the least.
-        std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
-        link.clear();
-        for (std::uint32_t i = triStart[v]; i < triStart[v + 1]; ++i) {
-          const std::uint32_t* t = &mesh.triangles[3 * triList[i]];
-          const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-          link.push_back({t[(c + 1) % 3], t[(c + 2) % 3]});
-        }
-        std::sort(link.begin(), link.end());
-        bool cycle = link.size() == all;
-        for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == out[i];  // each neighbour once a start
-        std::uint32_t steps = 0;
-        if (cycle) {
-          std::uint32_t a = out[0];
-          do {
-            edges[steps].first = a;  // reuse as the ordered list
-            const std::size_t i = static_cast<std::size_t>(std::lower_bound(out, out + all, a) - out);
-            a = link[i].second;
-            ++steps;
-          } while (a != out[0] && steps < all && std::binary_search(out, out + all, a));
-          cycle = a == out[0] && steps == all;
-        }
-        if (cycle) {
-          for (std::uint32_t i = 0; i < all; ++i) out[i] = edges[i].first;
-        } else {
-          adj.kind[v] |= kPinched;
-          for (const auto& [a, b] : link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
-        }
+      // Order the neighbours along the link cycle from the least.
+      std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
+      link.clear();
+      for (std::uint32_t t : tris) {
+        const std::uint32_t* c3 = &mesh.triangles[3 * t];
+        const int c = c3[0] == v ? 0 : c3[1] == v ? 1 : 2;
+        link.push_back({c3[(c + 1) % 3], c3[(c + 2) % 3]});
+      }
+      std::sort(link.begin(), link.end());
+      const std::uint32_t* first = sorted.data();
+      bool cycle = link.size() == all;
+      for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == first[i];  // each neighbour once a start
+      std::uint32_t steps = 0;
+      if (cycle) {
+        std::uint32_t a = first[0];
+        do {
+          edges[steps].first = a;  // reuse as the ordered list
+          const std::size_t i = static_cast<std::size_t>(std::lower_bound(first, first + all, a) - first);
+          a = link[i].second;
+          ++steps;
+        } while (a != first[0] && steps < all && std::binary_search(first, first + all, a));
+        cycle = a == first[0] && steps == all;
+      }
+      if (cycle) {
+        for (std::uint32_t i = 0; i < all; ++i) out[i] = edges[i].first;
+      } else {
+        adj.kind[v] |= kPinched;
+        std::copy(sorted.begin(), sorted.end(), out);
+        for (const auto& [a, b] : link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
       }
       return all;
     }
-    if (junctions && curve == 2) {
+    if (junctions && curve == 2 && tris.size() >= 2) {
       adj.kind[v] = static_cast<std::uint8_t>(Role::Curve);
-      if (out) out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
+      out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
       return 2;
     }
     adj.kind[v] = static_cast<std::uint8_t>(Role::Fixed);
     return 0;
   };
 
-  parallelChunks(vertexCount, threads, [&](int, std::size_t begin, std::size_t end) {
-    Scratch scratch;
-    for (std::size_t v = begin; v < end; ++v) {
-      adj.start[v + 1] = classify(v, scratch, nullptr, 0);
-      if (triStart[v] < triStart[v + 1]) {
-        const std::uint32_t t = triList[triStart[v]];
-        adj.labels[2 * v] = mesh.labels[2 * t];
-        adj.labels[2 * v + 1] = mesh.labels[2 * t + 1];
-      }
-    }
-  });
-  for (std::size_t v = 0; v < vertexCount; ++v) adj.start[v + 1] += adj.start[v];
-  adj.neighbours.resize(adj.start.back());
+  // One pass writes each vertex's neighbours over its own triangles in triList; they then
+  // close up from the front, and triList becomes the neighbour list.
   std::vector<std::vector<std::array<std::uint32_t, 3>>> pinched(static_cast<std::size_t>(chunkCount(vertexCount, threads)));
   parallelChunks(vertexCount, threads, [&](int chunk, std::size_t begin, std::size_t end) {
     Scratch scratch;
-    for (std::size_t v = begin; v < end; ++v)
-      if (adj.start[v] < adj.start[v + 1])
-        classify(v, scratch, adj.neighbours.data() + adj.start[v], adj.start[v + 1] - adj.start[v]);
+    for (std::size_t v = begin; v < end; ++v) {
+      if (triStart[v] == triStart[v + 1]) continue;
+      const std::uint32_t t = triList[triStart[v]];
+      adj.labels[2 * v] = mesh.labels[2 * t];
+      adj.labels[2 * v + 1] = mesh.labels[2 * t + 1];
+      adj.start[v + 1] = classify(v, scratch, triList.data() + triStart[v]);
+    }
     pinched[static_cast<std::size_t>(chunk)] = std::move(scratch.pinched);
   });
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    const std::uint32_t count = adj.start[v + 1];
+    adj.start[v + 1] += adj.start[v];
+    if (count && adj.start[v] != triStart[v])  // start[v] <= triStart[v]: ranges may overlap
+      std::memmove(triList.data() + adj.start[v], triList.data() + triStart[v], count * sizeof(std::uint32_t));
+  }
+  triList.resize(adj.start.back());
+  adj.neighbours = std::move(triList);
   for (const auto& p : pinched) adj.pinchedLinks.insert(adj.pinchedLinks.end(), p.begin(), p.end());
   return adj;
 }
@@ -297,8 +329,8 @@ SmoothingReport settleRoles(const std::vector<std::uint64_t>& keys, std::vector<
 // computed from small differences (neighbour - vertex, position along the carrier edge), so
 // float loses nothing beyond the final rounding to float that the mesh stores anyway.
 //
-// Each sweep moves a vertex by strength * (kTension * U - kBending * U^2), then into its
-// carrier. Bending alone is stable below 0.5 for uniform weights (eigenvalues of U^2 <= 4)
+// Each plain sweep moves a vertex by strength * (kTension * U - kBending * U^2), then into its
+// carrier (a stage of a super-step combines that step with the last two positions, Stage). Bending alone is stable below 0.5 for uniform weights (eigenvalues of U^2 <= 4)
 // and would extrapolate a cap past the last contour by the chord slope of the rings below;
 // a little tension balances that (measured on spheres and tori, see smoothing_test.cpp).
 //
@@ -309,14 +341,21 @@ SmoothingReport settleRoles(const std::vector<std::uint64_t>& keys, std::vector<
 // that cut is t + d . n / (e . n), so the slope n / (e . n) is all a sweep needs. Where the
 // edge runs nearly inside the tangent plane (e.n^2 < 0.01 |e|^2 |n|^2), and for every other
 // vertex, the target's nearest point of the carrier.
+// One stage of a super-step: the vertex goes to mu * (its position) + nu * (its position one
+// sweep earlier) + w * (its step), then into its carrier. A plain sweep is {1, 0, 1}.
+struct Stage {
+  float mu = 1, nu = 0, w = 1;
+};
+
 class Relaxation {
  public:
   // Takes over mesh.positions (released until storeInto, its memory serves the sweeps) and
   // the roles in adj.kind, which must outlive this object.
   Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads);
 
-  // One Jacobi sweep over every vertex; refreshNormals recomputes the slide slopes.
-  void sweep(bool refreshNormals);
+  // One Jacobi sweep over every vertex, a stage of a super-step (see Stage); refreshNormals
+  // recomputes the slide slopes.
+  void sweep(const Stage& stage, bool refreshNormals);
   // Frees the working set and writes the positions back into mesh.positions.
   void storeInto(MultiLabelMesh& mesh);
 
@@ -327,9 +366,9 @@ class Relaxation {
   void computeUmbrella(std::size_t v, bool refreshNormals);
   void refreshSlide(std::size_t v);
   Float4 stepOf(std::size_t v) const;
-  void moveVertex(std::size_t v);
-  Float4 alongCarrierEdge(std::size_t v, std::uint8_t kind, const Float4& d) const;
-  Float4 intoCarrier(std::size_t v, const Float4& d) const;
+  void moveVertex(std::size_t v, const Stage& stage);
+  Float4 alongCarrierEdge(std::size_t v, std::uint8_t kind, float along, const Float4& d) const;
+  Float4 intoCarrier(std::size_t v, const Float4& p, const Float4& d) const;
 
   const Grid& grid_;
   const int threads_;
@@ -342,17 +381,19 @@ class Relaxation {
   const std::uint64_t* const keys_;
   const float stepX_, stepY_;     // grid spacing, the x and y extent of a carrier edge
   const float bending_, tension_;  // kBending and kTension at the options' strength
-  std::vector<Float4> cur_;        // positions before the sweep
-  std::vector<Float4> next_;       // after it; fixed and fitted vertices hold the same value in both
+  HugeVector<Float4> cur_;        // positions before the sweep
+  // After it; before it, the positions of the sweep before cur_ (a stage's second term).
+  // Fixed and fitted vertices hold the same value in both.
+  HugeVector<Float4> next_;
   // Umbrella operator U(v) = mean of neighbours - v (last lane unused); zero where a vertex has
   // none.
-  std::vector<Float4> umbrella_;
+  HugeVector<Float4> umbrella_;
   // A sheet vertex on its carrier edge a -> b is a + t (b - a), t in its position's last lane:
   // edgeStart holds a and (b - a).z, kStepX and kStepY say whether b - a has x, y components
   // (one grid spacing), and slope, while the vertex slides along the normal n, holds
   // n / ((b - a) . n). Zero for other vertices.
-  std::vector<Float4> edgeStart_;
-  std::vector<Float4> slope_;
+  HugeVector<Float4> edgeStart_;
+  HugeVector<Float4> slope_;
 };
 
 Relaxation::Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads)
@@ -424,12 +465,12 @@ Vec3 Relaxation::normalOf(std::size_t v) const {
   return n;
 }
 
-void Relaxation::sweep(bool refreshNormals) {
+void Relaxation::sweep(const Stage& stage, bool refreshNormals) {
   parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) computeUmbrella(v, refreshNormals);
   });
   parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) moveVertex(v);
+    for (std::size_t v = begin; v < end; ++v) moveVertex(v, stage);
   });
   cur_.swap(next_);
 }
@@ -471,19 +512,20 @@ Float4 Relaxation::stepOf(std::size_t v) const {
   return tension_ * uv - bending_ * (sum / static_cast<float>(e - s) - uv);
 }
 
-void Relaxation::moveVertex(std::size_t v) {
+void Relaxation::moveVertex(std::size_t v, const Stage& stage) {
   const std::uint8_t kind = kinds_[v];
   const Role role = roleOf(kind);
   if (role == Role::Fixed || role == Role::Fitted) return;
-  const Float4 d = stepOf(v);
-  next_[v] = (kind & kOnEdge) ? alongCarrierEdge(v, kind, d) : intoCarrier(v, d);
+  // With mu = 1, nu = 0 and w = 1 (a plain sweep) this is exactly p + d.
+  const Float4 d = stage.w * stepOf(v);
+  const Float4 p = stage.mu * cur_[v] + stage.nu * next_[v];
+  next_[v] = (kind & kOnEdge) ? alongCarrierEdge(v, kind, p[3], d) : intoCarrier(v, p, d);
 }
 
-// Edge vertex v moved by d: where the tangent plane cuts its edge, or the nearest point of the
-// edge; t in the last lane.
-Float4 Relaxation::alongCarrierEdge(std::size_t v, std::uint8_t kind, const Float4& d) const {
+// Edge vertex v at t = along on its edge, moved by d: where the tangent plane cuts its edge,
+// or the nearest point of the edge; t in the last lane.
+Float4 Relaxation::alongCarrierEdge(std::size_t v, std::uint8_t kind, float along, const Float4& d) const {
   const Float4 a = edgeStart_[v], ev = edgeVectorOf(kind, a);
-  const float along = cur_[v][3];
   float t;
   if (kind & kSlides) {
     const Float4 m = d * slope_[v];
@@ -500,23 +542,44 @@ Float4 Relaxation::alongCarrierEdge(std::size_t v, std::uint8_t kind, const Floa
   return out;
 }
 
-// Vertex v moved by d, then to the nearest point of its carrier.
-Float4 Relaxation::intoCarrier(std::size_t v, const Float4& d) const {
-  const Float4 pv = cur_[v];
-  const Vec3 out = projectIntoCarrier(grid_, carrierOfKey(keys_[v]), {pv[0] + static_cast<double>(d[0]),
-                                                                     pv[1] + static_cast<double>(d[1]),
-                                                                     pv[2] + static_cast<double>(d[2])});
+// The nearest point of v's carrier to p + d.
+Float4 Relaxation::intoCarrier(std::size_t v, const Float4& p, const Float4& d) const {
+  const Vec3 out = projectIntoCarrier(grid_, carrierOfKey(keys_[v]), {p[0] + static_cast<double>(d[0]),
+                                                                     p[1] + static_cast<double>(d[1]),
+                                                                     p[2] + static_cast<double>(d[2])});
   return Float4{static_cast<float>(out[0]), static_cast<float>(out[1]), static_cast<float>(out[2]), 0.0f};
 }
 
 void Relaxation::storeInto(MultiLabelMesh& mesh) {
-  std::vector<Float4>().swap(next_);
-  std::vector<Float4>().swap(umbrella_);
-  std::vector<Float4>().swap(slope_);
-  std::vector<Float4>().swap(edgeStart_);
+  HugeVector<Float4>().swap(next_);
+  HugeVector<Float4>().swap(umbrella_);
+  HugeVector<Float4>().swap(slope_);
+  HugeVector<Float4>().swap(edgeStart_);
   mesh.positions.resize(3 * vertexCount_);
   for (std::size_t v = 0; v < vertexCount_; ++v)
     for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = cur_[v][k];
+}
+
+// The stages that smooth as much as `iterations` plain sweeps at this strength: super-steps of
+// RKL1 (see the top of this file) of at most kSuperStep sweeps each, each with the fewest
+// stages that keep it stable.
+std::vector<Stage> scheduleOf(int iterations, double strength) {
+  std::vector<Stage> stages;
+  if (iterations <= 0) return stages;
+  const int supers = (iterations + kSuperStep - 1) / kSuperStep;
+  const double tau = static_cast<double>(iterations) / supers;  // plain sweeps per super-step
+  // A plain sweep's largest step factor: strength (kTension |u| + kBending u^2) at u = -2, the
+  // least eigenvalue an umbrella operator can have.
+  const double lambda = std::clamp(strength, 0.0, 1.0) * (2 * kTension + 4 * kBending);
+  int s = 1;
+  while (s * (s + 1) < kStability * tau * lambda) ++s;
+  const double w1 = 2.0 / (s * (s + 1));
+  for (int k = 0; k < supers; ++k)
+    for (int j = 1; j <= s; ++j) {
+      const double mu = (2.0 * j - 1) / j, nu = (1.0 - j) / j;
+      stages.push_back({static_cast<float>(mu), static_cast<float>(nu), static_cast<float>(mu * w1 * tau)});
+    }
+  return stages;
 }
 
 }  // namespace
@@ -528,12 +591,14 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
   if (options.contourFit && contours) placeFittedVertices(mesh, grid, *contours, adj, sliceTolerance, threads);
   std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
-  const SmoothingReport report = settleRoles(mesh.keys, adj.kind);
+  SmoothingReport report = settleRoles(mesh.keys, adj.kind);
   Relaxation relaxation(mesh, grid, adj, options.strength, threads);
-  for (int it = 0; it < options.iterations; ++it) {
+  const std::vector<Stage> schedule = scheduleOf(options.iterations, options.strength);
+  for (std::size_t it = 0; it < schedule.size(); ++it) {
     // Normals turn slowly; refreshing them every few sweeps saves most of a sweep's time.
-    relaxation.sweep(it % kNormalPeriod == 0);
+    relaxation.sweep(schedule[it], it % kNormalPeriod == 0);
   }
+  report.sweeps = static_cast<int>(schedule.size());
   relaxation.storeInto(mesh);
   return report;
 }

@@ -16,6 +16,7 @@ struct SmoothingReport {
   std::size_t curve = 0;     // relaxed along a junction curve (three or more labels)
   std::size_t fixed = 0;     // junction curve meeting points and unrecognised vertices: kept
   std::size_t fitted = 0;    // placed on their contour's crossing and kept there
+  int sweeps = 0;            // Jacobi sweeps run over all vertices (super-step stages)
 };
 
 // Smooths mesh.positions in place; triangles, labels and keys are unchanged. Requires

@@ -222,6 +222,22 @@ TEST(Smoothing, SameResultForAnyThreadCount) {
   EXPECT_EQ(one.mesh.positions, three.mesh.positions);
 }
 
+TEST(Smoothing, SuperStepsCoverTheSweepsAskedFor) {
+  // 150 plain sweeps' worth of smoothing (the default) in 5 super-steps of 7 stages; a single
+  // sweep's worth is one plain sweep; none is none.
+  Built b = buildCpu(yBranchContours(), 0.5);
+  const Built raw = b;
+  EXPECT_EQ(smooth(b).sweeps, 35);
+  SmoothingOptions o = on();
+  o.iterations = 1;
+  b = raw;
+  EXPECT_EQ(smooth(b, o).sweeps, 1);
+  o.iterations = 0;
+  b = raw;
+  EXPECT_EQ(smooth(b, o).sweeps, 0);
+  EXPECT_EQ(b.mesh.positions.size(), raw.mesh.positions.size());
+}
+
 TEST(Smoothing, OptionsSwitchEachPartOff) {
   const Built raw = buildCpu(phantomContours(), 2.0);
   Built off = raw;

@@ -9,7 +9,8 @@ namespace scansurf {
 struct SmoothingOptions {
   // Off by default in the library (Engine::build); the command-line tool turns it on.
   bool enabled = false;
-  // Relaxation steps; each is one Jacobi sweep of every vertex.
+  // How much to smooth, in plain Jacobi sweeps of every vertex; the smoother covers them in
+  // far fewer sweeps (super-steps: 150 in 35, see geometry/smoothing.cpp).
   int iterations = 150;
   // Step size of each sweep in (0, 1]: how far a vertex moves toward its relaxed target.
   double strength = 0.8;
