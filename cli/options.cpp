@@ -110,7 +110,7 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
 void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
   SmoothingOptions& s = o.build.smoothing;
   app.add_flag("--no-smooth", f.noSmooth, "write the raw (staircase) separating surfaces, without smoothing");
-  app.add_option("--smooth-iterations", s.iterations, "smoothing sweeps")->check(CLI::Range(1, 100000))->capture_default_str();
+  app.add_option("--smooth-iterations", s.iterations, "how much to smooth, in plain relaxation sweeps (run as fewer super-steps)")->check(CLI::Range(1, 100000))->capture_default_str();
   app.add_option("--smooth-strength", s.strength, "step of each smoothing sweep, in (0, 1]")
       ->check(numberIn(0, 1, true, "a number in (0, 1]"))
       ->capture_default_str();
