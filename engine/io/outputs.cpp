@@ -52,6 +52,13 @@ bool hasExtension(const fs::path& path, const std::string& ext) {
 
 namespace {
 
+// Letters, digits, '.', '-' and '_' kept, every other byte '_'.
+std::string sanitized(const std::string& name) {
+  std::string stem;
+  for (unsigned char c : name) stem += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
+  return stem;
+}
+
 bool equalIgnoringCase(const std::string& a, const std::string& b) {
   return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](unsigned char x, unsigned char y) { return std::tolower(x) == std::tolower(y); });
 }
@@ -68,8 +75,7 @@ std::string nameHash(const std::string& name) {
 }  // namespace
 
 std::string fileStem(const std::string& name, std::vector<std::string>& used) {
-  std::string stem;
-  for (unsigned char c : name) stem += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
+  std::string stem = sanitized(name);
   if (stem.empty() || stem.front() == '.') stem = "feature" + stem;
   if (stem.size() > kMaxFileStem) stem = stem.substr(0, kMaxFileStem - 9) + "_" + nameHash(name);
   auto taken = [&](const std::string& candidate) {
@@ -482,12 +488,11 @@ namespace {
 // A feature whose files are not named after it as such says so: a name too long for a file
 // system, or one that differs from another only in case or in characters a file name cannot hold.
 void warnAboutFileStem(const std::string& name, const std::string& stem, std::vector<std::string>& warnings) {
-  std::string sanitized;
-  for (unsigned char c : name) sanitized += (std::isalnum(c) || c == '-' || c == '_' || c == '.') ? static_cast<char>(c) : '_';
-  if (sanitized.size() > kMaxFileStem)
+  const std::string plain = sanitized(name);
+  if (plain.size() > kMaxFileStem)
     warnings.push_back("feature \"" + name.substr(0, 40) + "...\": its name is too long for a file name; its files are " + stem +
                        ".* (the report keeps the whole name)");
-  else if (stem != sanitized && stem.rfind(sanitized + "_", 0) == 0)
+  else if (stem != plain && stem.rfind(plain + "_", 0) == 0)
     warnings.push_back("feature \"" + name + "\": another feature's file name differs only in case or in characters a file name "
                        "cannot hold; its files are " + stem + ".*");
 }
