@@ -196,7 +196,10 @@ class Outcome:
 def snapshot(directory):
     if not directory.exists():
         return {}
-    return {str(p.relative_to(directory)): p.read_bytes() if p.is_file() else None for p in directory.rglob("*")}
+    def state(p):
+        st = p.lstat()
+        return (st.st_size, st.st_mtime_ns, st.st_ino) if p.is_file() else None
+    return {str(p.relative_to(directory)): state(p) for p in directory.rglob("*")}
 
 
 def run(cmd, timeout, cap_bytes, send=None):
@@ -225,6 +228,10 @@ def run(cmd, timeout, cap_bytes, send=None):
 
 def judge(outcome, category, case, cmd, out_dir, expect, args, send=None, mention=None):
     """expect: set of acceptable exit codes. A failed run must leave out_dir as it was."""
+    if out_dir.name == "out":  # the shared output directory: emptied, with one old file to protect
+        shutil.rmtree(out_dir, ignore_errors=True)
+        out_dir.mkdir(parents=True)
+        (out_dir / "organ.ply").write_text("a previous result")
     before = snapshot(out_dir)
     code, text, seconds, timed_out = run(cmd, args.timeout, args.cap_gib << 30, send)
     after = snapshot(out_dir)
@@ -340,7 +347,11 @@ def main():
         outcome.add("signals", "SIGKILL@%.1fs then a run" % at, "ok" if code == 0 and not left else "partial output",
                     "exit %d, left %s" % (code, left))
 
-    # Summary.
+    # Every row, for the record; then the summary.
+    with open(work / "results.tsv", "w") as f:
+        for row in outcome.rows:
+            f.write("\t".join(row).replace("\n", " ") + "\n")
+    print("every case: %s" % (work / "results.tsv"))
     cats = []
     for c, *_ in outcome.rows:
         if c not in cats:
