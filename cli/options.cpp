@@ -153,9 +153,10 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--view", o.view, "preview camera")
       ->check(CLI::IsMember({"oblique", "front", "back", "left", "right", "top", "bottom"}))
       ->capture_default_str();
-  app.add_option("--preview-size", o.previewSize, "W H: preview size in pixels (default 960 720)")
+  app.add_option("--preview-size", o.previewSize,
+                 "W H: preview size in pixels, at most 8192 (rendered at twice the size; default 960 720)")
       ->expected(2)
-      ->check(CLI::Range(1, 16384));
+      ->check(CLI::Range(1, 8192));
 }
 
 void addObjects(CLI::App& app, CliOptions& o) {

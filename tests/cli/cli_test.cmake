@@ -65,6 +65,8 @@ run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength 0)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength nan)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --grid 0 0)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --threads 99999999999999999999)
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --preview "${OUT}/x/p.png" --preview-size 2147483648 2147483648)
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --preview "${OUT}/x/p.png" --preview-size 16384 16384)
 
 # The memory budget (issue 15, cause 2): a grid that cannot fit is refused before anything is
 # allocated, with exit 9 and a message that says what it needs and what to change; so is a run

@@ -309,7 +309,7 @@ def main():
     clash = work / "clash"
     clash.mkdir()
     (clash / "BODY.ply").write_text("old body")
-    (clash / "Spine.ply").mkdir()  # a directory where a file goes
+    (clash / "vertebra.ply").mkdir()  # a directory where a file goes
     judge(outcome, "outputs", "target-is-directory", [exe, ex, "-o", str(clash), "-q"], clash, {4}, args)
     ro = work / "readonly"
     ro.mkdir()
@@ -326,6 +326,7 @@ def main():
           fsz, {4}, args)
     lockd = work / "locked"
     lockd.mkdir()
+    (lockd / ".scansurf.lock").write_text("")  # held by flock below, as another run would
     judge(outcome, "outputs", "locked-by-another-run", ["flock", str(lockd / ".scansurf.lock"), exe, ex, "-o", str(lockd), "-q"],
           lockd, {4}, args)
 
