@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -48,8 +49,9 @@ TEST_P(FuzzInputs, ReadOrFailCleanly) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_NE(verdict.outcome, Outcome::Bug) << file << ": " << verdict.detail;
     // A seed of another format would fuzz nothing of its target.
-    if (file.parent_path().parent_path().filename() == "corpus")
+    if (file.parent_path().parent_path().filename() == "corpus") {
       EXPECT_EQ(verdict.outcome, Outcome::Read) << file << ": read as another format than " << target->name;
+    }
     EXPECT_LT(seconds, 10.0) << file << ": took " << seconds << " s";
   }
   std::printf("%s: %zu regression inputs, %zu seeds\n", std::string(target->name).c_str(), regressions,
