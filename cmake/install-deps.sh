@@ -9,6 +9,7 @@ packages=(
   libdraco-dev libeigen3-dev libpng-dev zlib1g-dev
   libdcmtk-dev libpugixml-dev libnifti2-dev
   dicom3tools  # dciodvfy: the tests validate the DICOM SEG output with it (skipped when missing)
+  clang libclang-rt-14-dev  # .ci/run's sanitizer and fuzzing build (libFuzzer, ASan, UBSan runtimes)
 )
 missing=()
 for p in "${packages[@]}"; do

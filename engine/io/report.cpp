@@ -101,7 +101,8 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
   j["input"] = report.input;
   j["units"] = report.units;
   ordered_json params = ordered_json::object();
-  for (const auto& [name, value] : report.parameters) std::visit([&](const auto& v) { params[name] = v; }, value);
+  for (const auto& parameter : report.parameters)
+    std::visit([&](const auto& v) { params[parameter.first] = v; }, parameter.second);
   j["parameters"] = params;
   j["device"] = {{"name", report.deviceName}, {"type", report.deviceType}, {"driver", report.driver}};
   const Grid& g = report.grid;
