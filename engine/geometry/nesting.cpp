@@ -1,7 +1,8 @@
 // scansurf: the nesting order of features (paper §3.3). The paper sorts features with an
 // inside/outside comparison of their contours; here containment is tested per feature pair
 // (every contour point of the inner feature within the outer's even-odd region on each of its
-// slices), then features are ordered by the length of their chain of containers, deepest first.
+// slices; a container's containers contain too), then features are ordered by the length of
+// their chain of containers, deepest first.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -89,7 +90,7 @@ Nesting computeNesting(const ContourSet& contours, double sliceTolerance) {
   std::iota(byRank.begin(), byRank.end(), 0);
   std::sort(byRank.begin(), byRank.end(), [&](int a, int b) { return ranksAbove(a, b); });
 
-  // containers[f]: every feature containing f, collected in rank order (largest first).
+  // containers[f]: every feature containing f.
   std::vector<std::vector<int>> containers(n);
   // Candidates sorted by box minX let each feature skip boxes that cannot hold it.
   std::vector<int> byMinX(n);
@@ -97,12 +98,27 @@ Nesting computeNesting(const ContourSet& contours, double sliceTolerance) {
   std::sort(byMinX.begin(), byMinX.end(), [&](int a, int b) {
     return info[a].box.minX != info[b].box.minX ? info[a].box.minX < info[b].box.minX : a < b;
   });
-  for (int f = 0; f < n; ++f) {
+  // Containment is taken as transitive: candidates are tested smallest first, and once g is
+  // found to contain f, every container of g contains f without a test of its own. Features are
+  // visited largest first, so containers[g] is complete when f needs it. Deeply nested sets
+  // (thousands of rings) then cost one polygon test per feature instead of one per pair.
+  std::vector<int> candidates;
+  std::vector<int> seenFor(n, -1);  // seenFor[g] == f: g already judged for f
+  for (int f : byRank) {
     if (info[f].box.empty()) continue;
+    candidates.clear();
     for (int g : byMinX) {
       if (info[g].box.minX > info[f].box.minX) break;  // no later box starts left of f's
-      if (g == f || !ranksAbove(g, f)) continue;
-      if (contains(contours.features[g], info[g], contours.features[f], info[f])) containers[f].push_back(g);
+      if (g != f && ranksAbove(g, f) && info[g].box.contains(info[f].box)) candidates.push_back(g);
+    }
+    std::sort(candidates.begin(), candidates.end(), [&](int a, int b) { return ranksAbove(b, a); });
+    for (int g : candidates) {
+      if (seenFor[g] == f) continue;
+      seenFor[g] = f;
+      if (!contains(contours.features[g], info[g], contours.features[f], info[f])) continue;
+      containers[f].push_back(g);
+      for (int h : containers[g])
+        if (seenFor[h] != f) seenFor[h] = f, containers[f].push_back(h);
     }
   }
 
