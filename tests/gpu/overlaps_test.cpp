@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "geometry/overlaps.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -176,6 +177,23 @@ TEST_F(OverlapsTest, WithoutOverlapsLayersEqualThePartition) {
   EXPECT_EQ(layers.overlaps.layers, 1);
   EXPECT_EQ(layers.surfaces.mesh.positions, partition.surfaces.mesh.positions);
   EXPECT_EQ(layers.surfaces.mesh.triangles, partition.surfaces.mesh.triangles);
+}
+
+// Issue 15: every pair of 1500 features conflicts (a complete graph, as thousands of nested
+// rings give the mask layers): DSatur colours it with 1500 distinct layers in one pass (it
+// spent minutes on saturation recounts before), and a chain with affinity stays in one layer.
+TEST(AssignLayers, CompleteGraphOfFifteenHundred) {
+  constexpr int kN = 1500;
+  std::vector<std::pair<int, int>> all, chain;
+  for (int a = 0; a < kN; ++a) {
+    for (int b = a + 1; b < kN; ++b) all.emplace_back(a, b);
+    if (a + 1 < kN) chain.emplace_back(a, a + 1);
+  }
+  std::vector<int> layers = assignLayers(kN, all, chain);
+  std::sort(layers.begin(), layers.end());
+  for (int i = 0; i < kN; ++i) ASSERT_EQ(layers[static_cast<std::size_t>(i)], i);
+  const std::vector<int> together = assignLayers(kN, {}, chain);
+  EXPECT_TRUE(std::all_of(together.begin(), together.end(), [](int l) { return l == 0; }));
 }
 
 }  // namespace

@@ -165,5 +165,19 @@ TEST(Nesting, TwoThousandFeaturesRunFast) {
   EXPECT_EQ(n.order.back(), 1999);
 }
 
+// Issue 15: 2000 concentric squares, each inside the next: a chain 2000 deep. Containment is
+// found smallest container first and closed under transitivity, so this takes one polygon
+// test per feature, not one per pair (minutes before); the chain and the order are exact.
+TEST(Nesting, ChainTwoThousandDeep) {
+  constexpr int kDepth = 2000;
+  std::vector<Feature> features;
+  for (int i = 0; i < kDepth; ++i) features.push_back(squareFeature("ring" + std::to_string(i), 0, 0, 1 + i, {0, 1}));
+  const Nesting n = computeNesting(setOf(std::move(features)));
+  for (int i = 0; i + 1 < kDepth; ++i) ASSERT_EQ(n.parent[static_cast<std::size_t>(i)], i + 1) << i;
+  EXPECT_EQ(n.parent.back(), -1);
+  for (int i = 0; i < kDepth; ++i) EXPECT_EQ(n.order[static_cast<std::size_t>(i)], i);
+  EXPECT_TRUE(isInside(n, 0, kDepth - 1));
+}
+
 }  // namespace
 }  // namespace scansurf
