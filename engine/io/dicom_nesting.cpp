@@ -34,12 +34,14 @@ struct Open {
   std::uint64_t end = kOpenEnded;
 };
 
+// Reads through the stream's buffer and counts the position itself: tellg and seekg on a file
+// stream are system calls that drop the buffer, which made a 70 000-ROI file take 40 s.
 class Reader {
  public:
-  Reader(std::istream& in, bool bigEndian) : in_(in), big_(bigEndian) {}
+  Reader(std::istream& in, bool bigEndian) : in_(in), big_(bigEndian), position_(static_cast<std::uint64_t>(in.tellg())) {}
   bool u16(std::uint16_t& v) {
     unsigned char b[2];
-    if (!in_.read(reinterpret_cast<char*>(b), 2)) return false;
+    if (!chars(reinterpret_cast<char*>(b), 2)) return false;
     v = big_ ? static_cast<std::uint16_t>(b[0] << 8 | b[1]) : static_cast<std::uint16_t>(b[1] << 8 | b[0]);
     return true;
   }
@@ -49,17 +51,29 @@ class Reader {
     v = big_ ? (std::uint32_t(a) << 16 | b) : (std::uint32_t(b) << 16 | a);
     return true;
   }
-  bool chars(char* out, std::size_t n) { return static_cast<bool>(in_.read(out, static_cast<std::streamsize>(n))); }
-  std::uint64_t position() { return static_cast<std::uint64_t>(in_.tellg()); }
+  bool chars(char* out, std::size_t n) {
+    if (!in_.read(out, static_cast<std::streamsize>(n))) return false;
+    position_ += n;
+    return true;
+  }
+  std::uint64_t position() const { return position_; }
   bool skip(std::uint64_t n) {
-    in_.seekg(static_cast<std::streamoff>(n), std::ios::cur);
-    return static_cast<bool>(in_) && in_.peek() != std::char_traits<char>::eof();
+    if (n <= (std::uint64_t{1} << 20)) {
+      in_.ignore(static_cast<std::streamsize>(n));  // through the buffer
+      if (static_cast<std::uint64_t>(in_.gcount()) != n) return false;
+    } else {
+      in_.seekg(static_cast<std::streamoff>(n), std::ios::cur);
+      if (!in_) return false;
+    }
+    position_ += n;
+    return !atEnd();
   }
   bool atEnd() { return in_.peek() == std::char_traits<char>::eof(); }
 
  private:
   std::istream& in_;
   bool big_;
+  std::uint64_t position_;
 };
 
 bool hasLongLength(const char vr[2]) {
