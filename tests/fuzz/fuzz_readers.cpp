@@ -82,14 +82,21 @@ Verdict contoursJson(std::span<const std::uint8_t> input) {
   return verdict;
 }
 
-Verdict rtStruct(std::span<const std::uint8_t> input) {
-  const fs::path path = freshScratch() / "input.dcm";
+// One input file of `format`: read, then listed (listRois or listObjects).
+template <typename List>
+Verdict readAndList(std::span<const std::uint8_t> input, const char* name, InputFormat format, List list,
+                    const char* listName) {
+  const fs::path path = freshScratch() / name;
   writeFile(path, textOf(input));
-  if (detectInputFormat(path) != InputFormat::RtStruct) return {Outcome::OtherFormat, {}};
+  if (detectInputFormat(path) != format) return {Outcome::OtherFormat, {}};
   Verdict verdict;
   if (isBug(readContours(path), verdict, "readContours")) return verdict;
-  isBug(listRois(path), verdict, "listRois");
+  isBug(list(path), verdict, listName);
   return verdict;
+}
+
+Verdict rtStruct(std::span<const std::uint8_t> input) {
+  return readAndList(input, "input.dcm", InputFormat::RtStruct, [](const fs::path& p) { return listRois(p); }, "listRois");
 }
 
 // The images of a series, one file each; read as --reference reads them, then a two-slice
@@ -139,13 +146,8 @@ Verdict reconstruct(std::span<const std::uint8_t> input) {
 }
 
 Verdict imod(std::span<const std::uint8_t> input) {
-  const fs::path path = freshScratch() / "input.mod";
-  writeFile(path, textOf(input));
-  if (detectInputFormat(path) != InputFormat::ImodModel) return {Outcome::OtherFormat, {}};
-  Verdict verdict;
-  if (isBug(readContours(path), verdict, "readContours")) return verdict;
-  isBug(listObjects(path), verdict, "listObjects");
-  return verdict;
+  return readAndList(input, "input.mod", InputFormat::ImodModel, [](const fs::path& p) { return listObjects(p); },
+                     "listObjects");
 }
 
 constexpr std::array kTargets{
