@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -66,6 +67,7 @@ struct Flags {
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
+  std::string interpolate = "auto", caps = "round";
 };
 
 void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
@@ -116,6 +118,32 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
       ->capture_default_str();
   app.add_flag("--no-contour-fit", f.noContourFit, "do not place contour-plane vertices on the original contours");
   app.add_flag("--no-junction-smoothing", f.noJunctions, "keep vertices where three or more structures meet in place");
+}
+
+// "auto", "off" or a whole number of layers per gap, 1 to kMaxFactor.
+std::optional<int> parseInterpolation(const std::string& text) {
+  if (text == "auto") return InterpolationOptions::kAuto;
+  if (text == "off") return 1;
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size() || n < 1 || n > InterpolationOptions::kMaxFactor) return std::nullopt;
+  return n;
+}
+
+void addInterpolation(CLI::App& app, Flags& f) {
+  app.add_option("--interpolate", f.interpolate,
+                 "layers between contour planes, by shape-based interpolation: auto (about one per in-plane pixel in "
+                 "gaps of 3 pixels or more, the volume kept under 96 M voxels), off, or N (N-1 layers in every gap, "
+                 "N up to 16)")
+      ->check(CLI::Validator(
+          [](std::string& text) { return parseInterpolation(text) ? std::string() : "'" + text + "' is not auto, off or 1 to 16"; },
+          "auto|off|N"))
+      ->capture_default_str();
+  app.add_option("--caps", f.caps,
+                 "how a structure closes beyond its first and last contour (with interpolation): round (a dome half "
+                 "a slice high) or flat (a lid half a slice out)")
+      ->check(CLI::IsMember({"round", "flat"}))
+      ->capture_default_str();
 }
 
 void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
@@ -172,6 +200,8 @@ void apply(const Flags& f, CliOptions& o) {
   if (f.grid.size() == 2) o.build.grid.nx = f.grid[0], o.build.grid.ny = f.grid[1];
   o.build.convention = f.convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
   o.build.overlaps = *parseOverlapMode(f.overlaps);
+  o.build.interpolation.factor = *parseInterpolation(f.interpolate);
+  o.build.interpolation.caps = f.caps == "flat" ? CapShape::Flat : CapShape::Round;
   o.build.smoothing.enabled = !f.noSmooth;
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
@@ -193,6 +223,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   ParsedCommandLine parsed;
   Flags flags;
   addGeneral(app, parsed.options, flags);
+  addInterpolation(app, flags);
   addSmoothing(app, parsed.options, flags);
   addDicom(app, parsed.options, flags);
   addObjects(app, parsed.options);
@@ -219,6 +250,10 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
           {"grid_nx", static_cast<double>(b.grid.nx)},
           {"grid_ny", static_cast<double>(b.grid.ny)},
           {"threads", static_cast<double>(b.threads)},
+          {"interpolation", b.interpolation.factor == InterpolationOptions::kAuto ? std::string("auto")
+                            : b.interpolation.factor == 1                           ? std::string("off")
+                                                                                    : std::to_string(b.interpolation.factor)},
+          {"caps", b.interpolation.caps == CapShape::Flat ? "flat" : "round"},
           {"smoothing", b.smoothing.enabled},
           {"draco", o.scene.draco},
           {"draco_bits", static_cast<double>(d.quantizationBits)},  // 0: from draco_max_error

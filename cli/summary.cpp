@@ -60,6 +60,10 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   const Grid& g = built.volume.grid;
   std::printf("grid: %d x %d x %d voxels (%g x %g %s pixels, %d slices, 1-voxel background border)\n", g.nx, g.ny, g.nz,
               g.spacingX, g.spacingY, printable(set.units).c_str(), g.nz - 2);
+  const InterpolationSummary& in = built.interpolation;
+  if (in.used())
+    std::printf("interpolation: %d layers surfaced (%d to %d per slice gap, %s caps); the contour planes are %d of them\n",
+                in.surfacedLayers, in.minFactor, in.maxFactor, in.caps == CapShape::Flat ? "flat" : "round", in.planeLayers);
   std::printf("nesting order (%s, innermost first):", built.nesting.userOrder ? "from input" : "computed");
   for (int f : built.nesting.order) std::printf(" %s", printable(set.features[static_cast<std::size_t>(f)].name).c_str());
   std::printf("\nsurfaces (%s convention, overlaps as %s: %d layer%s): %zu vertices, %zu triangles in the multi-label mesh\n",

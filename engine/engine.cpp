@@ -10,6 +10,7 @@
 #include "core/memory.h"
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
+#include "geometry/edge_crossings.h"
 #include "geometry/feature_surfaces.h"
 #include "geometry/footprint.h"
 #include "geometry/overlaps.h"
@@ -17,6 +18,8 @@
 #include "geometry/validate.h"
 #include "gpu/context.h"
 #include "passes/classification.h"
+#include "passes/interpolation.h"
+#include "geometry/interpolated_volume.h"
 #include "passes/preview.h"
 #include "passes/scan_conversion.h"
 #include "scansurf/vulkan_interop.h"
@@ -27,6 +30,7 @@ struct Engine::Impl {
   std::unique_ptr<gpu::Context> context;
   std::unique_ptr<passes::ScanConverter> scanConverter;  // created on first use
   std::unique_ptr<passes::Classifier> classifier;
+  std::unique_ptr<passes::Interpolator> interpolator;
   std::unique_ptr<passes::PreviewRenderer> previewRenderer;
 
   Result<passes::ScanConverter*> scanner() {
@@ -34,6 +38,12 @@ struct Engine::Impl {
       SCANSURF_ASSIGN_OR_RETURN(scanConverter, passes::ScanConverter::create(*context));
     }
     return scanConverter.get();
+  }
+  Result<passes::Interpolator*> interpolate() {
+    if (!interpolator) {
+      SCANSURF_ASSIGN_OR_RETURN(interpolator, passes::Interpolator::create(*context));
+    }
+    return interpolator.get();
   }
   Result<passes::Classifier*> classify() {
     if (!classifier) {
@@ -82,14 +92,14 @@ Result<void> checkNesting(const Nesting& nesting) {
 
 // Classification records to feature surfaces: assembly, smoothing, feature extraction.
 Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
-                           const ContourSet* contours, StageClock& clock) {
+                           const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {}) {
   Surfaces surfaces;
   surfaces.convention = options.convention;
   surfaces.mesh = assembleMesh(grid, cells, options.threads);
   cells = {};
   clock.lap("assembly");
   if (options.smoothing.enabled) {
-    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance);
+    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance, clearance);
     clock.lap("smoothing");
   }
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
@@ -110,11 +120,37 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
 // already on the device (DeviceLabelVolume).
 template <typename Volume>
 Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
-                                  const BuildOptions& options, StageClock& clock) {
+                                  const BuildOptions& options, StageClock& clock, std::span<const std::uint16_t> clearance = {}) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
   clock.lap("classification");
-  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock);
+  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock, clearance);
+}
+
+// Surfaces of a scan-converted volume of contour planes: interpolated first when asked.
+Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const ContourSet& contours, const Nesting& nesting,
+                                  const BuildOptions& options, StageClock& clock) {
+  const std::vector<int> factors = interpolationFactors(planes.grid, options.interpolation);
+  if (!interpolates(factors)) return surfacesOfVolume(impl, planes, &contours, nesting, options, clock);
+  SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
+  const std::vector<std::uint16_t> crossings = planeEdgeCrossings(planes, contours, options.grid.sliceTolerance, options.threads);
+  SCANSURF_ASSIGN_OR_RETURN(InterpolatedVolume fine,
+                            interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads));
+  clock.lap("interpolation");
+  return surfacesOfVolume(impl, fine.volume, &contours, nesting, options, clock, fine.clearance);
+}
+
+InterpolationSummary summarizeInterpolation(const Grid& grid, const InterpolationOptions& options) {
+  const std::vector<int> factors = interpolationFactors(grid, options);
+  InterpolationSummary s;
+  s.planeLayers = grid.nz;
+  s.surfacedLayers = fineLayerOfPlane(factors).back() + 1;
+  if (!factors.empty()) {
+    s.minFactor = *std::min_element(factors.begin(), factors.end());
+    s.maxFactor = *std::max_element(factors.begin(), factors.end());
+  }
+  s.caps = options.caps;
+  return s;
 }
 
 // The contour set with only `layer`'s features drawn: the others keep their index (and so
@@ -180,7 +216,7 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfVolume(impl, volume, &subset, out.nesting, options, clock));
+    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfPlanes(impl, volume, subset, out.nesting, options, clock));
     appendLayer(out.surfaces, surfaces, out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -217,9 +253,9 @@ std::string formatCount(std::uint64_t n) {
 // Refuses a build that would need more host memory than the limit or more device memory than
 // the device has, before anything large is allocated: a clear error instead of bad_alloc or
 // the kernel's OOM killer.
-Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, const BuildOptions& options,
+Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, int surfacedLayers, const BuildOptions& options,
                                const DeviceInfo& device, BuildResult& out) {
-  const Footprint need = estimateFootprint(contours, grid);
+  const Footprint need = estimateFootprint(contours, grid, surfacedLayers);
   HostMemory limit{options.memoryLimit, "the limit asked for"};
   if (limit.bytes == 0) limit = availableHostMemory();
   out.estimatedMemory = need.hostBytes;
@@ -317,7 +353,8 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     const double tolerance = options.grid.sliceTolerance;
     // The grid and the budget first: a run that cannot fit is refused before any real work.
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
-    SCANSURF_TRY(checkMemoryBudget(contours, grid, options, impl_->context->info(), out));
+    out.interpolation = summarizeInterpolation(grid, options.interpolation);
+    SCANSURF_TRY(checkMemoryBudget(contours, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(contours, grid);
     clock.lap("grid");
     out.nesting = computeNesting(contours, tolerance);
@@ -334,7 +371,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
       out.overlaps.layers = 1;
       SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfVolume(*impl_, out.volume, &contours, out.nesting, options, clock));
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, contours, out.nesting, options, clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);

@@ -52,15 +52,20 @@ constexpr std::uint64_t kDeviceBytesPerPixel = 16;
 
 }  // namespace
 
-Footprint estimateFootprint(const ContourSet& contours, const Grid& grid) {
+Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers) {
   Footprint f;
   const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
   f.labelVoxels = plane * static_cast<std::uint64_t>(grid.nz);
   double crossings = 0;
   for (const Feature& feature : contours.features) crossings += featureCrossings(feature, grid);
+  const double layers = std::max(grid.nz, surfacedLayers);
+  const double finer = grid.nz > 0 ? layers / grid.nz : 1.0;
+  crossings *= finer;
   f.surfaceVertices = static_cast<std::uint64_t>(std::min(crossings * kVerticesPerCrossing, 1e18));
   // The label volume, once on the host and once as it arrives from the device, plus the mesh.
-  const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) +
+  // With interpolation, the interpolated volume and its slab's 32-bit readback besides.
+  const double interpolated = finer > 1 ? static_cast<double>(plane) * layers * sizeof(Label) : 0.0;
+  const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) + interpolated +
                       static_cast<double>(f.surfaceVertices) * kBytesPerVertex;
   f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
   f.deviceBytes = std::max(kSlabBudget, plane * kDeviceBytesPerPixel);

@@ -21,6 +21,8 @@ struct Footprint {
 // those crossings. Calibrated on the bench sets and the phantom (docs/benchmarks.md), on the
 // generous side: the peak counts the label volume, the classification records, the mesh with
 // its smoothing state and the feature surfaces.
-Footprint estimateFootprint(const ContourSet& contours, const Grid& grid);
+// With interpolation the surfaced volume has `surfacedLayers` layers instead of grid.nz: its
+// labels count too, and the side walls gain vertices in proportion.
+Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers = 0);
 
 }  // namespace scansurf

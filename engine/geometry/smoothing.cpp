@@ -287,17 +287,35 @@ void edgeOfKey(const Grid& grid, std::uint64_t key, Vec3& a, Vec3& b) {
   b = cornerPosition(grid, hi);
 }
 
-// Fitted vertices go to their contour crossing and stay.
-void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet& contours, Adjacency& adj,
-                         double sliceTolerance, int threads) {
-  const std::vector<double> t = fitContourCrossings(grid, contours, mesh.keys, adj.labels, sliceTolerance, threads);
+// Where the interpolated labels change along the vertex's carrier edge: its corners'
+// clearances weighted as marching cubes weights its corner values; -1 when not on an edge.
+double clearanceCrossing(const Grid& grid, std::span<const std::uint16_t> clearance, std::uint64_t key) {
+  const Carrier c = carrierOfKey(key);
+  if (c.count != 2) return -1;
+  const double a = clearance[grid.index(c.corners[0][0], c.corners[0][1], c.corners[0][2])];
+  const double b = clearance[grid.index(c.corners[1][0], c.corners[1][1], c.corners[1][2])];
+  return a + b > 0 ? a / (a + b) : 0.5;
+}
+
+// Fitted vertices go to their contour crossing and stay; on interpolated volumes the other
+// edge vertices start where the interpolated labels change.
+void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, std::span<const std::uint16_t> clearance,
+                         Adjacency& adj, double sliceTolerance, int threads) {
+  std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, sliceTolerance, threads)
+                                   : std::vector<double>(mesh.vertexCount(), -1.0);
+  std::vector<char> fromField(mesh.vertexCount(), 0);
+  if (clearance.size() == grid.voxelCount())
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+      if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]), fromField[v] = t[v] >= 0;
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
     if (t[v] < 0) continue;
     const Carrier c = carrierOfKey(mesh.keys[v]);
     const double tc = std::clamp(t[v], kMargin, 1 - kMargin);
     const Vec3 a = cornerPosition(grid, c.corners[0]), b = cornerPosition(grid, c.corners[1]);
     for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
-    adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
+    // Contour crossings stay; field crossings are only where relaxation starts (pinning them
+    // measured no better on the sphere and worse on the grid sweep at 1 mm pixels).
+    if (!fromField[v]) adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
   }
 }
 
@@ -585,11 +603,13 @@ std::vector<Stage> scheduleOf(int iterations, double strength) {
 }  // namespace
 
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                           const SmoothingOptions& options, int threads, double sliceTolerance) {
+                           const SmoothingOptions& options, int threads, double sliceTolerance,
+                           std::span<const std::uint16_t> clearance) {
   const std::size_t vertexCount = mesh.vertexCount();
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
-  if (options.contourFit && contours) placeFittedVertices(mesh, grid, *contours, adj, sliceTolerance, threads);
+  if (options.contourFit && (contours || !clearance.empty()))
+    placeFittedVertices(mesh, grid, contours, clearance, adj, sliceTolerance, threads);
   std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
   SmoothingReport report = settleRoles(mesh.keys, adj.kind);
   Relaxation relaxation(mesh, grid, adj, options.strength, threads);

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
@@ -23,9 +25,12 @@ struct SmoothingReport {
 // mesh.keys (assembleMesh) and the grid the mesh was assembled on; contours (the set scan
 // converted onto that grid, or null) enable contour fitting. Every vertex stays strictly
 // inside the lattice simplex it was the barycentre of, so the surfaces never cross (see
-// smoothing.cpp). Deterministic for any thread count (0 = all).
+// smoothing.cpp). Deterministic for any thread count (0 = all). With a clearance per voxel
+// of the grid (interpolated volumes, geometry/interpolated_volume.h), every vertex on a grid
+// edge that no contour fixes starts where the interpolated labels change along that edge
+// (needs options.contourFit, like contour fitting).
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
                            const SmoothingOptions& options, int threads = 0,
-                           double sliceTolerance = kDefaultSliceTolerance);
+                           double sliceTolerance = kDefaultSliceTolerance, std::span<const std::uint16_t> clearance = {});
 
 }  // namespace scansurf

@@ -76,6 +76,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   addOverlapFacts(r, contours, built.overlaps);
   r.estimatedMemory = built.estimatedMemory;
   r.memoryLimit = built.memoryLimit;
+  r.interpolation = built.interpolation;
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
@@ -112,6 +113,12 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
                {"layer_z", g.layerZ}};
   j["nesting"] = {{"order", report.nestingOrder}, {"from_input", report.userOrder}};
   j["memory"] = {{"estimated_bytes", report.estimatedMemory}, {"limit_bytes", report.memoryLimit}};
+  const InterpolationSummary& in = report.interpolation;
+  j["interpolation"] = {{"used", in.used()},
+                        {"plane_layers", in.planeLayers},
+                        {"surfaced_layers", in.surfacedLayers},
+                        {"layers_per_gap", {in.minFactor, in.maxFactor}},
+                        {"caps", in.caps == CapShape::Flat ? "flat" : "round"}};
   j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
   ordered_json features = ordered_json::array();
   for (const ReportFeature& f : report.features) {

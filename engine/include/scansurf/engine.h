@@ -26,6 +26,7 @@
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
 #include "scansurf/grid.h"
+#include "scansurf/interpolation.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"
 #include "scansurf/overlaps.h"
@@ -61,17 +62,31 @@ struct BuildOptions {
   // allocated, build() estimates the label volume, mesh and device needs from the contours and
   // the grid, and refuses with Errc::ResourceLimit when they exceed this or the device's memory.
   std::uint64_t memoryLimit = 0;
+  // Interpolated layers between the contour planes (stage "interpolation"); off unless set.
+  InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
 };
 
+// What interpolation did (BuildOptions::interpolation).
+struct InterpolationSummary {
+  int planeLayers = 0;    // layers of the grid (contour planes and padding)
+  int surfacedLayers = 0;  // layers of the volume that was surfaced: planeLayers when off
+  int minFactor = 1, maxFactor = 1;  // layers per gap, the gaps' smallest and largest
+  CapShape caps = CapShape::Round;
+  bool used() const { return surfacedLayers > planeLayers; }
+};
+
 struct BuildResult {
   Nesting nesting;
-  // The label volume that was surfaced: the single partition, or with several layers the
-  // volume of layer 0 (OverlapReport::features[f].layer says which features it holds).
+  // The label volume of the contour planes as scan conversion made it: the single partition,
+  // or with several layers the volume of layer 0 (OverlapReport::features[f].layer says which
+  // features it holds). With interpolation the surfaces come from a volume with more layers
+  // (interpolation says how many), which is not kept.
   LabelVolume volume;
+  InterpolationSummary interpolation;
   // Every feature's surface; with several layers the layers' meshes side by side in one mesh
   // (vertices shared within a layer only).
   Surfaces surfaces;

@@ -41,6 +41,7 @@ struct RunReport {
   bool userOrder = false;
   std::size_t meshVertices = 0, meshTriangles = 0;
   std::uint64_t estimatedMemory = 0, memoryLimit = 0;  // the budget check (BuildResult)
+  InterpolationSummary interpolation;
   std::vector<ReportFeature> features;
   std::string overlapMode = "layers";
   int layers = 1, maskLayers = 1;

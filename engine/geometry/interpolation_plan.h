@@ -1,0 +1,99 @@
+// scansurf: the plan of multi-label shape-based interpolation between the layers of a label
+// volume (Raya & Udupa 1990; Herman, Zheng & Bucholtz 1992; Grevera & Udupa 1996), shared by
+// the GPU passes (passes/interpolation.cpp) and the CPU reference (interpolation_reference.h).
+//
+// The rule, for a voxel at x on layer m of n between grid layers A and B (t = m/n):
+//  - every label L present on A or B has a signed distance field on each plane where it is
+//    present: the exact Euclidean distance (negative inside, in 1/16 of the smaller pixel
+//    spacing) to the points where the contours cross the grid edges between L and other
+//    labels (edge_crossings.h), so the field keeps the contours' sub-pixel positions;
+//  - value(L) = (1-t) dA(x) + t dB(x). When L's regions on A and B share no pixel (a vessel
+//    that moved further than its width) both fields are sampled along L's centroid shift
+//    (x - t*shift on A, x + (1-t)*shift on B), so L moves instead of vanishing midway;
+//  - where L is on one plane only, it closes with a cap (CapShape): flat keeps dA for
+//    t <= 1/2; round erodes it by R (1 - sqrt(1 - (2t)^2)) for t < 1/2, R being L's largest
+//    depth on that plane, so the region shrinks to nothing at half the gap;
+//  - the union of all features gets a value of its own the same way;
+//  - the voxel takes the label of smallest value (ties: the smaller label) if that value or
+//    the union's is negative, else background. Its clearance is how far its value is from
+//    losing the label (to the runner-up label or to the background), which places the surface
+//    vertex between two voxels of different labels (clearance-weighted, as marching cubes). The union keeps abutting features together
+//    where each alone would pull back (no background gap opens between them), and a feature
+//    nested in another stays inside it (its distance is never below its container's).
+// A label only competes in a window around its pixels on its plane and both neighbours
+// (kWindowMargin pixels around): elsewhere its value is kFarAway.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "interpolation_types.h"
+#include "scansurf/interpolation.h"
+#include "scansurf/label_volume.h"
+#include "scansurf/result.h"
+
+namespace scansurf {
+
+// factors[k]: the volume gets factors[k] - 1 layers between grid layers k and k+1.
+std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options);
+bool interpolates(const std::vector<int>& factors);
+// The layer of the interpolated grid that grid layer k becomes.
+std::vector<int> fineLayerOfPlane(const std::vector<int>& factors);
+// The grid with the interpolated layers, evenly spaced between the original ones (which stay
+// layers, with exactly their z).
+Grid interpolatedGrid(const Grid& grid, const std::vector<int>& factors);
+
+// Distances are measured in 1/unit pixel; the squared distance of a step (dx, dy) in those
+// units is x dx^2 + y dy^2, and the distance in 1/16 of the smaller spacing is
+// isqrt(fixedScale * squared distance). Square pixels: unit 16 up to 2048 pixels a side (less
+// beyond), weights 1, 1: exact. Otherwise the weights' ratio is rounded (to 1/64 at best) so
+// that every intermediate fits 32-bit integers. Errors: a grid too large for its pixel
+// aspect ratio.
+struct DistanceWeights {
+  std::int32_t x = 1, y = 1;
+  std::int32_t unit = 16;
+  std::uint32_t fixedScale = 1;
+};
+Result<DistanceWeights> distanceWeights(const Grid& grid);
+
+inline constexpr int kTileSize = 16;
+inline constexpr int kWindowMargin = 4;
+inline constexpr std::int32_t kFarAway = 1 << 28;
+
+// Pairs of planes [firstPlane, firstPlane + planes) of the volume: the distance fields of those
+// planes, each pair's entries and their tile lists.
+struct InterpolationSlab {
+  int firstPlane = 0;
+  int planes = 0;
+  int outputLayers = 0;  // layers m = 0 .. factor of each of its pairs
+  int tilesX = 0, tilesY = 0;
+  std::vector<shared::DistanceField> fields;
+  std::vector<shared::PairEntry> entries;
+  std::vector<shared::PairPlan> pairs;
+  std::vector<std::int32_t> tileRanges;  // {first, count} per tile of every pair
+  std::vector<std::int32_t> tileEntries;
+  std::size_t fieldValues = 0;  // ints of the field buffer
+  std::size_t scratchInts = 0;  // ints of the scratch buffer
+  std::size_t deviceBytes(const Grid& grid) const;
+};
+
+// Where each label lies on each layer of a volume, read once; every slab's plan uses it.
+struct LabelCensus {
+  Label label = 0;  // 0: the union of every non-background label
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  std::int64_t count = 0, sumX = 0, sumY = 0;
+};
+using PlaneCensus = std::vector<std::vector<LabelCensus>>;  // per layer, by label (union first)
+PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads);
+
+InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
+                                        const std::vector<int>& factors);
+
+// Round caps: the erosion at layer m of n counted from the plane where the label is, in
+// 1/4096 of its largest depth; -1 when the cap has closed (t >= 1/2).
+std::int32_t roundCapErosion(int factor, int m);
+// Flat caps: whether the label is still there at layer m of n counted from its plane.
+inline bool flatCapOpen(int factor, int m) { return 2 * m <= factor; }
+
+}  // namespace scansurf

@@ -1,0 +1,187 @@
+// scansurf: CPU reference of multi-label shape-based interpolation (rule in
+// interpolation_plan.h; Grevera & Udupa 1996), with exact integer Euclidean distance
+// transforms (Felzenszwalb & Huttenlocher, "Distance Transforms of Sampled Functions", 2012).
+#include "geometry/interpolation_reference.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+namespace scansurf {
+namespace {
+
+// floor(a / b) for b > 0.
+std::int32_t floorDiv(std::int32_t a, std::int32_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// round(a / n), halves away from zero, for n > 0.
+std::int32_t roundDiv(std::int32_t a, std::int32_t n) { return a >= 0 ? (2 * a + n) / (2 * n) : -((-2 * a + n) / (2 * n)); }
+
+// Distance, in 1/unit pixel, from each of n samples of a grid line to the nearest crossing
+// point on it (far when there is none); boundary(i) says whether edge (i, i+1) has one, at
+// crossing(i) / 256 of the edge.
+template <typename Boundary, typename Crossing>
+void lineDistances(int n, std::int32_t unit, std::int32_t far, Boundary boundary, Crossing crossing, std::int32_t* out,
+                   std::size_t stride) {
+  std::int32_t point = 0;
+  bool have = false;
+  for (int i = 0; i < n; ++i) {
+    if (i >= 1 && boundary(i - 1)) point = (i - 1) * unit + (crossing(i - 1) * unit + 128) / 256, have = true;
+    out[static_cast<std::size_t>(i) * stride] = have ? i * unit - point : far;
+  }
+  have = false;
+  for (int i = n - 1; i >= 0; --i) {
+    if (i + 1 < n && boundary(i)) point = i * unit + (crossing(i) * unit + 128) / 256, have = true;
+    if (have) out[static_cast<std::size_t>(i) * stride] = std::min(out[static_cast<std::size_t>(i) * stride], point - i * unit);
+  }
+}
+
+void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, int plane, const shared::DistanceField& f,
+                    const DistanceWeights& weights, std::int32_t* values, std::int32_t& radius) {
+  const Grid& g = volume.grid;
+  const std::size_t w = static_cast<std::size_t>(f.w), area = w * static_cast<std::size_t>(f.h);
+  const std::int32_t unit = weights.unit, far = farDistance(g, weights);
+  auto inside = [&](int x, int y) {
+    const Label l = volume.at(f.x0 + x, f.y0 + y, plane);
+    return f.label == kBackground ? l != kBackground : l == f.label;
+  };
+  auto crossing = [&](int x, int y, int shift) { return (crossings[g.index(f.x0 + x, f.y0 + y, plane)] >> shift) & 0xFF; };
+  std::vector<std::int32_t> gx(area), gy(area), d2x(area), d2y(area), v(std::max(w, static_cast<std::size_t>(f.h))),
+      z(std::max(w, static_cast<std::size_t>(f.h)) + 1), line(std::max(w, static_cast<std::size_t>(f.h)));
+  for (int y = 0; y < f.h; ++y)
+    lineDistances(f.w, unit, far, [&](int x) { return inside(x, y) != inside(x + 1, y); }, [&](int x) { return crossing(x, y, 0); },
+                  gx.data() + y * w, 1);
+  for (int x = 0; x < f.w; ++x)
+    lineDistances(f.h, unit, far, [&](int y) { return inside(x, y) != inside(x, y + 1); }, [&](int y) { return crossing(x, y, 8); },
+                  gy.data() + x, w);
+  for (int x = 0; x < f.w; ++x) {
+    lowerEnvelope(gx.data() + x, w, f.h, weights.x, weights.y * unit * unit, v.data(), z.data(), line.data());
+    for (int y = 0; y < f.h; ++y) d2x[x + w * static_cast<std::size_t>(y)] = line[static_cast<std::size_t>(y)];
+  }
+  for (int y = 0; y < f.h; ++y)
+    lowerEnvelope(gy.data() + y * w, 1, f.w, weights.y, weights.x * unit * unit, v.data(), z.data(), d2y.data() + y * w);
+  radius = 0;
+  for (int y = 0; y < f.h; ++y)
+    for (int x = 0; x < f.w; ++x) {
+      const std::size_t at = x + w * static_cast<std::size_t>(y);
+      const std::int32_t d = fixedDistance(std::min(d2x[at], d2y[at]), weights.fixedScale);
+      values[at] = inside(x, y) ? -d : d;
+      if (inside(x, y)) radius = std::max(radius, d);
+    }
+}
+
+struct Sampler {
+  const InterpolationSlab& slab;
+  const SlabFields& fields;
+  CapShape caps;
+
+  std::int32_t at(int field, int x, int y) const {
+    const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(field)];
+    if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
+    return fields.values[static_cast<std::size_t>(f.offset) + static_cast<std::size_t>(x - f.x0) +
+                         static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
+  }
+
+  // The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here).
+  std::int32_t value(const shared::PairEntry& e, int m, int n, int x, int y) const {
+    if (e.fieldA >= 0 && e.fieldB >= 0) {
+      const std::int32_t sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
+      const std::int32_t a = at(e.fieldA, x - sx, y - sy), b = at(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
+      return a == kFarAway || b == kFarAway ? kFarAway : (n - m) * a + m * b;
+    }
+    const int field = e.fieldA >= 0 ? e.fieldA : e.fieldB;
+    const int fromPlane = e.fieldA >= 0 ? m : n - m;
+    const std::int32_t d = at(field, x, y);
+    if (d == kFarAway) return kFarAway;
+    if (caps == CapShape::Flat) return flatCapOpen(n, fromPlane) ? n * d : kFarAway;
+    const std::int32_t erosion = roundCapErosion(n, fromPlane);
+    if (erosion < 0) return kFarAway;
+    return n * (d + ((fields.radii[static_cast<std::size_t>(field)] * erosion) >> 12));
+  }
+
+  // The label | clearance << 16 word of the voxel (as interpolate.comp writes it).
+  std::uint32_t word(const shared::PairPlan& pair, int m, int x, int y) const {
+    const int tile = x / kTileSize + slab.tilesX * (y / kTileSize);
+    const std::int32_t first = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile)];
+    const std::int32_t count = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile) + 1];
+    std::int32_t best = kFarAway, second = kFarAway, united = kFarAway;
+    Label winner = kBackground;
+    for (std::int32_t i = first; i < first + count; ++i) {
+      const shared::PairEntry& e = slab.entries[static_cast<std::size_t>(slab.tileEntries[static_cast<std::size_t>(i)])];
+      if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
+      const std::int32_t v = value(e, m, pair.factor, x, y);
+      if (e.label == kBackground) united = v;
+      else if (v < best) second = best, best = v, winner = static_cast<Label>(e.label);
+      else if (v < second) second = v;
+    }
+    const std::int32_t level = std::min(best, united);
+    const bool labelled = winner != kBackground && level < 0;
+    const std::int32_t clearance = labelled ? std::min(second - best, -level) : level;
+    const auto c = static_cast<std::uint32_t>(std::min((clearance + pair.factor / 2) / pair.factor, 65535));
+    return (labelled ? winner : 0u) | (c << 16);
+  }
+};
+
+}  // namespace
+
+void lowerEnvelope(const std::int32_t* g, std::size_t stride, int n, std::int32_t weightRow, std::int32_t weightColumn,
+                   std::int32_t* v, std::int32_t* z, std::int32_t* out) {
+  auto height = [&](std::int32_t q) { return weightRow * g[static_cast<std::size_t>(q) * stride] * g[static_cast<std::size_t>(q) * stride]; };
+  int k = 0;
+  v[0] = 0, z[0] = INT_MIN, z[1] = INT_MAX;
+  for (std::int32_t q = 1; q < n; ++q) {
+    for (;;) {
+      const std::int32_t p = v[k];
+      const std::int32_t s = floorDiv((height(q) + weightColumn * q * q) - (height(p) + weightColumn * p * p), 2 * weightColumn * (q - p));
+      if (s <= z[k]) { --k; continue; }
+      ++k, v[k] = q, z[k] = s, z[k + 1] = INT_MAX;
+      break;
+    }
+  }
+  k = 0;
+  for (std::int32_t y = 0; y < n; ++y) {
+    while (z[k + 1] < y) ++k;
+    out[y] = height(v[k]) + weightColumn * (y - v[k]) * (y - v[k]);
+  }
+}
+
+std::int32_t fixedDistance(std::int64_t d2, std::uint32_t scale) {
+  const std::uint64_t s = std::min<std::uint64_t>(static_cast<std::uint64_t>(d2) * scale, 0xFFFFFFFFull);
+  auto r = static_cast<std::uint64_t>(std::sqrt(static_cast<double>(s)));
+  while (r * r > s) --r;
+  while ((r + 1) * (r + 1) <= s) ++r;
+  return static_cast<std::int32_t>(r);
+}
+
+std::int32_t farDistance(const Grid& grid, const DistanceWeights& weights) {
+  return weights.unit * (std::max(grid.nx, grid.ny) + 1);
+}
+
+SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                   const InterpolationSlab& slab, const DistanceWeights& weights) {
+  SlabFields out;
+  out.values.resize(slab.fieldValues);
+  out.radii.resize(slab.fields.size());
+  for (std::size_t i = 0; i < slab.fields.size(); ++i) {
+    const shared::DistanceField& f = slab.fields[i];
+    fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset, out.radii[i]);
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> interpolateSlabReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                                    const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps) {
+  const Grid& g = volume.grid;
+  const SlabFields fields = distanceFieldsReference(volume, crossings, slab, weights);
+  const Sampler sampler{slab, fields, caps};
+  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  std::vector<std::uint32_t> out(plane * static_cast<std::size_t>(slab.outputLayers));
+  for (const shared::PairPlan& pair : slab.pairs)
+    for (int m = 0; m <= pair.factor; ++m) {
+      std::uint32_t* layer = out.data() + plane * static_cast<std::size_t>(pair.firstLayer + m);
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x) layer[x + static_cast<std::size_t>(g.nx) * y] = sampler.word(pair, m, x, y);
+    }
+  return out;
+}
+
+}  // namespace scansurf

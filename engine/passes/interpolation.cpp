@@ -1,0 +1,224 @@
+#include "passes/interpolation.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <span>
+
+#include "geometry/interpolated_volume.h"
+#include "geometry/interpolation_reference.h"
+#include "gpu/check.h"
+#include "gpu/commands.h"
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "passes/shader_registry.h"
+
+namespace scansurf::passes {
+namespace {
+constexpr std::uint32_t kBindings = 12;
+constexpr std::uint32_t kLineGroup = 64;    // rows and columns: one invocation each
+constexpr std::uint32_t kPixelGroup = 8;    // interpolation: 8 x 8 pixels
+constexpr std::uint32_t kMaxGroupsY = 65535;
+
+enum Binding : std::uint32_t { kPlanes, kFields, kValues, kScratch, kRadii, kEntries, kPairs, kTileRanges, kTileEntries, kOutput, kCaps, kCrossings };
+}  // namespace
+
+struct Interpolator::State {
+  const gpu::Context* ctx = nullptr;
+  gpu::Owned<VkShaderModule> linesModule, envelopesModule, finishModule, interpolateModule;
+  gpu::Owned<VkDescriptorSetLayout> setLayout;
+  gpu::Owned<VkPipelineLayout> layout;
+  gpu::Owned<VkPipeline> lines, envelopes, finish, interpolate;
+  gpu::Owned<VkDescriptorPool> pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  std::size_t slabBudget = std::size_t{64} << 20;
+  int lastSlabs = 0;
+};
+
+Interpolator::Interpolator(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Interpolator::~Interpolator() = default;
+void Interpolator::setSlabBudget(std::size_t bytes) { state_->slabBudget = bytes; }
+int Interpolator::lastSlabCount() const { return state_->lastSlabs; }
+
+namespace {
+
+Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
+  SCANSURF_ASSIGN_OR_RETURN(s.linesModule, gpu::createShaderModule(ctx, shaders::spirv("edt_lines.comp")));
+  SCANSURF_ASSIGN_OR_RETURN(s.envelopesModule, gpu::createShaderModule(ctx, shaders::spirv("edt_envelopes.comp")));
+  SCANSURF_ASSIGN_OR_RETURN(s.finishModule, gpu::createShaderModule(ctx, shaders::spirv("edt_finish.comp")));
+  SCANSURF_ASSIGN_OR_RETURN(s.interpolateModule, gpu::createShaderModule(ctx, shaders::spirv("interpolate.comp")));
+  SCANSURF_ASSIGN_OR_RETURN(s.setLayout, gpu::createStorageBufferSetLayout(ctx, kBindings, VK_SHADER_STAGE_COMPUTE_BIT));
+  const VkDescriptorSetLayout setLayout = s.setLayout.get();
+  SCANSURF_ASSIGN_OR_RETURN(s.layout, gpu::createPipelineLayout(ctx, std::span(&setLayout, 1), sizeof(shared::InterpolatePush),
+                                                                 VK_SHADER_STAGE_COMPUTE_BIT));
+  const std::uint32_t lines[] = {kLineGroup, 1};
+  const std::uint32_t pixels[] = {kPixelGroup, kPixelGroup};
+  SCANSURF_ASSIGN_OR_RETURN(s.lines, gpu::createComputePipeline(ctx, s.layout.get(), s.linesModule.get(), lines));
+  SCANSURF_ASSIGN_OR_RETURN(s.envelopes, gpu::createComputePipeline(ctx, s.layout.get(), s.envelopesModule.get(), lines));
+  SCANSURF_ASSIGN_OR_RETURN(s.finish, gpu::createComputePipeline(ctx, s.layout.get(), s.finishModule.get(), lines));
+  SCANSURF_ASSIGN_OR_RETURN(s.interpolate, gpu::createComputePipeline(ctx, s.layout.get(), s.interpolateModule.get(), pixels));
+
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  SCANSURF_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+  s.pool = gpu::Owned<VkDescriptorPool>(pool, [d = ctx.device()](VkDescriptorPool p) { vkDestroyDescriptorPool(d, p, nullptr); });
+  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  setInfo.descriptorPool = pool;
+  setInfo.descriptorSetCount = 1;
+  setInfo.pSetLayouts = &setLayout;
+  SCANSURF_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &setInfo, &s.set));
+  return {};
+}
+
+// The buffers of one slab, every one bound at its binding.
+struct SlabBuffers {
+  std::array<gpu::Buffer, kBindings> buffers;
+};
+
+Result<gpu::Buffer> uploadBuffer(const gpu::Context& ctx, const void* data, std::size_t bytes) {
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer b, gpu::Buffer::create(ctx, std::max<std::size_t>(16, (bytes + 3) / 4 * 4),
+                                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
+  if (bytes > 0) std::memcpy(b.mapped(), data, bytes);
+  return b;
+}
+
+Result<gpu::Buffer> deviceBuffer(const gpu::Context& ctx, std::size_t bytes) {
+  return gpu::Buffer::create(ctx, std::max<std::size_t>(16, bytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             gpu::MemoryDomain::Device);
+}
+
+std::vector<std::int32_t> capTable() {
+  std::vector<std::int32_t> table(17 * 17, -1);
+  for (int n = 1; n <= InterpolationOptions::kMaxFactor; ++n)
+    for (int m = 0; m <= n; ++m) table[static_cast<std::size_t>(n * 17 + m)] = roundCapErosion(n, m);
+  return table;
+}
+
+template <typename T>
+Result<gpu::Buffer> uploadVector(const gpu::Context& ctx, const std::vector<T>& v) {
+  return uploadBuffer(ctx, v.data(), v.size() * sizeof(T));
+}
+
+Result<SlabBuffers> createSlabBuffers(const gpu::Context& ctx, const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                      const InterpolationSlab& slab) {
+  const Grid& g = volume.grid;
+  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  SlabBuffers s;
+  auto& b = s.buffers;
+  SCANSURF_ASSIGN_OR_RETURN(b[kPlanes], uploadBuffer(ctx, volume.labels.data() + plane * static_cast<std::size_t>(slab.firstPlane),
+                                                     plane * static_cast<std::size_t>(slab.planes) * sizeof(Label)));
+  SCANSURF_ASSIGN_OR_RETURN(b[kFields], uploadVector(ctx, slab.fields));
+  SCANSURF_ASSIGN_OR_RETURN(b[kValues], deviceBuffer(ctx, slab.fieldValues * 4));
+  SCANSURF_ASSIGN_OR_RETURN(b[kScratch], deviceBuffer(ctx, slab.scratchInts * 4));
+  SCANSURF_ASSIGN_OR_RETURN(b[kRadii], deviceBuffer(ctx, slab.fields.size() * 4));
+  SCANSURF_ASSIGN_OR_RETURN(b[kEntries], uploadVector(ctx, slab.entries));
+  SCANSURF_ASSIGN_OR_RETURN(b[kPairs], uploadVector(ctx, slab.pairs));
+  SCANSURF_ASSIGN_OR_RETURN(b[kTileRanges], uploadVector(ctx, slab.tileRanges));
+  SCANSURF_ASSIGN_OR_RETURN(b[kTileEntries], uploadVector(ctx, slab.tileEntries));
+  SCANSURF_ASSIGN_OR_RETURN(b[kOutput], gpu::Buffer::create(ctx, std::max<std::size_t>(16, plane * static_cast<std::size_t>(slab.outputLayers) * 4),
+                                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Readback));
+  SCANSURF_ASSIGN_OR_RETURN(b[kCaps], uploadVector(ctx, capTable()));
+  SCANSURF_ASSIGN_OR_RETURN(b[kCrossings], uploadBuffer(ctx, crossings.data() + plane * static_cast<std::size_t>(slab.firstPlane),
+                                                        plane * static_cast<std::size_t>(slab.planes) * sizeof(std::uint16_t)));
+  return s;
+}
+
+void bindSlab(const gpu::Context& ctx, VkDescriptorSet set, const SlabBuffers& s) {
+  std::array<VkDescriptorBufferInfo, kBindings> infos{};
+  std::array<VkWriteDescriptorSet, kBindings> writes{};
+  for (std::uint32_t i = 0; i < kBindings; ++i) {
+    infos[i] = {s.buffers[i].handle(), 0, VK_WHOLE_SIZE};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(ctx.device(), kBindings, writes.data(), 0, nullptr);
+}
+
+void computeBarrier(VkCommandBuffer cmd) {
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+// One dispatch per 65535 fields: x over the longest row or column, y over fields.
+void dispatchFields(VkCommandBuffer cmd, VkPipelineLayout layout, shared::InterpolatePush push, std::size_t fields,
+                    std::uint32_t lines) {
+  for (std::size_t first = 0; first < fields; first += kMaxGroupsY) {
+    push.pair = static_cast<std::uint32_t>(first);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, (lines + kLineGroup - 1) / kLineGroup, static_cast<std::uint32_t>(std::min<std::size_t>(kMaxGroupsY, fields - first)), 1);
+  }
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Interpolator>> Interpolator::create(const gpu::Context& ctx) {
+  auto s = std::make_unique<State>();
+  s->ctx = &ctx;
+  SCANSURF_TRY(createPipelines(ctx, *s));
+  return std::unique_ptr<Interpolator>(new Interpolator(std::move(s)));
+}
+
+Result<std::vector<std::uint32_t>> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                                         const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps) {
+  const gpu::Context& ctx = *state_->ctx;
+  const Grid& g = volume.grid;
+  SCANSURF_ASSIGN_OR_RETURN(const SlabBuffers buffers, createSlabBuffers(ctx, volume, crossings, slab));
+  bindSlab(ctx, state_->set, buffers);
+  SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
+  VkCommandBuffer cmd = commands.cmd();
+  vkCmdFillBuffer(cmd, buffers.buffers[kRadii].handle(), 0, VK_WHOLE_SIZE, 0);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
+  shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx), static_cast<std::uint32_t>(g.ny),
+                               static_cast<std::uint32_t>(slab.fields.size()), 0, weights.x, weights.y, weights.fixedScale,
+                               caps == CapShape::Round ? 1u : 0u, static_cast<std::uint32_t>(kTileSize),
+                               static_cast<std::uint32_t>(slab.tilesX), weights.unit, farDistance(g, weights)};
+  std::uint32_t longest = 0, widest = 0;
+  for (const shared::DistanceField& f : slab.fields)
+    longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}), widest = std::max(widest, static_cast<std::uint32_t>(f.w));
+  for (const auto& [pipeline, lines] : {std::pair{state_->lines.get(), longest}, std::pair{state_->envelopes.get(), longest},
+                                        std::pair{state_->finish.get(), widest}}) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    dispatchFields(cmd, state_->layout.get(), push, slab.fields.size(), lines);
+    computeBarrier(cmd);
+  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->interpolate.get());
+  for (std::size_t p = 0; p < slab.pairs.size(); ++p) {
+    push.pair = static_cast<std::uint32_t>(p);
+    vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, (static_cast<std::uint32_t>(g.nx) + kPixelGroup - 1) / kPixelGroup,
+                  (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup, static_cast<std::uint32_t>(slab.pairs[p].factor + 1));
+  }
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_HOST_READ_BIT);
+  SCANSURF_TRY(commands.submitAndWait());
+  const gpu::Buffer& output = buffers.buffers[kOutput];
+  SCANSURF_TRY(output.invalidate());
+  const std::size_t count = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny) * static_cast<std::size_t>(slab.outputLayers);
+  const auto* words = static_cast<const std::uint32_t*>(output.mapped());
+  return std::vector<std::uint32_t>(words, words + count);
+}
+
+Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                             const std::vector<int>& factors, CapShape caps, int threads) {
+  if (crossings.size() != volume.labels.size())
+    return makeError(Errc::InvalidArgument, "interpolation: one edge-crossing word per voxel is needed");
+  SCANSURF_ASSIGN_OR_RETURN(const DistanceWeights weights, distanceWeights(volume.grid));
+  const std::size_t budget = std::min<std::size_t>(state_->slabBudget, state_->ctx->limits().maxStorageBufferRange);
+  state_->lastSlabs = 0;
+  return interpolateVolume(volume, factors, budget, threads, [&](const InterpolationSlab& slab) -> Result<std::vector<std::uint32_t>> {
+    ++state_->lastSlabs;
+    return runSlab(volume, crossings, slab, weights, caps);
+  });
+}
+
+}  // namespace scansurf::passes

@@ -1,0 +1,54 @@
+#version 450
+// Shape-based interpolation, pass 4 of 4 (engine/geometry/interpolation_plan.h): the label of
+// every voxel of the layers m = 0 .. n of one pair of planes, from the distance fields of the
+// labels that may win in its tile, with its clearance (how far its value is from losing the
+// label) for placing surface vertices between voxels.
+#extension GL_GOOGLE_include_directive : require
+#include "interpolation_common.glsl"
+
+int fieldAt(int index, int x, int y) {
+  const DistanceField f = fieldTable.fields[index];
+  if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
+  return fieldValues.values[f.offset + (x - f.x0) + f.w * (y - f.y0)];
+}
+
+// The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here).
+int entryValue(PairEntry e, int m, int n, int x, int y) {
+  if (e.fieldA >= 0 && e.fieldB >= 0) {
+    const int sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
+    const int a = fieldAt(e.fieldA, x - sx, y - sy), b = fieldAt(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
+    return a == kFarAway || b == kFarAway ? kFarAway : (n - m) * a + m * b;
+  }
+  const int field = e.fieldA >= 0 ? e.fieldA : e.fieldB;
+  const int fromPlane = e.fieldA >= 0 ? m : n - m;
+  const int d = fieldAt(field, x, y);
+  if (d == kFarAway) return kFarAway;
+  if (push.roundCaps == 0u) return 2 * fromPlane <= n ? n * d : kFarAway;
+  const int erosion = capTable.erosion[n * 17 + fromPlane];
+  if (erosion < 0) return kFarAway;
+  return n * (d + ((fieldRadii.radii[field] * erosion) >> 12));
+}
+
+void main() {
+  const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+  if (x >= int(push.nx) || y >= int(push.ny)) return;
+  const PairPlan pair = pairTable.pairs[push.pair];
+  const int m = int(gl_GlobalInvocationID.z);
+  const int tile = pair.tileStart + x / int(push.tileSize) + int(push.tilesX) * (y / int(push.tileSize));
+  const int first = tileRanges.ranges[2 * tile], count = tileRanges.ranges[2 * tile + 1];
+  int best = kFarAway, second = kFarAway, united = kFarAway, winner = 0;
+  for (int i = first; i < first + count; ++i) {
+    const PairEntry e = entryTable.entries[tileEntries.entries[i]];
+    if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
+    const int v = entryValue(e, m, pair.factor, x, y);
+    if (e.label == 0) united = v;
+    else if (v < best) second = best, best = v, winner = e.label;
+    else if (v < second) second = v;
+  }
+  const int level = min(best, united);
+  const bool labelled = winner != 0 && level < 0;
+  const int clearance = labelled ? min(second - best, -level) : level;
+  const uint c = uint(min((clearance + pair.factor / 2) / pair.factor, 65535));
+  const uint label = labelled ? uint(winner) : 0u;
+  outputLabels.labels[(pair.firstLayer + m) * int(push.nx * push.ny) + y * int(push.nx) + x] = label | (c << 16);
+}
