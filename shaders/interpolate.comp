@@ -23,7 +23,7 @@ int entryValue(PairEntry e, int m, int n, int x, int y) {
   const int fromPlane = e.fieldA >= 0 ? m : n - m;
   const int d = fieldAt(field, x, y);
   if (d == kFarAway) return kFarAway;
-  if (push.roundCaps == 0u) return 2 * fromPlane <= n ? n * d : kFarAway;
+  if (push.roundCaps == 0u || e.flatCap != 0) return 2 * fromPlane <= n ? n * d : kFarAway;
   const int erosion = capTable.erosion[n * 17 + fromPlane];
   if (erosion < 0) return kFarAway;
   return n * (d + ((fieldRadii.radii[field] * erosion) >> 12));

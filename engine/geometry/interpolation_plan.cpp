@@ -174,6 +174,7 @@ class SlabPlanner {
     shared::PairPlan pair{p, factor, slab_.outputLayers, static_cast<std::int32_t>(slab_.tileRanges.size() / 2)};
     slab_.outputLayers += factor + 1;
     const std::size_t firstEntry = slab_.entries.size();
+    pairFirstEntry_ = firstEntry;
     addEntries(p, k);
     addTiles(firstEntry);
     slab_.pairs.push_back(pair);
@@ -200,7 +201,7 @@ class SlabPlanner {
     labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
     std::vector<bool> overlap;
     for (Label label : labels) {
-      shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1};
+      shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1, 0};
       for (int f : {e.fieldA, e.fieldB}) {
         if (f < 0) continue;
         const shared::DistanceField& d = slab_.fields[static_cast<std::size_t>(f)];
@@ -218,6 +219,38 @@ class SlabPlanner {
       }
       slab_.entries.push_back(e);
     }
+    markTouchingCaps(k, firstEntryOf(p));
+  }
+
+  std::size_t firstEntryOf(int) const { return pairFirstEntry_; }
+
+  // Labels that end at this pair (present on one plane only) and touch another such label on
+  // their plane get flat caps.
+  void markTouchingCaps(int k, std::size_t first) {
+    std::vector<char> endsA(65536, 0), endsB(65536, 0);
+    bool any = false;
+    for (std::size_t i = first; i < slab_.entries.size(); ++i) {
+      const shared::PairEntry& e = slab_.entries[i];
+      if (e.label == kBackground) continue;
+      if (e.fieldB < 0) endsA[static_cast<std::size_t>(e.label)] = 1, any = true;
+      if (e.fieldA < 0) endsB[static_cast<std::size_t>(e.label)] = 1, any = true;
+    }
+    if (!any) return;
+    std::vector<char> touching(65536, 0);
+    markTouching(k, endsA, touching);
+    markTouching(k + 1, endsB, touching);
+    for (std::size_t i = first; i < slab_.entries.size(); ++i)
+      if (touching[static_cast<std::size_t>(slab_.entries[i].label)]) slab_.entries[i].flatCap = 1;
+  }
+
+  void markTouching(int k, const std::vector<char>& ends, std::vector<char>& touching) const {
+    for (int y = 0; y + 1 < g_.ny; ++y)
+      for (int x = 0; x + 1 < g_.nx; ++x) {
+        const Label a = volume_.at(x, y, k);
+        if (!ends[a]) continue;
+        for (const Label b : {volume_.at(x + 1, y, k), volume_.at(x, y + 1, k)})
+          if (b != a && ends[b]) touching[a] = touching[b] = 1;
+      }
   }
 
   void addTiles(std::size_t firstEntry) {
@@ -241,6 +274,7 @@ class SlabPlanner {
   const PlaneCensus& census_;
   InterpolationSlab& slab_;
   std::vector<std::size_t> planeFields_;  // first field of each plane
+  std::size_t pairFirstEntry_ = 0;
 };
 
 }  // namespace

@@ -92,7 +92,7 @@ struct Sampler {
     const int fromPlane = e.fieldA >= 0 ? m : n - m;
     const std::int32_t d = at(field, x, y);
     if (d == kFarAway) return kFarAway;
-    if (caps == CapShape::Flat) return flatCapOpen(n, fromPlane) ? n * d : kFarAway;
+    if (caps == CapShape::Flat || e.flatCap != 0) return flatCapOpen(n, fromPlane) ? n * d : kFarAway;
     const std::int32_t erosion = roundCapErosion(n, fromPlane);
     if (erosion < 0) return kFarAway;
     return n * (d + ((fields.radii[static_cast<std::size_t>(field)] * erosion) >> 12));

@@ -27,12 +27,15 @@ SCANSURF_STRUCT(DistanceField) {
 
 // One label that may appear between two planes A and B, with its fields (-1: absent on that
 // plane, the label ends there and gets a cap) and, when its regions on A and B do not
-// overlap, the whole-pixel shift from A to B that the interpolation follows.
+// overlap, the whole-pixel shift from A to B that the interpolation follows. Round caps
+// become flat where two labels that end together touch: domes of different sizes would let
+// the slower one grow into the other.
 SCANSURF_STRUCT(PairEntry) {
   int_t label;
   int_t fieldA, fieldB;
   int_t shiftX, shiftY;
   int_t x0, y0, x1, y1;  // where the label may win (inclusive pixel box)
+  int_t flatCap;         // 1: the label ends here touching another that ends: a flat cap
 };
 
 // Two consecutive planes of the slab, the interpolated layers between them and the entries
@@ -45,7 +48,7 @@ SCANSURF_STRUCT(PairPlan) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 36 && sizeof(PairPlan) == 16);
+static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 40 && sizeof(PairPlan) == 16);
 struct InterpolatePush {
   std::uint32_t nx, ny;
   std::uint32_t count;        // fields (EDT passes) or entries (unused by interpolate)

@@ -271,6 +271,27 @@ TEST_F(InterpolatedShapesTest, NestedFeatureThatNarrowsFasterStaysInside) {
   }
 }
 
+// A vessel inside a body, both ending on the same planes: their domes would differ in size, so
+// they end flat together and the vessel neither grows nor changes topology.
+TEST_F(InterpolatedShapesTest, FeaturesEndingTogetherKeepTheirShape) {
+  ContourSet set;
+  set.source = "vessel in body";
+  set.features.push_back({"body", {}, {}});
+  set.features.push_back({"vessel", {}, {}});
+  for (int k = 0; k < 6; ++k) {
+    set.features[0].slices.push_back({2.0 * k, {circleContour({0, 0}, 20)}});
+    set.features[1].slices.push_back({2.0 * k, {circleContour({5.0 + 0.5 * k, 0}, 3)}});
+  }
+  const BuildResult off = build(set, 0.5, 1), on = build(set, 0.5);
+  ASSERT_TRUE(on.interpolation.used());
+  expectTopology(on, 0, 1, 0);
+  expectTopology(on, 1, 1, 0);
+  // The contours' own volume: a 3 mm circle extruded over six 2 mm slices (off: -2.6 %).
+  const double contour = std::numbers::pi * 9 * 12;
+  EXPECT_NEAR(stats(on, 1).volume, contour, 0.02 * contour);
+  EXPECT_NEAR(stats(off, 1).volume, contour, 0.04 * contour);
+}
+
 // ---------------------------------------------------------------- accuracy
 
 using Distance = std::function<double(double, double, double)>;

@@ -5,6 +5,7 @@
 //   auto engine = scansurf::Engine::create({});                 // Result<Engine>
 //   scansurf::BuildOptions options;
 //   options.smoothing.enabled = true;
+//   options.interpolation.factor = scansurf::InterpolationOptions::kAuto;  // thick slices
 //   auto built = engine->build(*contours, options);             // Result<BuildResult>
 //   scansurf::writeScene("surfaces.glb", *contours, built->surfaces);
 //
@@ -16,6 +17,7 @@
 #include "scansurf/engine.h"
 #include "scansurf/grid.h"
 #include "scansurf/input.h"
+#include "scansurf/interpolation.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"
 #include "scansurf/outputs.h"
