@@ -23,10 +23,9 @@ InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census,
 }  // namespace
 
 // Labels of the layers between the pair's planes, and the clearance of all its layers.
-void storePair(const std::vector<std::uint32_t>& words, const shared::PairPlan& pair, std::size_t plane, int fineA,
-               InterpolatedVolume& out) {
-  for (int m = 0; m <= pair.factor; ++m) {
-    const std::uint32_t* in = words.data() + plane * static_cast<std::size_t>(pair.firstLayer + m);
+void storePair(const std::uint32_t* words, const shared::PairPlan& pair, std::size_t plane, int fineA, InterpolatedVolume& out) {
+  for (int m = 0; m < pair.layers; ++m) {
+    const std::uint32_t* in = words + plane * static_cast<std::size_t>(pair.firstLayer + m);
     const std::size_t at = plane * static_cast<std::size_t>(fineA + m);
     Label* labels = out.volume.labels.data() + at;
     std::uint16_t* clearance = out.clearance.data() + at;
@@ -59,9 +58,10 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
   for (int first = 0; first + 1 < g.nz;) {
     const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes);
     if (slab.outputLayers > 0) {
-      SCANSURF_ASSIGN_OR_RETURN(const std::vector<std::uint32_t> words, interpolate(slab));
-      for (const shared::PairPlan& pair : slab.pairs)
-        storePair(words, pair, plane, fineOf[static_cast<std::size_t>(slab.firstPlane + pair.planeA)], out);
+      SCANSURF_TRY(interpolate(slab, [&](const std::uint32_t* words) {
+        for (const shared::PairPlan& pair : slab.pairs)
+          storePair(words, pair, plane, fineOf[static_cast<std::size_t>(slab.firstPlane + pair.planeA)], out);
+      }));
     }
     first += slab.planes - 1;
   }

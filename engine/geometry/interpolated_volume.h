@@ -10,8 +10,9 @@
 namespace scansurf {
 
 // The slab's output layers, InterpolationSlab::outputLayers of nx * ny words, each
-// label | clearance << 16.
-using SlabInterpolator = std::function<Result<std::vector<std::uint32_t>>(const InterpolationSlab& slab)>;
+// label | clearance << 16, are handed to `store` (valid during that call).
+using SlabWords = std::function<void(const std::uint32_t* words)>;
+using SlabInterpolator = std::function<Result<void>(const InterpolationSlab& slab, const SlabWords& store)>;
 
 struct InterpolatedVolume {
   LabelVolume volume;

@@ -22,9 +22,9 @@ std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptio
     // 0.044 mm interpolated, 0.040 mm not) and would cost the larger volume.
     wanted[k] = n < InterpolationOptions::kAutoMinimum ? 1 : static_cast<int>(std::min(n, double{InterpolationOptions::kMaxFactor}));
   }
-  // Lower the largest factors evenly until the volume fits the limit.
+  // Lower the largest factors until the volume fits the limit; below kAutoMinimum, none.
   const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
-  for (int cap = InterpolationOptions::kMaxFactor; cap > 1; --cap) {
+  for (int cap = InterpolationOptions::kMaxFactor; cap >= InterpolationOptions::kAutoMinimum; --cap) {
     std::uint64_t layers = 1;
     for (int n : wanted) layers += static_cast<std::uint64_t>(std::min(n, cap));
     if (layers * plane <= options.autoVoxelLimit) {
@@ -171,8 +171,10 @@ class SlabPlanner {
 
   void addPair(int p, int factor) {
     const int k = slab_.firstPlane + p;
-    shared::PairPlan pair{p, factor, slab_.outputLayers, static_cast<std::int32_t>(slab_.tileRanges.size() / 2)};
-    slab_.outputLayers += factor + 1;
+    const bool last = k + 2 == g_.nz;  // plane B is the volume's last layer: its clearance too
+    shared::PairPlan pair{p, factor, slab_.outputLayers, static_cast<std::int32_t>(slab_.tileRanges.size() / 2),
+                          factor + (last ? 1 : 0)};
+    slab_.outputLayers += pair.layers;
     const std::size_t firstEntry = slab_.entries.size();
     pairFirstEntry_ = firstEntry;
     addEntries(p, k);
@@ -297,10 +299,7 @@ InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCe
   slab.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
   SlabPlanner planner(volume, census, slab);
   planner.addFields();
-  for (int p = 0; p + 1 < planes; ++p) {
-    const int factor = factors[static_cast<std::size_t>(firstPlane + p)];
-    if (factor > 1) planner.addPair(p, factor);
-  }
+  for (int p = 0; p + 1 < planes; ++p) planner.addPair(p, factors[static_cast<std::size_t>(firstPlane + p)]);
   return slab;
 }
 

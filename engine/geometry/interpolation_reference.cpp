@@ -176,7 +176,7 @@ std::vector<std::uint32_t> interpolateSlabReference(const LabelVolume& volume, c
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   std::vector<std::uint32_t> out(plane * static_cast<std::size_t>(slab.outputLayers));
   for (const shared::PairPlan& pair : slab.pairs)
-    for (int m = 0; m <= pair.factor; ++m) {
+    for (int m = 0; m < pair.layers; ++m) {
       std::uint32_t* layer = out.data() + plane * static_cast<std::size_t>(pair.firstLayer + m);
       for (int y = 0; y < g.ny; ++y)
         for (int x = 0; x < g.nx; ++x) layer[x + static_cast<std::size_t>(g.nx) * y] = sampler.word(pair, m, x, y);

@@ -21,6 +21,38 @@ constexpr std::uint32_t kPixelGroup = 8;    // interpolation: 8 x 8 pixels
 constexpr std::uint32_t kMaxGroupsY = 65535;
 
 enum Binding : std::uint32_t { kPlanes, kFields, kValues, kScratch, kRadii, kEntries, kPairs, kTileRanges, kTileEntries, kOutput, kCaps, kCrossings };
+
+// One buffer per binding, kept from slab to slab and grown when a slab needs more (fresh
+// memory for every slab cost more in page faults than the work).
+struct SlabBuffers {
+  std::array<gpu::Buffer, kBindings> buffers;
+
+  static gpu::MemoryDomain domainOf(std::uint32_t binding) {
+    if (binding == kValues || binding == kScratch || binding == kRadii) return gpu::MemoryDomain::Device;
+    return binding == kOutput ? gpu::MemoryDomain::Readback : gpu::MemoryDomain::Upload;
+  }
+  // Whether the binding now has a new buffer (the descriptor set needs rewriting).
+  Result<bool> reserve(const gpu::Context& ctx, std::uint32_t binding, std::size_t bytes) {
+    bytes = std::max<std::size_t>(16, (bytes + 3) / 4 * 4);
+    if (buffers[binding].handle() != VK_NULL_HANDLE && buffers[binding].size() >= bytes) return false;
+    const gpu::MemoryDomain domain = domainOf(binding);
+    const VkBufferUsageFlags usage =
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | (domain == gpu::MemoryDomain::Device ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : VkBufferUsageFlags{0});
+    buffers[binding] = gpu::Buffer{};  // release before allocating the larger one
+    SCANSURF_ASSIGN_OR_RETURN(buffers[binding], gpu::Buffer::create(ctx, bytes + bytes / 4, usage, domain));
+    return true;
+  }
+  Result<bool> upload(const gpu::Context& ctx, std::uint32_t binding, const void* data, std::size_t bytes) {
+    SCANSURF_ASSIGN_OR_RETURN(const bool fresh, reserve(ctx, binding, bytes));
+    if (bytes > 0) std::memcpy(buffers[binding].mapped(), data, bytes);
+    return fresh;
+  }
+  template <typename T>
+  Result<bool> upload(const gpu::Context& ctx, std::uint32_t binding, const std::vector<T>& v) {
+    return upload(ctx, binding, v.data(), v.size() * sizeof(T));
+  }
+};
+
 }  // namespace
 
 struct Interpolator::State {
@@ -31,6 +63,7 @@ struct Interpolator::State {
   gpu::Owned<VkPipeline> lines, envelopes, finish, interpolate;
   gpu::Owned<VkDescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
+  SlabBuffers buffers;
   std::size_t slabBudget = std::size_t{64} << 20;
   int lastSlabs = 0;
 };
@@ -74,23 +107,6 @@ Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
   return {};
 }
 
-// The buffers of one slab, every one bound at its binding.
-struct SlabBuffers {
-  std::array<gpu::Buffer, kBindings> buffers;
-};
-
-Result<gpu::Buffer> uploadBuffer(const gpu::Context& ctx, const void* data, std::size_t bytes) {
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer b, gpu::Buffer::create(ctx, std::max<std::size_t>(16, (bytes + 3) / 4 * 4),
-                                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
-  if (bytes > 0) std::memcpy(b.mapped(), data, bytes);
-  return b;
-}
-
-Result<gpu::Buffer> deviceBuffer(const gpu::Context& ctx, std::size_t bytes) {
-  return gpu::Buffer::create(ctx, std::max<std::size_t>(16, bytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                             gpu::MemoryDomain::Device);
-}
-
 std::vector<std::int32_t> capTable() {
   std::vector<std::int32_t> table(17 * 17, -1);
   for (int n = 1; n <= InterpolationOptions::kMaxFactor; ++n)
@@ -98,33 +114,30 @@ std::vector<std::int32_t> capTable() {
   return table;
 }
 
-template <typename T>
-Result<gpu::Buffer> uploadVector(const gpu::Context& ctx, const std::vector<T>& v) {
-  return uploadBuffer(ctx, v.data(), v.size() * sizeof(T));
-}
-
-Result<SlabBuffers> createSlabBuffers(const gpu::Context& ctx, const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                      const InterpolationSlab& slab) {
-  const Grid& g = volume.grid;
-  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
-  SlabBuffers s;
-  auto& b = s.buffers;
-  SCANSURF_ASSIGN_OR_RETURN(b[kPlanes], uploadBuffer(ctx, volume.labels.data() + plane * static_cast<std::size_t>(slab.firstPlane),
-                                                     plane * static_cast<std::size_t>(slab.planes) * sizeof(Label)));
-  SCANSURF_ASSIGN_OR_RETURN(b[kFields], uploadVector(ctx, slab.fields));
-  SCANSURF_ASSIGN_OR_RETURN(b[kValues], deviceBuffer(ctx, slab.fieldValues * 4));
-  SCANSURF_ASSIGN_OR_RETURN(b[kScratch], deviceBuffer(ctx, slab.scratchInts * 4));
-  SCANSURF_ASSIGN_OR_RETURN(b[kRadii], deviceBuffer(ctx, slab.fields.size() * 4));
-  SCANSURF_ASSIGN_OR_RETURN(b[kEntries], uploadVector(ctx, slab.entries));
-  SCANSURF_ASSIGN_OR_RETURN(b[kPairs], uploadVector(ctx, slab.pairs));
-  SCANSURF_ASSIGN_OR_RETURN(b[kTileRanges], uploadVector(ctx, slab.tileRanges));
-  SCANSURF_ASSIGN_OR_RETURN(b[kTileEntries], uploadVector(ctx, slab.tileEntries));
-  SCANSURF_ASSIGN_OR_RETURN(b[kOutput], gpu::Buffer::create(ctx, std::max<std::size_t>(16, plane * static_cast<std::size_t>(slab.outputLayers) * 4),
-                                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Readback));
-  SCANSURF_ASSIGN_OR_RETURN(b[kCaps], uploadVector(ctx, capTable()));
-  SCANSURF_ASSIGN_OR_RETURN(b[kCrossings], uploadBuffer(ctx, crossings.data() + plane * static_cast<std::size_t>(slab.firstPlane),
-                                                        plane * static_cast<std::size_t>(slab.planes) * sizeof(std::uint16_t)));
-  return s;
+// Fills the buffers for `slab`; true when any buffer is new.
+Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                         const InterpolationSlab& slab) {
+  const std::size_t plane = static_cast<std::size_t>(volume.grid.nx) * static_cast<std::size_t>(volume.grid.ny);
+  const std::size_t first = plane * static_cast<std::size_t>(slab.firstPlane), count = plane * static_cast<std::size_t>(slab.planes);
+  bool fresh = false;
+  auto track = [&](Result<bool> r) -> Result<void> {
+    if (!r) return Unexpected(std::move(r).takeError());
+    fresh = fresh || *r;
+    return {};
+  };
+  SCANSURF_TRY(track(b.upload(ctx, kPlanes, volume.labels.data() + first, count * sizeof(Label))));
+  SCANSURF_TRY(track(b.upload(ctx, kCrossings, crossings.data() + first, count * sizeof(std::uint16_t))));
+  SCANSURF_TRY(track(b.upload(ctx, kFields, slab.fields)));
+  SCANSURF_TRY(track(b.reserve(ctx, kValues, slab.fieldValues * 4)));
+  SCANSURF_TRY(track(b.reserve(ctx, kScratch, slab.scratchInts * 4)));
+  SCANSURF_TRY(track(b.reserve(ctx, kRadii, slab.fields.size() * 4)));
+  SCANSURF_TRY(track(b.upload(ctx, kEntries, slab.entries)));
+  SCANSURF_TRY(track(b.upload(ctx, kPairs, slab.pairs)));
+  SCANSURF_TRY(track(b.upload(ctx, kTileRanges, slab.tileRanges)));
+  SCANSURF_TRY(track(b.upload(ctx, kTileEntries, slab.tileEntries)));
+  SCANSURF_TRY(track(b.reserve(ctx, kOutput, plane * static_cast<std::size_t>(slab.outputLayers) * 4)));
+  SCANSURF_TRY(track(b.upload(ctx, kCaps, capTable())));
+  return fresh;
 }
 
 void bindSlab(const gpu::Context& ctx, VkDescriptorSet set, const SlabBuffers& s) {
@@ -166,15 +179,16 @@ Result<std::unique_ptr<Interpolator>> Interpolator::create(const gpu::Context& c
   return std::unique_ptr<Interpolator>(new Interpolator(std::move(s)));
 }
 
-Result<std::vector<std::uint32_t>> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                                         const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps) {
+Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
+                                   const DistanceWeights& weights, CapShape caps, const SlabWords& store) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& g = volume.grid;
-  SCANSURF_ASSIGN_OR_RETURN(const SlabBuffers buffers, createSlabBuffers(ctx, volume, crossings, slab));
-  bindSlab(ctx, state_->set, buffers);
+  SlabBuffers& buffers = state_->buffers;
+  SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareSlab(ctx, buffers, volume, crossings, slab));
+  if (fresh) bindSlab(ctx, state_->set, buffers);
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
-  vkCmdFillBuffer(cmd, buffers.buffers[kRadii].handle(), 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, buffers.buffers[kRadii].handle(), 0, VK_WHOLE_SIZE, 0);  // atomicMax starts from 0
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
@@ -196,16 +210,15 @@ Result<std::vector<std::uint32_t>> Interpolator::runSlab(const LabelVolume& volu
     push.pair = static_cast<std::uint32_t>(p);
     vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(g.nx) + kPixelGroup - 1) / kPixelGroup,
-                  (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup, static_cast<std::uint32_t>(slab.pairs[p].factor + 1));
+                  (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup, static_cast<std::uint32_t>(slab.pairs[p].layers));
   }
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                      VK_ACCESS_2_HOST_READ_BIT);
   SCANSURF_TRY(commands.submitAndWait());
   const gpu::Buffer& output = buffers.buffers[kOutput];
   SCANSURF_TRY(output.invalidate());
-  const std::size_t count = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny) * static_cast<std::size_t>(slab.outputLayers);
-  const auto* words = static_cast<const std::uint32_t*>(output.mapped());
-  return std::vector<std::uint32_t>(words, words + count);
+  store(static_cast<const std::uint32_t*>(output.mapped()));
+  return {};
 }
 
 Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
@@ -215,9 +228,9 @@ Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const st
   SCANSURF_ASSIGN_OR_RETURN(const DistanceWeights weights, distanceWeights(volume.grid));
   const std::size_t budget = std::min<std::size_t>(state_->slabBudget, state_->ctx->limits().maxStorageBufferRange);
   state_->lastSlabs = 0;
-  return interpolateVolume(volume, factors, budget, threads, [&](const InterpolationSlab& slab) -> Result<std::vector<std::uint32_t>> {
+  return interpolateVolume(volume, factors, budget, threads, [&](const InterpolationSlab& slab, const SlabWords& store) {
     ++state_->lastSlabs;
-    return runSlab(volume, crossings, slab, weights, caps);
+    return runSlab(volume, crossings, slab, weights, caps, store);
   });
 }
 

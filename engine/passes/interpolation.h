@@ -22,9 +22,10 @@ class Interpolator {
   // crossings: planeEdgeCrossings of the volume (geometry/edge_crossings.h).
   Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const std::vector<int>& factors,
                                  CapShape caps, int threads);
-  // One slab's output layers (InterpolationSlab::outputLayers of nx * ny label | clearance << 16 words).
-  Result<std::vector<std::uint32_t>> runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                             const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps);
+  // One slab's output layers, handed to `store` (InterpolationSlab::outputLayers of nx * ny
+  // label | clearance << 16 words, read straight from the device's readback buffer).
+  Result<void> runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
+                       const DistanceWeights& weights, CapShape caps, const SlabWords& store);
 
   // Bytes one slab may use on the device; smaller forces more slabs (tests use it).
   void setSlabBudget(std::size_t bytes);

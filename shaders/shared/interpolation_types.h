@@ -40,15 +40,18 @@ SCANSURF_STRUCT(PairEntry) {
 
 // Two consecutive planes of the slab, the interpolated layers between them and the entries
 // of each tile of the plane (tileRanges[tileStart + tile] = {first, count} into tileEntries).
+// Every pair of an interpolated volume has one, factor 1 included: plane A's clearance
+// (output layer m = 0) places the vertices between it and its neighbouring layers.
 SCANSURF_STRUCT(PairPlan) {
   int_t planeA;     // plane B = planeA + 1
   int_t factor;     // layers m = 1 .. factor-1 lie between A and B (m = 0: A, m = factor: B)
-  int_t firstLayer; // output layer of m = 0; the pair has factor + 1
+  int_t firstLayer; // output layer of m = 0
   int_t tileStart;
+  int_t layers;     // output layers m = 0 .. layers-1: factor, or factor + 1 for the volume's last pair
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 40 && sizeof(PairPlan) == 16);
+static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 40 && sizeof(PairPlan) == 20);
 struct InterpolatePush {
   std::uint32_t nx, ny;
   std::uint32_t count;        // fields (EDT passes) or entries (unused by interpolate)

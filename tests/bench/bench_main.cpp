@@ -73,7 +73,7 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
   return 0;
 }
 
-int run(const fs::path& input, int pixels, int repeat, bool smooth) {
+int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate) {
   std::string json = "{";
   auto add = [&](const std::string& key, double value) {
     char buf[64];
@@ -96,6 +96,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth) {
 
   BuildOptions options;
   options.smoothing.enabled = smooth;  // as the command-line tool does by default
+  options.interpolation.factor = interpolate;  // kAuto, as the command-line tool does by default
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {
@@ -182,14 +183,20 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.size() >= 2 && args[0] == "generate") return generate(args[1], {args.begin() + 2, args.end()});
   if (args.size() >= 3 && args[0] == "run") {
-    int repeat = 1;
+    int repeat = 1, interpolate = InterpolationOptions::kAuto;
     bool smooth = true;
     for (std::size_t a = 3; a < args.size(); ++a) {
       if (args[a] == "--repeat" && a + 1 < args.size()) repeat = std::stoi(args[++a]);
       if (args[a] == "--no-smooth") smooth = false;
+      if (args[a] == "--interpolate" && a + 1 < args.size()) {
+        const std::string& v = args[++a];
+        interpolate = v == "auto" ? InterpolationOptions::kAuto : v == "off" ? 1 : std::stoi(v);
+      }
     }
-    return run(args[1], std::stoi(args[2]), repeat, smooth);
+    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate);
   }
-  std::fprintf(stderr, "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth]\n");
+  std::fprintf(stderr,
+               "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth] "
+               "[--interpolate auto|off|N]\n");
   return 2;
 }
