@@ -6,7 +6,9 @@
 //  - every label L present on A or B has a signed distance field on each plane where it is
 //    present: the exact Euclidean distance (negative inside, in 1/16 of the smaller pixel
 //    spacing) to the points where the contours cross the grid edges between L and other
-//    labels (edge_crossings.h), so the field keeps the contours' sub-pixel positions;
+//    labels (edge_crossings.h), so the field keeps the contours' sub-pixel positions; within
+//    two pixels of the boundary, to the segments joining those points cell by cell (marching
+//    squares), where the points alone would leave a pattern of stripes;
 //  - value(L) = (1-t) dA(x) + t dB(x). When L's regions on A and B share no pixel (a vessel
 //    that moved further than its width) both fields are sampled along L's centroid shift
 //    (x - t*shift on A, x + (1-t)*shift on B), so L moves instead of vanishing midway;
@@ -60,6 +62,7 @@ Result<DistanceWeights> distanceWeights(const Grid& grid);
 inline constexpr int kTileSize = 16;
 inline constexpr int kWindowMargin = 4;
 inline constexpr std::int32_t kFarAway = 1 << 28;
+inline constexpr int kRefineBand = 2;  // pixels from the boundary where segments refine distances
 
 // Pairs of planes [firstPlane, firstPlane + planes) of the volume: the distance fields of those
 // planes, each pair's entries and their tile lists.

@@ -297,25 +297,24 @@ double clearanceCrossing(const Grid& grid, std::span<const std::uint16_t> cleara
   return a + b > 0 ? a / (a + b) : 0.5;
 }
 
-// Fitted vertices go to their contour crossing and stay; on interpolated volumes the other
-// edge vertices start where the interpolated labels change.
+// Fitted vertices go to their contour crossing, or on interpolated volumes to where the
+// interpolated labels change along their edge, and stay: the surface between the contour
+// planes is then the interpolated shape itself, which relaxation inside each vertex's simplex
+// could only roughen on the finer grid (an orange-peel texture in the previews).
 void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, std::span<const std::uint16_t> clearance,
                          Adjacency& adj, double sliceTolerance, int threads) {
   std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, sliceTolerance, threads)
                                    : std::vector<double>(mesh.vertexCount(), -1.0);
-  std::vector<char> fromField(mesh.vertexCount(), 0);
   if (clearance.size() == grid.voxelCount())
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
-      if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]), fromField[v] = t[v] >= 0;
+      if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]);
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
     if (t[v] < 0) continue;
     const Carrier c = carrierOfKey(mesh.keys[v]);
     const double tc = std::clamp(t[v], kMargin, 1 - kMargin);
     const Vec3 a = cornerPosition(grid, c.corners[0]), b = cornerPosition(grid, c.corners[1]);
     for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
-    // Contour crossings stay; field crossings are only where relaxation starts (pinning them
-    // measured no better on the sphere and worse on the grid sweep at 1 mm pixels).
-    if (!fromField[v]) adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
+    adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
   }
 }
 

@@ -27,8 +27,8 @@ struct SmoothingReport {
 // inside the lattice simplex it was the barycentre of, so the surfaces never cross (see
 // smoothing.cpp). Deterministic for any thread count (0 = all). With a clearance per voxel
 // of the grid (interpolated volumes, geometry/interpolated_volume.h), every vertex on a grid
-// edge that no contour fixes starts where the interpolated labels change along that edge
-// (needs options.contourFit, like contour fitting).
+// edge that no contour fixes goes where the interpolated labels change along that edge and
+// stays there, like a contour-fitted one (needs options.contourFit); the others relax.
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
                            const SmoothingOptions& options, int threads = 0,
                            double sliceTolerance = kDefaultSliceTolerance, std::span<const std::uint16_t> clearance = {});

@@ -161,9 +161,11 @@ ContourSet abuttingContours(double radius, int slices, double sliceSpacing) {
   return set;
 }
 
-ContourSet phantomContours() {
-  constexpr int kSlices = 40;
-  constexpr double kSpacing = 2.5;
+ContourSet phantomContours(double sliceSpacing) {
+  // 100 mm of slices from z = 0; at 2.5 mm the bundled example's 40.
+  const int kSlices = static_cast<int>(std::floor(99.0 / sliceSpacing + 1e-9)) + 1;
+  const double kSpacing = sliceSpacing;
+  constexpr double e = 1e-9;  // z ranges below hold their ends
   constexpr double kStep = 1.0;  // mm between contour points
   ContourSet set;
   set.source = "phantom";
@@ -183,7 +185,7 @@ ContourSet phantomContours() {
     body.slices.push_back(sliceOf(z, {ellipseContour({0, 0}, a, b, static_cast<int>(std::ceil(perimeter / 1.2)))}));
 
     // Prostate | rectum: one ellipsoid split by the plane x = -10, sharing the chord exactly.
-    if (k >= 9 && k <= 27) {
+    if (z >= 22.5 - e && z <= 67.5 + e) {
       const double t = (z - 45) / 27;
       const double r = 14 * std::sqrt(1 - t * t);
       auto [l, rr] = splitDisc({-10, 5}, r, kStep);
@@ -191,21 +193,21 @@ ContourSet phantomContours() {
       rectum.slices.push_back(sliceOf(z, {std::move(rr)}));
     }
     // Target nested in the prostate.
-    if (k >= 15 && k <= 21) target.slices.push_back(sliceOf(z, {circleContour({-18, 5}, 4, 28)}));
+    if (z >= 37.5 - e && z <= 52.5 + e) target.slices.push_back(sliceOf(z, {circleContour({-18, 5}, 4, 28)}));
 
     // Vessel: a trunk that splits into two diverging branches (a Y).
-    if (k < 20) {
+    if (z < 50 - e) {
       vessel.slices.push_back(sliceOf(z, {circleContour({30, -15}, 4, 28)}));
     } else {
-      const double offset = 3.5 + 0.2 * (k - 20);
+      const double offset = 3.5 + 0.08 * (z - 50);
       vessel.slices.push_back(
           sliceOf(z, {circleContour({30 - offset, -15}, 2.5, 20), circleContour({30 + offset, -15}, 2.5, 20)}));
     }
 
     // Vertebra: a solid disc at its ends, a ring (disc with a hole) in the middle.
-    if (k >= 4 && k <= 35) {
+    if (z >= 10 - e && z <= 87.5 + e) {
       std::vector<Contour> contours{circleContour({0, -26}, 7, 48)};
-      if (k >= 12 && k <= 28) contours.push_back(circleContour({0, -26}, 3, 24));
+      if (z >= 30 - e && z <= 70 + e) contours.push_back(circleContour({0, -26}, 3, 24));
       vertebra.slices.push_back(sliceOf(z, std::move(contours)));
     }
   }

@@ -38,7 +38,8 @@ ContourSet abuttingContours(double radius = 10, int slices = 6, double sliceSpac
 // The bundled demo: BODY (ellipse skin), abutting "prostate" and "rectum", "target" nested in
 // the prostate, a branching "vessel", and a "vertebra" that is ring-shaped on its middle
 // slices; 40 slices at 2.5 mm, about 1 mm between contour points, coordinates rounded to 0.01.
-ContourSet phantomContours();
+// Another slice spacing gives the same shapes cut over the same 100 mm.
+ContourSet phantomContours(double sliceSpacing = 2.5);
 
 // Rounds every coordinate to a multiple of step and drops points that became repeats.
 void roundCoordinates(ContourSet& contours, double step);
