@@ -128,9 +128,13 @@ Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, cons
 }
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked.
+// `factors` are the whole grid's (interpolationFactors): a layer's part of the grid gets the
+// factors of its own gaps, so every layer is interpolated alike.
 Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const ContourSet& contours, const Nesting& nesting,
-                                  const BuildOptions& options, StageClock& clock) {
-  const std::vector<int> factors = interpolationFactors(planes.grid, options.interpolation);
+                                  const BuildOptions& options, const Grid& grid, const std::vector<int>& gridFactors,
+                                  StageClock& clock) {
+  const auto first = std::find(grid.layerZ.begin(), grid.layerZ.end(), planes.grid.layerZ.front()) - grid.layerZ.begin();
+  const std::vector<int> factors(gridFactors.begin() + first, gridFactors.begin() + first + planes.grid.nz - 1);
   if (!interpolates(factors)) return surfacesOfVolume(impl, planes, &contours, nesting, options, clock);
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   const std::vector<std::uint16_t> crossings = planeEdgeCrossings(planes, contours, options.grid.sliceTolerance, options.threads);
@@ -207,6 +211,7 @@ Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, cons
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
 Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<FeatureRegion>& regions,
                          const BuildOptions& options, BuildResult& out, StageClock& clock) {
+  const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
   SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
   out.surfaces.convention = options.convention;
   out.surfaces.features.resize(contours.features.size());
@@ -216,7 +221,8 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces, surfacesOfPlanes(impl, volume, subset, out.nesting, options, clock));
+    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces,
+                              surfacesOfPlanes(impl, volume, subset, out.nesting, options, grid, factors, clock));
     appendLayer(out.surfaces, surfaces, out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -371,7 +377,8 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
       out.overlaps.layers = 1;
       SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, contours, out.nesting, options, clock));
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, contours, out.nesting, options, grid,
+                                                               interpolationFactors(grid, options.interpolation), clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);

@@ -12,8 +12,13 @@ int fieldAt(int index, int x, int y) {
   return fieldValues.values[f.offset + (x - f.x0) + f.w * (y - f.y0)];
 }
 
-// The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here).
-int entryValue(PairEntry e, int m, int n, int x, int y) {
+const int kFlatLidSlope = 256;
+
+// The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here); `wins`
+// false: it only counts as runner-up (a flat cap beyond its lid). As Sampler::value in
+// engine/geometry/interpolation_reference.cpp.
+int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
+  wins = true;
   if (e.fieldA >= 0 && e.fieldB >= 0) {
     const int sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
     const int a = fieldAt(e.fieldA, x - sx, y - sy), b = fieldAt(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
@@ -23,10 +28,26 @@ int entryValue(PairEntry e, int m, int n, int x, int y) {
   const int fromPlane = e.fieldA >= 0 ? m : n - m;
   const int d = fieldAt(field, x, y);
   if (d == kFarAway) return kFarAway;
-  if (push.roundCaps == 0u || e.flatCap != 0) return 2 * fromPlane <= n ? n * d : kFarAway;
+  if (push.roundCaps == 0u || e.flatCap != 0) {
+    wins = 2 * fromPlane <= n;
+    return max(n * d, kFlatLidSlope * (2 * fromPlane - n));
+  }
   const int erosion = capTable.erosion[n * 17 + fromPlane];
   if (erosion < 0) return kFarAway;
   return n * (d + ((fieldRadii.radii[field] * erosion) >> 12));
+}
+
+// Deep inside one label on both planes (see interpolation_plan.h): that label, no competition.
+bool deepInside(PairPlan pair, int x, int y, int first, int count) {
+  const uint a = planeLabel(pair.planeA, x, y), b = planeLabel(pair.planeA + 1, x, y);
+  if (a != b) return false;
+  for (int i = first; i < first + count; ++i) {
+    const PairEntry e = entryTable.entries[tileEntries.entries[i]];
+    if (uint(e.label) != a) continue;
+    if (e.fieldA < 0 || e.fieldB < 0) return false;
+    return abs(fieldAt(e.fieldA, x, y)) >= push.deep && abs(fieldAt(e.fieldB, x, y)) >= push.deep;
+  }
+  return false;
 }
 
 void main() {
@@ -35,20 +56,34 @@ void main() {
   const PairPlan pair = pairTable.pairs[push.pair];
   const int m = int(gl_GlobalInvocationID.z);
   const int tile = pair.tileStart + x / int(push.tileSize) + int(push.tilesX) * (y / int(push.tileSize));
-  const int first = tileRanges.ranges[2 * tile], count = tileRanges.ranges[2 * tile + 1];
-  int best = kFarAway, second = kFarAway, united = kFarAway, winner = 0;
+  const int first = tileRanges.ranges[2 * tile], flagged = tileRanges.ranges[2 * tile + 1];
+  const int count = flagged & ~kMovingTile;
+  const int slot = (pair.firstLayer + m) * int(push.nx * push.ny) + y * int(push.nx) + x;
+  if ((flagged & kMovingTile) == 0 && deepInside(pair, x, y, first, count)) {
+    outputLabels.labels[slot] = planeLabel(pair.planeA, x, y) | 0xFFFF0000u;
+    return;
+  }
+  int best = kFarAway, second = kFarAway, united = kFarAway, winner = 0, extruded = 0, extrudedLabel = 0;
   for (int i = first; i < first + count; ++i) {
     const PairEntry e = entryTable.entries[tileEntries.entries[i]];
     if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
-    const int v = entryValue(e, m, pair.factor, x, y);
+    bool wins;
+    const int v = entryValue(e, m, pair.factor, x, y, wins);
     if (e.label == 0) united = v;
-    else if (v < best) second = best, best = v, winner = e.label;
+    else if (wins && v < best) second = best, best = v, winner = e.label;
     else if (v < second) second = v;
+    const bool flatCapped = (e.fieldA < 0 || e.fieldB < 0) && (push.roundCaps == 0u || e.flatCap != 0);
+    if (wins && v < 0 && flatCapped) extruded = v, extrudedLabel = e.label;
+  }
+  if (extrudedLabel != 0) {  // a flat cap keeps its plane's region up to its lid
+    const uint c = uint(min((-extruded + pair.factor / 2) / pair.factor, 65535));
+    outputLabels.labels[slot] = uint(extrudedLabel) | (c << 16);
+    return;
   }
   const int level = min(best, united);
   const bool labelled = winner != 0 && level < 0;
   const int clearance = labelled ? min(second - best, -level) : level;
   const uint c = uint(min((clearance + pair.factor / 2) / pair.factor, 65535));
   const uint label = labelled ? uint(winner) : 0u;
-  outputLabels.labels[(pair.firstLayer + m) * int(push.nx * push.ny) + y * int(push.nx) + x] = label | (c << 16);
+  outputLabels.labels[slot] = label | (c << 16);
 }

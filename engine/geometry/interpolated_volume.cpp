@@ -7,10 +7,18 @@
 namespace scansurf {
 namespace {
 
-// A slab from layer `first` as long as its plan stays within the budget (two layers at least).
+// A slab from layer `first` as long as its plan stays within the budget (two layers at least):
+// as many planes as the estimate lets in, fewer if the plan turns out larger.
 InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census, int first, const std::vector<int>& factors,
                            std::size_t slabBytes) {
-  int planes = volume.grid.nz - first;
+  int planes = 0;
+  std::size_t estimate = 0;
+  while (first + planes < volume.grid.nz) {
+    const int k = first + planes;
+    estimate += estimatePlaneBytes(volume, census, k, k < volume.grid.nz - 1 ? factors[static_cast<std::size_t>(k)] : 1);
+    if (planes >= 2 && estimate > slabBytes) break;
+    ++planes;
+  }
   for (;;) {
     InterpolationSlab slab = planInterpolationSlab(volume, census, first, planes, factors);
     const std::size_t bytes = slab.deviceBytes(volume.grid);

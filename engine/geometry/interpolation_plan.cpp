@@ -79,6 +79,11 @@ Result<DistanceWeights> distanceWeights(const Grid& grid) {
                                               " are too elongated for exact distances; use --interpolate off");
 }
 
+std::int32_t deepDistance(const Grid& grid) {
+  const double ratio = std::max(grid.spacingX, grid.spacingY) / std::min(grid.spacingX, grid.spacingY);
+  return static_cast<std::int32_t>(32 * std::ceil(ratio - 1e-9));
+}
+
 std::size_t InterpolationSlab::deviceBytes(const Grid& grid) const {
   const std::size_t plane = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
   return plane * static_cast<std::size_t>(planes) * sizeof(Label) + (fieldValues + scratchInts + fields.size()) * 4 +
@@ -265,8 +270,12 @@ class SlabPlanner {
           lists[static_cast<std::size_t>(tx + slab_.tilesX * ty)].push_back(static_cast<std::int32_t>(i));
     }
     for (const auto& list : lists) {
+      const bool moving = std::any_of(list.begin(), list.end(), [&](std::int32_t i) {
+        const shared::PairEntry& e = slab_.entries[static_cast<std::size_t>(i)];
+        return e.shiftX != 0 || e.shiftY != 0;
+      });
       slab_.tileRanges.push_back(static_cast<std::int32_t>(slab_.tileEntries.size()));
-      slab_.tileRanges.push_back(static_cast<std::int32_t>(list.size()));
+      slab_.tileRanges.push_back(static_cast<std::int32_t>(list.size()) | (moving ? kMovingTile : 0));
       slab_.tileEntries.insert(slab_.tileEntries.end(), list.begin(), list.end());
     }
   }
@@ -280,6 +289,18 @@ class SlabPlanner {
 };
 
 }  // namespace
+
+std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& census, int k, int factor) {
+  const Grid& g = volume.grid;
+  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  std::size_t bytes = plane * (sizeof(Label) + sizeof(std::uint16_t)) + plane * static_cast<std::size_t>(factor + 1) * 4;
+  for (const LabelCensus& c : census[static_cast<std::size_t>(k)]) {
+    const Box b = fieldWindow(g, census, k, c.label);
+    const std::size_t w = static_cast<std::size_t>(b.x1 - b.x0 + 1), h = static_cast<std::size_t>(b.y1 - b.y0 + 1);
+    bytes += (8 * w * h + w + h) * 4 + 64;  // values and scratch, plus entries and tiles
+  }
+  return bytes;
+}
 
 PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads) {
   PlaneCensus census(static_cast<std::size_t>(std::max(0, volume.grid.nz)));

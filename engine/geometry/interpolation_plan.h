@@ -12,10 +12,16 @@
 //  - value(L) = (1-t) dA(x) + t dB(x). When L's regions on A and B share no pixel (a vessel
 //    that moved further than its width) both fields are sampled along L's centroid shift
 //    (x - t*shift on A, x + (1-t)*shift on B), so L moves instead of vanishing midway;
-//  - where L is on one plane only, it closes with a cap (CapShape): flat keeps dA for
-//    t <= 1/2; round erodes it by R (1 - sqrt(1 - (2t)^2)) for t < 1/2, R being L's largest
+//  - where L is on one plane only, it closes with a cap (CapShape): flat keeps its region
+//    on that plane up to half the gap, taking those voxels from any label that goes on (an
+//    extrusion and a lid, as planning systems count volume; beyond the lid L only counts as
+//    runner-up, for the lid's clearance); round erodes it by R (1 - sqrt(1 - (2t)^2)) for t < 1/2, R being L's largest
 //    depth on that plane, so the region shrinks to nothing at half the gap;
 //  - the union of all features gets a value of its own the same way;
+//  - a voxel with one label on both planes, at least deepDistance from that label's boundary
+//    on both and in no tile of a shifting label, keeps that label without the competition
+//    below (it would win it: every field is 1-Lipschitz), with the largest clearance (no
+//    surface vertex comes within two pixels of it);
 //  - the voxel takes the label of smallest value (ties: the smaller label) if that value or
 //    the union's is negative, else background. Its clearance is how far its value is from
 //    losing the label (to the runner-up label or to the background), which places the surface
@@ -27,6 +33,7 @@
 #pragma once
 
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -63,6 +70,11 @@ inline constexpr int kTileSize = 16;
 inline constexpr int kWindowMargin = 4;
 inline constexpr std::int32_t kFarAway = 1 << 28;
 inline constexpr int kRefineBand = 2;  // pixels from the boundary where segments refine distances
+inline constexpr std::int32_t kMovingTile = 1 << 30;  // tile flag: a label that shifts (in its count)
+
+// Two pixels of the larger spacing in 1/16 of the smaller: how far from its label's boundary a
+// voxel must be to skip the competition.
+std::int32_t deepDistance(const Grid& grid);
 
 // Pairs of planes [firstPlane, firstPlane + planes) of the volume: the distance fields of those
 // planes, each pair's entries and their tile lists.
@@ -74,7 +86,7 @@ struct InterpolationSlab {
   std::vector<shared::DistanceField> fields;
   std::vector<shared::PairEntry> entries;
   std::vector<shared::PairPlan> pairs;
-  std::vector<std::int32_t> tileRanges;  // {first, count} per tile of every pair
+  std::vector<std::int32_t> tileRanges;  // {first, count | kMovingTile?} per tile of every pair
   std::vector<std::int32_t> tileEntries;
   std::size_t fieldValues = 0;  // ints of the field buffer
   std::size_t scratchInts = 0;  // ints of the scratch buffer
@@ -90,13 +102,22 @@ struct LabelCensus {
 using PlaneCensus = std::vector<std::vector<LabelCensus>>;  // per layer, by label (union first)
 PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads);
 
+// About what plane k adds to a slab's device memory (its fields, labels and output layers).
+std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& census, int k, int factor);
+
 InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
                                         const std::vector<int>& factors);
 
 // Round caps: the erosion at layer m of n counted from the plane where the label is, in
 // 1/4096 of its largest depth; -1 when the cap has closed (t >= 1/2).
 std::int32_t roundCapErosion(int factor, int m);
-// Flat caps: whether the label is still there at layer m of n counted from its plane.
+// Flat caps: whether the label may still win at layer m of n counted from its plane, and its
+// value there: its plane's distance, but at least a ramp through zero at half the gap, so that
+// the lid's clearance puts it at half the gap, whatever the depth below it.
 inline bool flatCapOpen(int factor, int m) { return 2 * m <= factor; }
+inline constexpr std::int32_t kFlatLidSlope = 256;  // 16 pixels per unit of 2m - n
+inline std::int32_t flatCapValue(std::int32_t d, int factor, int m) {
+  return std::max(factor * d, kFlatLidSlope * (2 * m - factor));
+}
 
 }  // namespace scansurf

@@ -118,9 +118,11 @@ void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>&
 }
 
 struct Sampler {
+  const LabelVolume& volume;
   const InterpolationSlab& slab;
   const SlabFields& fields;
   CapShape caps;
+  std::int32_t deep;
 
   std::int32_t at(int field, int x, int y) const {
     const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(field)];
@@ -129,8 +131,10 @@ struct Sampler {
                          static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
   }
 
-  // The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here).
-  std::int32_t value(const shared::PairEntry& e, int m, int n, int x, int y) const {
+  // The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here); `wins`
+  // false: it only counts as runner-up (a flat cap beyond its lid).
+  std::int32_t value(const shared::PairEntry& e, int m, int n, int x, int y, bool& wins) const {
+    wins = true;
     if (e.fieldA >= 0 && e.fieldB >= 0) {
       const std::int32_t sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
       const std::int32_t a = at(e.fieldA, x - sx, y - sy), b = at(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
@@ -140,26 +144,56 @@ struct Sampler {
     const int fromPlane = e.fieldA >= 0 ? m : n - m;
     const std::int32_t d = at(field, x, y);
     if (d == kFarAway) return kFarAway;
-    if (caps == CapShape::Flat || e.flatCap != 0) return flatCapOpen(n, fromPlane) ? n * d : kFarAway;
+    if (caps == CapShape::Flat || e.flatCap != 0) {
+      wins = flatCapOpen(n, fromPlane);
+      return flatCapValue(d, n, fromPlane);
+    }
     const std::int32_t erosion = roundCapErosion(n, fromPlane);
     if (erosion < 0) return kFarAway;
     return n * (d + ((fields.radii[static_cast<std::size_t>(field)] * erosion) >> 12));
+  }
+
+  // A label that ends here with a flat cap (present on one plane only).
+  bool flatCapped(const shared::PairEntry& e) const {
+    return (e.fieldA < 0 || e.fieldB < 0) && (caps == CapShape::Flat || e.flatCap != 0);
+  }
+
+  // Whether the voxel lies deep inside one label on both planes (see interpolation_plan.h).
+  bool deepInside(const shared::PairPlan& pair, int x, int y, std::int32_t first, std::int32_t count) const {
+    const Label a = volume.at(x, y, slab.firstPlane + pair.planeA), b = volume.at(x, y, slab.firstPlane + pair.planeA + 1);
+    if (a != b) return false;
+    for (std::int32_t i = first; i < first + count; ++i) {
+      const shared::PairEntry& e = slab.entries[static_cast<std::size_t>(slab.tileEntries[static_cast<std::size_t>(i)])];
+      if (e.label != a) continue;
+      if (e.fieldA < 0 || e.fieldB < 0) return false;
+      return std::abs(at(e.fieldA, x, y)) >= deep && std::abs(at(e.fieldB, x, y)) >= deep;
+    }
+    return false;
   }
 
   // The label | clearance << 16 word of the voxel (as interpolate.comp writes it).
   std::uint32_t word(const shared::PairPlan& pair, int m, int x, int y) const {
     const int tile = x / kTileSize + slab.tilesX * (y / kTileSize);
     const std::int32_t first = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile)];
-    const std::int32_t count = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile) + 1];
-    std::int32_t best = kFarAway, second = kFarAway, united = kFarAway;
-    Label winner = kBackground;
+    const std::int32_t flagged = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile) + 1];
+    const std::int32_t count = flagged & ~kMovingTile;
+    if (!(flagged & kMovingTile) && deepInside(pair, x, y, first, count))
+      return volume.at(x, y, slab.firstPlane + pair.planeA) | 0xFFFF0000u;
+    std::int32_t best = kFarAway, second = kFarAway, united = kFarAway, extruded = 0;
+    Label winner = kBackground, extrudedLabel = kBackground;
     for (std::int32_t i = first; i < first + count; ++i) {
       const shared::PairEntry& e = slab.entries[static_cast<std::size_t>(slab.tileEntries[static_cast<std::size_t>(i)])];
       if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
-      const std::int32_t v = value(e, m, pair.factor, x, y);
+      bool wins = true;
+      const std::int32_t v = value(e, m, pair.factor, x, y, wins);
       if (e.label == kBackground) united = v;
-      else if (v < best) second = best, best = v, winner = static_cast<Label>(e.label);
+      else if (wins && v < best) second = best, best = v, winner = static_cast<Label>(e.label);
       else if (v < second) second = v;
+      if (wins && v < 0 && flatCapped(e)) extruded = v, extrudedLabel = static_cast<Label>(e.label);
+    }
+    if (extrudedLabel != kBackground) {  // a flat cap keeps its plane's region up to its lid
+      const auto c = static_cast<std::uint32_t>(std::min((-extruded + pair.factor / 2) / pair.factor, 65535));
+      return extrudedLabel | (c << 16);
     }
     const std::int32_t level = std::min(best, united);
     const bool labelled = winner != kBackground && level < 0;
@@ -220,7 +254,7 @@ std::vector<std::uint32_t> interpolateSlabReference(const LabelVolume& volume, c
                                                     const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps) {
   const Grid& g = volume.grid;
   const SlabFields fields = distanceFieldsReference(volume, crossings, slab, weights);
-  const Sampler sampler{slab, fields, caps};
+  const Sampler sampler{volume, slab, fields, caps, deepDistance(g)};
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   std::vector<std::uint32_t> out(plane * static_cast<std::size_t>(slab.outputLayers));
   for (const shared::PairPlan& pair : slab.pairs)

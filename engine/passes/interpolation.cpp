@@ -195,7 +195,8 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx), static_cast<std::uint32_t>(g.ny),
                                static_cast<std::uint32_t>(slab.fields.size()), 0, weights.x, weights.y, weights.fixedScale,
                                caps == CapShape::Round ? 1u : 0u, static_cast<std::uint32_t>(kTileSize),
-                               static_cast<std::uint32_t>(slab.tilesX), weights.unit, farDistance(g, weights)};
+                               static_cast<std::uint32_t>(slab.tilesX), weights.unit, farDistance(g, weights),
+                               deepDistance(g)};
   std::uint32_t longest = 0, widest = 0;
   for (const shared::DistanceField& f : slab.fields)
     longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}), widest = std::max(widest, static_cast<std::uint32_t>(f.w));

@@ -19,6 +19,7 @@ layout(std430, binding = 10) readonly buffer CapTable { int erosion[]; } capTabl
 layout(std430, binding = 11) readonly buffer Crossings { uint words[]; } crossings;
 
 const int kFarAway = 1 << 28;
+const int kMovingTile = 1 << 30;  // in a tile's count: a label there shifts
 const int kIntMin = -2147483647 - 1;
 const int kIntMax = 2147483647;
 

@@ -62,8 +62,9 @@ struct InterpolatePush {
   std::uint32_t tileSize, tilesX;
   std::int32_t unit;  // distances in 1/unit pixel
   std::int32_t far;   // farther than any distance on the grid
+  std::int32_t deep;  // deepDistance (geometry/interpolation_plan.h)
 };
-static_assert(sizeof(InterpolatePush) == 48, "InterpolatePush must match the GLSL block");
+static_assert(sizeof(InterpolatePush) == 52, "InterpolatePush must match the GLSL block");
 }  // namespace scansurf::shared
 #undef SCANSURF_STRUCT
 #else
@@ -82,6 +83,7 @@ layout(push_constant) uniform InterpolatePush {
   uint tilesX;
   int unit;
   int far;
+  int deep;
 } push;
 #endif
 
