@@ -67,7 +67,7 @@ struct Flags {
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
-  std::string interpolate = "auto", caps = "flat";
+  std::string interpolate = "auto", caps = "round";
 };
 
 void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
@@ -140,9 +140,9 @@ void addInterpolation(CLI::App& app, Flags& f) {
           "auto|off|N"))
       ->capture_default_str();
   app.add_option("--caps", f.caps,
-                 "how a structure closes beyond its first and last contour (with interpolation): flat (a lid half a "
-                 "slice out, the volume planning systems give) or round (a dome half a slice high)")
-      ->check(CLI::IsMember({"flat", "round"}))
+                 "how a structure closes beyond its first and last contour (with interpolation): round (a dome half a "
+                 "slice high) or flat (its last contour extruded half a slice, the volume planning systems give)")
+      ->check(CLI::IsMember({"round", "flat"}))
       ->capture_default_str();
 }
 

@@ -295,12 +295,15 @@ TEST_F(InterpolatedShapesTest, FeaturesEndingTogetherKeepTheirShape) {
     set.features[1].slices.push_back({2.0 * k, {circleContour({5.0 + 0.5 * k, 0}, 3)}});
   }
   const BuildResult off = build(set, 0.5, 1), on = build(set, 0.5);
+  const BuildResult flat = build(set, 0.5, InterpolationOptions::kAuto, true, CapShape::Flat);
   ASSERT_TRUE(on.interpolation.used());
   expectTopology(on, 0, 1, 0);
   expectTopology(on, 1, 1, 0);
+  expectTopology(flat, 1, 1, 0);
   // The contours' own volume: a 3 mm circle extruded over six 2 mm slices (off: -2.6 %).
   const double contour = std::numbers::pi * 9 * 12;
   EXPECT_NEAR(stats(on, 1).volume, contour, 0.02 * contour);
+  EXPECT_NEAR(stats(flat, 1).volume, contour, 0.02 * contour);
   EXPECT_NEAR(stats(off, 1).volume, contour, 0.04 * contour);
 }
 
@@ -473,11 +476,11 @@ TEST_F(InterpolatedShapesTest, FinerGridsNeverIncreaseTheSphereError) {
   const Distance sphere = [=](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - r; };
   const ContourSet set = sphereContours(r, 2.0);
   double previous = 1e300;
-  for (double pixel : {1.0, 0.5, 0.25}) {
+  for (double pixel : {1.0, 0.5, 0.25, 0.0}) {  // 0: the default grid, 256 pixels across (0.17 mm)
     const BuildResult on = build(set, pixel), off = build(set, pixel, 1);
     const Accuracy a = accuracy(off, sphere), b = accuracy(on, sphere);
-    std::printf("[ figure   ] sphere r20, 2 mm slices, %.2f mm pixels: mean %.3f max %.3f mm (off: %.3f / %.3f)\n", pixel, b.mean,
-                b.max, a.mean, a.max);
+    std::printf("[ figure   ] sphere r20, 2 mm slices, %.3f mm pixels: mean %.3f max %.3f mm (off: %.3f / %.3f)\n",
+                on.volume.grid.spacingX, b.mean, b.max, a.mean, a.max);
     EXPECT_LE(b.mean, previous * 1.02);
     previous = b.mean;
   }

@@ -75,7 +75,7 @@ struct InterpolationSummary {
   int planeLayers = 0;    // layers of the grid (contour planes and padding)
   int surfacedLayers = 0;  // layers of the volume that was surfaced: planeLayers when off
   int minFactor = 1, maxFactor = 1;  // layers per gap, the gaps' smallest and largest
-  CapShape caps = CapShape::Flat;
+  CapShape caps = CapShape::Round;
   bool used() const { return surfacedLayers > planeLayers; }
 };
 

@@ -28,10 +28,11 @@ struct InterpolationOptions {
   static constexpr int kMaxFactor = 16;
   static constexpr int kAutoMinimum = 3;
   std::uint64_t autoVoxelLimit = std::uint64_t{96} << 20;
-  // Flat by default: a structure then keeps the volume planning systems give it (its contours'
-  // areas times the slice spacing); round domes are closer at the poles of round shapes and
-  // enclose less (the phantom's 7-slice target: 6.9 % less).
-  CapShape caps = CapShape::Flat;
+  // Round by default: closer to round shapes at their poles (a 40 mm sphere in 2 mm slices:
+  // 0.041 mm mean distance against 0.059 mm flat). Flat keeps the volume planning systems give
+  // a structure (its contours' areas times the slice spacing); round encloses a little less
+  // (the phantom's 7-slice target: 5 % less).
+  CapShape caps = CapShape::Round;
 };
 
 }  // namespace scansurf
