@@ -130,18 +130,21 @@ Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, cons
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked.
 // `factors` are the whole grid's (interpolationFactors): a layer's part of the grid gets the
 // factors of its own gaps, so every layer is interpolated alike.
-Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const ContourSet& contours, const Nesting& nesting,
+Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const ContourSet* contours, const Nesting& nesting,
                                   const BuildOptions& options, const Grid& grid, const std::vector<int>& gridFactors,
                                   StageClock& clock) {
   const auto first = std::find(grid.layerZ.begin(), grid.layerZ.end(), planes.grid.layerZ.front()) - grid.layerZ.begin();
   const std::vector<int> factors(gridFactors.begin() + first, gridFactors.begin() + first + planes.grid.nz - 1);
-  if (!interpolates(factors)) return surfacesOfVolume(impl, planes, &contours, nesting, options, clock);
+  if (!interpolates(factors)) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
-  const std::vector<std::uint16_t> crossings = planeEdgeCrossings(planes, contours, options.grid.sliceTolerance, options.threads);
+  // Without the contours, every boundary crosses its grid edge in the middle.
+  const std::vector<std::uint16_t> crossings =
+      contours ? planeEdgeCrossings(planes, *contours, options.grid.sliceTolerance, options.threads)
+               : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   SCANSURF_ASSIGN_OR_RETURN(InterpolatedVolume fine,
                             interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads));
   clock.lap("interpolation");
-  return surfacesOfVolume(impl, fine.volume, &contours, nesting, options, clock, fine.clearance);
+  return surfacesOfVolume(impl, fine.volume, contours, nesting, options, clock, fine.clearance);
 }
 
 InterpolationSummary summarizeInterpolation(const Grid& grid, const InterpolationOptions& options) {
@@ -222,7 +225,7 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
     clock.lap("scan conversion");
     SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces,
-                              surfacesOfPlanes(impl, volume, subset, out.nesting, options, grid, factors, clock));
+                              surfacesOfPlanes(impl, volume, &subset, out.nesting, options, grid, factors, clock));
     appendLayer(out.surfaces, surfaces, out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -337,7 +340,13 @@ Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nestin
 
 Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  return extractFrom(*impl_, volume, nesting, options, contours);
+  return guarded("surface extraction on " + describeGrid(volume.grid), [&]() -> Result<Surfaces> {
+    SCANSURF_TRY(checkNesting(nesting));
+    std::vector<StageTime> timings;
+    StageClock clock(timings, options);
+    return surfacesOfPlanes(*impl_, volume, contours, nesting, options, volume.grid,
+                            interpolationFactors(volume.grid, options.interpolation), clock);
+  });
 }
 
 Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
@@ -377,7 +386,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
       out.overlaps.layers = 1;
       SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, contours, out.nesting, options, grid,
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, &contours, out.nesting, options, grid,
                                                                interpolationFactors(grid, options.interpolation), clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);

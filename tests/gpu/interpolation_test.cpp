@@ -488,3 +488,30 @@ TEST_F(InterpolatedShapesTest, FinerGridsNeverIncreaseTheSphereError) {
 
 }  // namespace
 }  // namespace scansurf::test
+
+namespace scansurf::test {
+namespace {
+
+// The stage calls interpolate as build() does (nothing partly overlaps here).
+TEST_F(InterpolatedShapesTest, StageCallsGiveBuildsSurfaces) {
+  const ContourSet set = yBranchContours(6, 5, 3, 2.0);
+  BuildOptions options;
+  options.grid.voxelSize = 0.5;
+  options.interpolation.factor = InterpolationOptions::kAuto;
+  options.smoothing.enabled = true;
+  auto built = engine_->build(set, options);
+  ASSERT_TRUE(built) << built.error().message;
+  ASSERT_TRUE(built->interpolation.used());
+  const Nesting nesting = computeNesting(set, options.grid.sliceTolerance);
+  auto grid = makeGrid(set, options.grid);
+  ASSERT_TRUE(grid);
+  auto volume = engine_->scanConvert(set, nesting, *grid, options);
+  ASSERT_TRUE(volume) << volume.error().message;
+  auto surfaces = engine_->extract(*volume, nesting, options, &set);
+  ASSERT_TRUE(surfaces) << surfaces.error().message;
+  EXPECT_EQ(surfaces->mesh.positions, built->surfaces.mesh.positions);
+  EXPECT_EQ(surfaces->mesh.triangles, built->surfaces.mesh.triangles);
+}
+
+}  // namespace
+}  // namespace scansurf::test

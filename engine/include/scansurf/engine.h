@@ -122,7 +122,8 @@ class Engine {
   std::uint64_t validationMessageCount() const;
 
   // The whole method: nesting, grid, overlap analysis, then for each layer (one, or the single
-  // partition) scan conversion, classification, assembly, smoothing (when
+  // partition) scan conversion, interpolation (when options.interpolation says so),
+  // classification, assembly, smoothing (when
   // options.smoothing.enabled) and the feature surfaces. `contours` must be validated
   // (readContours does it). Coordinates and volumes in the contours' units.
   Result<BuildResult> build(const ContourSet& contours, const BuildOptions& options);
@@ -134,13 +135,16 @@ class Engine {
   // nesting.order. Label of feature i = i + 1; padding layers stay background.
   Result<LabelVolume> scanConvert(const ContourSet& contours, const Nesting& nesting, const Grid& grid,
                                   const BuildOptions& options);
-  // Stage 2: classification on the device, then assembly, smoothing (options.smoothing) and
-  // the feature surfaces on the CPU. nesting.parent.size() is the number of features.
-  // `contours` (the set scan converted into `volume`, or null) enables contour fitting.
+  // Stage 2: interpolation between the volume's layers (options.interpolation) and
+  // classification on the device, then assembly, smoothing (options.smoothing) and the
+  // feature surfaces on the CPU. nesting.parent.size() is the number of features. `contours`
+  // (the set scan converted into `volume`, or null) enables contour fitting and places the
+  // interpolated boundaries where the contours cross the grid (without: mid-edge).
   Result<Surfaces> extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                            const ContourSet* contours = nullptr);
   // Stage 2 from labels the application already holds in a VkBuffer on the adopted device
-  // (vulkan_interop.h): no readback, no upload. Same result as the host overload.
+  // (vulkan_interop.h): no readback, no upload. Same result as the host overload without
+  // interpolation (these labels are surfaced as they are).
   Result<Surfaces> extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                            const ContourSet* contours = nullptr);
 
