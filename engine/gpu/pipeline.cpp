@@ -141,4 +141,37 @@ Result<Owned<VkPipeline>> createRasterPipeline(const Context& ctx, const RasterP
   return Owned<VkPipeline>(pipeline, [d = ctx.device()](VkPipeline p) { vkDestroyPipeline(d, p, nullptr); });
 }
 
+Result<StorageBufferSet> createStorageBufferSet(const Context& ctx, VkDescriptorSetLayout layout, std::uint32_t count) {
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, count};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  SCANSURF_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+  StorageBufferSet out;
+  out.pool = Owned<VkDescriptorPool>(pool, [d = ctx.device()](VkDescriptorPool p) { vkDestroyDescriptorPool(d, p, nullptr); });
+  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  setInfo.descriptorPool = pool;
+  setInfo.descriptorSetCount = 1;
+  setInfo.pSetLayouts = &layout;
+  SCANSURF_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &setInfo, &out.set));
+  return out;
+}
+
+void bindStorageBuffers(const Context& ctx, VkDescriptorSet set, std::span<const VkBuffer> buffers) {
+  std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+  std::vector<VkWriteDescriptorSet> writes(buffers.size());
+  for (std::uint32_t i = 0; i < buffers.size(); ++i) {
+    infos[i] = {buffers[i], 0, VK_WHOLE_SIZE};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = set;
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(ctx.device(), static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
 }  // namespace scansurf::gpu

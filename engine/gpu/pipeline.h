@@ -18,6 +18,16 @@ Result<Owned<VkShaderModule>> createShaderModule(const Context& ctx, std::span<c
 Result<Owned<VkDescriptorSetLayout>> createStorageBufferSetLayout(const Context& ctx, std::uint32_t count,
                                                                   VkShaderStageFlags stages);
 
+// One descriptor set of `layout` (createStorageBufferSetLayout with `count` buffers) from a
+// pool of its own; the set lives as long as the pool.
+struct StorageBufferSet {
+  Owned<VkDescriptorPool> pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+};
+Result<StorageBufferSet> createStorageBufferSet(const Context& ctx, VkDescriptorSetLayout layout, std::uint32_t count);
+// Points binding i of `set` at the whole of buffers[i].
+void bindStorageBuffers(const Context& ctx, VkDescriptorSet set, std::span<const VkBuffer> buffers);
+
 Result<Owned<VkPipelineLayout>> createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
                                                      std::uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
 

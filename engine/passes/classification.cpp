@@ -46,19 +46,9 @@ Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) 
   const std::uint32_t spec[] = {kGroupX, kGroupY};
   SCANSURF_ASSIGN_OR_RETURN(s->pipeline, gpu::createComputePipeline(ctx, s->layout.get(), s->module.get(), spec));
 
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  SCANSURF_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
-  s->pool = gpu::Owned<VkDescriptorPool>(pool, [d = ctx.device()](VkDescriptorPool p) { vkDestroyDescriptorPool(d, p, nullptr); });
-  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  setInfo.descriptorPool = pool;
-  setInfo.descriptorSetCount = 1;
-  setInfo.pSetLayouts = &setLayout;
-  SCANSURF_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &setInfo, &s->set));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::StorageBufferSet set, gpu::createStorageBufferSet(ctx, setLayout, 3));
+  s->pool = std::move(set.pool);
+  s->set = set.set;
   return std::unique_ptr<Classifier>(new Classifier(std::move(s)));
 }
 
@@ -104,19 +94,8 @@ Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_
 
 void bindBuffers(const gpu::Context& ctx, VkDescriptorSet set, const gpu::Buffer& labels, const gpu::Buffer& counter,
                  const gpu::Buffer& cases) {
-  const VkDescriptorBufferInfo infos[3] = {{labels.handle(), 0, VK_WHOLE_SIZE},
-                                           {counter.handle(), 0, VK_WHOLE_SIZE},
-                                           {cases.handle(), 0, VK_WHOLE_SIZE}};
-  VkWriteDescriptorSet writes[3];
-  for (std::uint32_t b = 0; b < 3; ++b) {
-    writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[b].dstSet = set;
-    writes[b].dstBinding = b;
-    writes[b].descriptorCount = 1;
-    writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[b].pBufferInfo = &infos[b];
-  }
-  vkUpdateDescriptorSets(ctx.device(), 3, writes, 0, nullptr);
+  const VkBuffer buffers[3] = {labels.handle(), counter.handle(), cases.handle()};
+  gpu::bindStorageBuffers(ctx, set, buffers);
 }
 
 // Host labels: written straight into the mapped slab buffer before recording.

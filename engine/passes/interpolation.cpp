@@ -91,19 +91,9 @@ Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
   SCANSURF_ASSIGN_OR_RETURN(s.finish, gpu::createComputePipeline(ctx, s.layout.get(), s.finishModule.get(), lines));
   SCANSURF_ASSIGN_OR_RETURN(s.interpolate, gpu::createComputePipeline(ctx, s.layout.get(), s.interpolateModule.get(), pixels));
 
-  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  SCANSURF_VK_TRY(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
-  s.pool = gpu::Owned<VkDescriptorPool>(pool, [d = ctx.device()](VkDescriptorPool p) { vkDestroyDescriptorPool(d, p, nullptr); });
-  VkDescriptorSetAllocateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  setInfo.descriptorPool = pool;
-  setInfo.descriptorSetCount = 1;
-  setInfo.pSetLayouts = &setLayout;
-  SCANSURF_VK_TRY(vkAllocateDescriptorSets(ctx.device(), &setInfo, &s.set));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::StorageBufferSet set, gpu::createStorageBufferSet(ctx, setLayout, kBindings));
+  s.pool = std::move(set.pool);
+  s.set = set.set;
   return {};
 }
 
@@ -141,18 +131,9 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
 }
 
 void bindSlab(const gpu::Context& ctx, VkDescriptorSet set, const SlabBuffers& s) {
-  std::array<VkDescriptorBufferInfo, kBindings> infos{};
-  std::array<VkWriteDescriptorSet, kBindings> writes{};
-  for (std::uint32_t i = 0; i < kBindings; ++i) {
-    infos[i] = {s.buffers[i].handle(), 0, VK_WHOLE_SIZE};
-    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstSet = set;
-    writes[i].dstBinding = i;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &infos[i];
-  }
-  vkUpdateDescriptorSets(ctx.device(), kBindings, writes.data(), 0, nullptr);
+  std::array<VkBuffer, kBindings> buffers{};
+  for (std::uint32_t i = 0; i < kBindings; ++i) buffers[i] = s.buffers[i].handle();
+  gpu::bindStorageBuffers(ctx, set, buffers);
 }
 
 void computeBarrier(VkCommandBuffer cmd) {
