@@ -30,6 +30,7 @@
 #include "scansurf/nesting.h"
 #include "scansurf/overlaps.h"
 #include "scansurf/preview.h"
+#include "scansurf/remesh.h"
 #include "scansurf/result.h"
 #include "scansurf/smoothing.h"
 #include "scansurf/surfaces.h"
@@ -63,6 +64,8 @@ struct BuildOptions {
   std::uint64_t memoryLimit = 0;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
+  // Isotropic remeshing after smoothing (stage "remeshing"); off unless enabled.
+  RemeshOptions remeshing;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
 };
