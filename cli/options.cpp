@@ -63,6 +63,7 @@ struct Flags {
   std::string convention = "enclosing";
   std::string overlaps = "layers";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
+  bool remesh = true;
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
@@ -116,6 +117,15 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
       ->capture_default_str();
   app.add_flag("--no-contour-fit", f.noContourFit, "do not place contour-plane vertices on the original contours");
   app.add_flag("--no-junction-smoothing", f.noJunctions, "keep vertices where three or more structures meet in place");
+}
+
+void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
+  app.add_flag("--remesh,!--no-remesh", f.remesh,
+               "remesh the smoothed surfaces into well-shaped triangles of about --edge-length (default: on; "
+               "--no-remesh keeps the smoothed mesh)");
+  app.add_option("--edge-length", o.build.remeshing.edgeLength,
+                 "remeshing's target edge length, input units (default: the in-plane voxel size)")
+      ->check(numberIn(0, 1e9, true, "a positive, finite number"));
 }
 
 void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
@@ -175,6 +185,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.enabled = !f.noSmooth;
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
+  o.build.remeshing.enabled = f.remesh;
   o.scene.draco = !f.noDraco;
   o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
@@ -194,6 +205,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   Flags flags;
   addGeneral(app, parsed.options, flags);
   addSmoothing(app, parsed.options, flags);
+  addRemeshing(app, parsed.options, flags);
   addDicom(app, parsed.options, flags);
   addObjects(app, parsed.options);
   addOutputs(app, parsed.options, flags);
@@ -220,6 +232,8 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
           {"grid_ny", static_cast<double>(b.grid.ny)},
           {"threads", static_cast<double>(b.threads)},
           {"smoothing", b.smoothing.enabled},
+          {"remeshing", b.remeshing.enabled},
+          {"edge_length", b.remeshing.edgeLength},  // 0: the in-plane voxel size
           {"draco", o.scene.draco},
           {"draco_bits", static_cast<double>(d.quantizationBits)},  // 0: from draco_max_error
           {"draco_max_error", d.quantizationBits ? 0.0 : defaultQuantizationError(grid)},

@@ -36,6 +36,8 @@ using namespace remesh;
 constexpr double kSurfaceBound = 0.1;  // voxels: new triangles off the smoothed sheet
 constexpr double kPlaneBound = 0.05;   // voxels: new in-plane edges off the cross-section
 constexpr double kTurnCos = 0.5;       // least cosine between a triangle's normal before and after
+constexpr double kFitRelaxation = 1.5;  // over-relaxation of the centring passes (fit)
+constexpr int kFitPasses = 8;
 constexpr double kHigh = 4.0 / 3.0, kLow = 4.0 / 5.0;  // Botsch & Kobbelt's split and collapse bounds
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
@@ -73,6 +75,7 @@ class Remesher {
 
   void round();
   void relaxAll();
+  void fitAll();
   double edgeLength() const { return length_; }
   double maxDistance() const;
   void storeInto(MultiLabelMesh& mesh) { net_.storeInto(mesh); }
@@ -89,8 +92,9 @@ class Remesher {
   bool flip(std::uint32_t a, std::uint32_t b);
   bool relax(std::uint32_t v);
   bool relaxTo(std::uint32_t v, const Vec3& target);
+  bool fit(std::uint32_t v);
   // Checks the open change (added triangles from change_.firstAdded, their normals before in
-  // before_) around `touched`; commits it or undoes it.
+  // before_) around `touched` (none: the connectivity did not change); commits it or undoes it.
   bool settle(const std::vector<std::uint32_t>& touched);
   bool shapeHolds() const;
   bool nearSmoothed() const;
@@ -102,7 +106,7 @@ class Remesher {
   ReferenceSurface reference_;
   Change change_;
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
-  std::vector<std::uint32_t> scratch_, scratch2_, candidates_;
+  std::vector<std::uint32_t> scratch_, candidates_;
 };
 
 void Remesher::liveEdges(std::vector<Edge>& out) const {
@@ -131,21 +135,45 @@ bool Remesher::shapeHolds() const {
   return true;
 }
 
+// Edge midpoints whose geometry the change did not touch (an edge of a removed triangle of the
+// same pair, between unmoved vertices) passed when they were made; the others, every centroid
+// and every vertex (once per label pair) are looked up.
 bool Remesher::nearSmoothed() const {
   const double bound = kSurfaceBound * voxel_, planeBound = kPlaneBound * voxel_;
+  const auto changed = [&](std::uint32_t v) {
+    if (change_.addedVertex && v + 1 == net_.vertexCount()) return true;
+    for (const auto& m : change_.moved)
+      if (m.first == v) return true;
+    return false;
+  };
+  const auto oldEdge = [&](std::uint32_t a, std::uint32_t b, std::uint32_t pairOf) {
+    for (std::uint32_t t : change_.removed) {
+      const auto& c = net_.tris[t];
+      if (net_.pair[t] == pairOf && (c[0] == a || c[1] == a || c[2] == a) && (c[0] == b || c[1] == b || c[2] == b)) return true;
+    }
+    return false;
+  };
+  std::vector<std::array<std::uint32_t, 3>> done;  // (a, b, pair) of the edges looked up, a == b for vertices
+  const auto once = [&](std::uint32_t a, std::uint32_t b, std::uint32_t pairOf) {
+    const std::array<std::uint32_t, 3> key = {std::min(a, b), std::max(a, b), pairOf};
+    if (std::find(done.begin(), done.end(), key) != done.end()) return false;
+    done.push_back(key);
+    return true;
+  };
   for (std::uint32_t t = change_.firstAdded; t < net_.tris.size(); ++t) {
     const auto& c = net_.tris[t];
-    const Vec3 &p0 = net_.pos[c[0]], &p1 = net_.pos[c[1]], &p2 = net_.pos[c[2]];
     const FeatureKey sheet = sheetKey(net_.pair[t]);
-    const Vec3 samples[4] = {(1.0 / 3) * (p0 + p1 + p2), 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0)};
-    for (const Vec3& q : samples)
-      if (!reference_.within(q, sheet, bound)) return false;
+    if (!reference_.within((1.0 / 3) * (net_.pos[c[0]] + net_.pos[c[1]] + net_.pos[c[2]]), sheet, bound)) return false;
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = c[e], b = c[(e + 1) % 3];
+      const bool moved = changed(a) || changed(b);
+      if (once(a, a, net_.pair[t]) && !reference_.within(net_.pos[a], sheet, bound)) return false;
+      if ((!moved && oldEdge(a, b, net_.pair[t])) || !once(a, b, net_.pair[t])) continue;
+      if (!reference_.within(0.5 * (net_.pos[a] + net_.pos[b]), sheet, bound)) return false;
       if (net_.plane[a] < 0 || net_.plane[a] != net_.plane[b]) continue;
       const FeatureKey key = planeKey(net_.plane[a], net_.pair[t]);
-      for (double s : {0.25, 0.5, 0.75})
-        if (!reference_.within(net_.pos[a] + s * (net_.pos[b] - net_.pos[a]), key, planeBound)) return false;
+      for (double f : {0.25, 0.5, 0.75})
+        if (!reference_.within(net_.pos[a] + f * (net_.pos[b] - net_.pos[a]), key, planeBound)) return false;
     }
   }
   return true;
@@ -291,9 +319,7 @@ bool Remesher::relaxTo(std::uint32_t v, const Vec3& target) {
     net_.removeTriangle(t, change_);
     net_.addTriangle(c[0], c[1], c[2], net_.pair[t], change_);
   }
-  net_.neighbours(v, scratch2_);
-  scratch2_.push_back(v);
-  return settle(scratch2_);
+  return settle({});  // the same triangles: only the geometry can fail
 }
 
 // Tangential relaxation: toward the centroid of the neighbours along the sheet (curve and plane
@@ -330,6 +356,42 @@ bool Remesher::relax(std::uint32_t v) {
     if (q.found && relaxTo(v, q.point)) return true;
   }
   return false;
+}
+
+// Chords cut inside convex parts and outside concave ones, so a mesh with its vertices on the
+// smoothed surface encloses less volume than it (0.7 % against 0.37 % on a 10 mm sphere of
+// 1 mm triangles). A sheet vertex moves along its normal by the mean gap between its triangles
+// (centroid and edge midpoints) and the smoothed surface, which leaves the remeshed surface
+// centred on the smoothed one instead of inscribed.
+bool Remesher::fit(std::uint32_t v) {
+  if (net_.role[v] != Role::Sheet || net_.vtris[v].empty()) return false;
+  Vec3 n{0, 0, 0};
+  for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
+  const double nn = std::sqrt(dot(n, n));
+  if (nn == 0) return false;
+  n = (1 / nn) * n;
+  const FeatureKey key = sheetKey(net_.pair[net_.vtris[v][0]]);
+  double gap = 0;
+  int samples = 0;
+  for (std::uint32_t t : net_.vtris[v]) {
+    const auto& c = net_.tris[t];
+    const Vec3 &p0 = net_.pos[c[0]], &p1 = net_.pos[c[1]], &p2 = net_.pos[c[2]];
+    for (const Vec3& q : {(1.0 / 3) * (p0 + p1 + p2), 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0)}) {
+      const Nearest r = reference_.nearestNear(q, key, length_);
+      if (!r.found) return false;
+      gap += dot(r.point - q, n);
+      ++samples;
+    }
+  }
+  // Over-relaxed: the corners on contour planes and junction curves stay on the smoothed
+  // surface, so the vertices between them must make up for them.
+  gap *= kFitRelaxation / samples;
+  if (std::abs(gap) < 1e-3 * voxel_) return false;
+  return relaxTo(v, net_.pos[v] + gap * n);
+}
+
+void Remesher::fitAll() {
+  for (std::uint32_t v = 0; v < net_.vertexCount(); ++v) fit(v);
 }
 
 // ---------------------------------------------------------------- rounds
@@ -430,6 +492,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles);
   Remesher remesher(mesh, grid, contours, nesting, options, sliceTolerance);
   for (int i = 0; i < options.iterations; ++i) remesher.round();
+  for (int i = 0; i < kFitPasses; ++i) remesher.fitAll();
   report.edgeLength = remesher.edgeLength();
   report.maxDistance = remesher.maxDistance();
   remesher.storeInto(mesh);

@@ -178,7 +178,22 @@ bool inCone(const Point3& x, const std::array<Point3, 3>& t, int apex) {
   return orient2d(o, p, x, u, v) * s >= 0 && orient2d(o, x, q, u, v) * s >= 0;
 }
 
+// All of q's vertices other than those in `skip` (a bit per vertex) strictly on one side of
+// t's plane: then q meets t's plane at most in the skipped (shared) vertices.
+bool strictlyOneSide(const std::array<Point3, 3>& t, const std::array<Point3, 3>& q, int skip) {
+  int side = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (skip & (1 << i)) continue;
+    const int o = orient3d(t[0], t[1], t[2], q[i]);
+    if (o == 0 || (side != 0 && o != side)) return false;
+    side = o;
+  }
+  return true;
+}
+
 bool generalCross(const std::array<Point3, 3>& a, const std::array<Point3, 3>& b) {
+  // The usual early exit (Möller 1997): one triangle wholly on one side of the other's plane.
+  if (strictlyOneSide(a, b, 0) || strictlyOneSide(b, a, 0)) return false;
   for (int e = 0; e < 3; ++e)
     if (segmentMeetsTriangle(a[e], a[(e + 1) % 3], b) || segmentMeetsTriangle(b[e], b[(e + 1) % 3], a)) return true;
   return false;
@@ -218,6 +233,8 @@ bool trianglesCross(const std::array<std::uint32_t, 3>& ia, const std::array<Poi
   int va = 0;
   while (sharedA[va] < 0) ++va;
   const int vb = sharedA[va];
+  // Only the common vertex on the other's plane: they meet there alone.
+  if (strictlyOneSide(a, b, 1 << vb) || strictlyOneSide(b, a, 1 << va)) return false;
   if (segmentMeetsTriangle(a[(va + 1) % 3], a[(va + 2) % 3], b)) return true;
   if (segmentMeetsTriangle(b[(vb + 1) % 3], b[(vb + 2) % 3], a)) return true;
   for (int k = 1; k <= 2; ++k) {

@@ -116,20 +116,6 @@ void expectSoundSurfaces(const Built& b, const std::vector<int>& genus, const ch
               b.mesh.triangleCount(), r.pairsTested, r.crossings);
 }
 
-// Two thin bars (2.2 pixels across) one pixel apart, on five slices.
-ContourSet thinBars() {
-  ContourSet set;
-  set.source = "thin bars";
-  for (int f = 0; f < 2; ++f) {
-    Feature feature;
-    feature.name = f == 0 ? "a" : "b";
-    for (int k = 0; k < 5; ++k)
-      feature.slices.push_back({2.0 * k, {ellipseContour({0, f == 0 ? -1.6 : 1.6}, 10 - k, 1.1, 96)}});
-    set.features.push_back(feature);
-  }
-  return set;
-}
-
 void checkNeverCross(const ContourSet& set, double voxel, const std::vector<int>& genus) {
   Built b = buildCpu(set, voxel);
   ASSERT_EQ(b.mesh.keys.size(), b.mesh.vertexCount());
@@ -142,7 +128,7 @@ void checkNeverCross(const ContourSet& set, double voxel, const std::vector<int>
 TEST(Smoothing, NestedSpheresNeverCross) { checkNeverCross(nestedSpheresContours(), 1.0, {0, 0}); }
 TEST(Smoothing, AbuttingHalvesNeverCross) { checkNeverCross(abuttingContours(10, 6, 2.5), 0.5, {0, 0}); }
 TEST(Smoothing, BranchingVesselNeverCrosses) { checkNeverCross(yBranchContours(), 0.5, {0}); }
-TEST(Smoothing, ThinBarsOnePixelApartNeverCross) { checkNeverCross(thinBars(), 1.0, {0, 0}); }
+TEST(Smoothing, ThinBarsOnePixelApartNeverCross) { checkNeverCross(thinBarsContours(2.2), 1.0, {0, 0}); }
 TEST(Smoothing, PhantomNeverCrosses) {
   // Every junction kind: abutting organs, nesting, a branch, a hollow vertebra (genus 0 each,
   // the vertebra's two components: skin and cavity).
