@@ -79,7 +79,7 @@ void TriangleGrid::query(const Vec3& lo, const Vec3& hi, std::vector<std::uint32
     const auto it = cells_.find(key);
     if (it == cells_.end()) return;
     for (std::uint32_t t : it->second) {
-      if (t >= stamp_.size()) stamp_.resize(t + 1024, 0);
+      if (t >= stamp_.size()) stamp_.resize(std::max<std::size_t>(t + 1, 2 * stamp_.size()), 0);  // amortized
       if (stamp_[t] == round_) continue;
       stamp_[t] = round_;
       out.push_back(t);
