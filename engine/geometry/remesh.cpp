@@ -1,7 +1,8 @@
 // Isotropic remeshing of the separating-surface network (Botsch & Kobbelt, "A remeshing
 // approach to multiresolution modeling", SGP 2004): split edges longer than 4/3 L, collapse
 // those shorter than 4/5 L, flip toward Delaunay, relax tangentially and project back onto
-// the smoothed surface; a few rounds.
+// the smoothed surface; four rounds. Then a few passes move each sheet vertex along its normal
+// so that the remeshed surface is centred on the smoothed one rather than inscribed in it.
 //
 // The network is not a manifold: junction curves (edges of three or more triangles, or of two
 // triangles of different label pairs) and the cross-sections at the contour planes are
@@ -179,27 +180,41 @@ bool Remesher::nearSmoothed() const {
   return true;
 }
 
+// One broad-phase query for the whole change (its new triangles lie side by side), then each
+// new triangle against the candidates whose boxes touch its own, and against the other new ones.
 bool Remesher::crossesNothing() {
   const auto corners = [&](std::uint32_t t) {
     const auto& c = net_.tris[t];
     return std::array<Point3, 3>{point(net_.pos[c[0]]), point(net_.pos[c[1]]), point(net_.pos[c[2]])};
   };
   const auto end = static_cast<std::uint32_t>(net_.tris.size());
-  for (std::uint32_t t = change_.firstAdded; t < end; ++t) {
-    const auto a = corners(t);
-    Vec3 lo = net_.pos[net_.tris[t][0]], hi = lo;
+  if (change_.firstAdded == end) return true;
+  const auto boxOf = [&](const std::array<Point3, 3>& a, Vec3& lo, Vec3& hi) {
+    lo = hi = Vec3{a[0][0], a[0][1], a[0][2]};
     for (const Point3& p : a)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-    net_.grid.query(lo, hi, candidates_);
-    for (std::uint32_t u = t + 1; u < end; ++u) candidates_.push_back(u);  // the other new ones
-    for (std::uint32_t u : candidates_) {
-      if (u == t || !net_.alive[u] || (u >= change_.firstAdded && u < t)) continue;
+  };
+  Vec3 allLo, allHi, lo, hi;
+  boxOf(corners(change_.firstAdded), allLo, allHi);
+  for (std::uint32_t t = change_.firstAdded + 1; t < end; ++t) {
+    boxOf(corners(t), lo, hi);
+    for (int k = 0; k < 3; ++k) allLo[k] = std::min(allLo[k], lo[k]), allHi[k] = std::max(allHi[k], hi[k]);
+  }
+  net_.grid.query(allLo, allHi, candidates_);
+  for (std::uint32_t t = change_.firstAdded; t < end; ++t) {
+    if (!net_.alive[t]) continue;
+    const auto a = corners(t);
+    boxOf(a, lo, hi);
+    const auto test = [&](std::uint32_t u) {
       const auto b = corners(u);
-      bool apart = false;
-      for (int k = 0; k < 3 && !apart; ++k)
-        apart = std::max({b[0][k], b[1][k], b[2][k]}) < lo[k] || std::min({b[0][k], b[1][k], b[2][k]}) > hi[k];
-      if (!apart && trianglesCross(net_.tris[t], a, net_.tris[u], b)) return false;
-    }
+      for (int k = 0; k < 3; ++k)
+        if (std::max({b[0][k], b[1][k], b[2][k]}) < lo[k] || std::min({b[0][k], b[1][k], b[2][k]}) > hi[k]) return false;
+      return trianglesCross(net_.tris[t], a, net_.tris[u], b);
+    };
+    for (std::uint32_t u : candidates_)
+      if (net_.alive[u] && u < change_.firstAdded && test(u)) return false;
+    for (std::uint32_t u = t + 1; u < end; ++u)
+      if (net_.alive[u] && test(u)) return false;
   }
   return true;
 }

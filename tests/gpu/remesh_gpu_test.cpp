@@ -35,7 +35,8 @@ TEST_F(RemeshBuildTest, BuildRemeshesThePhantomAfterSmoothing) {
   const auto at = [&](const char* name) { return std::find(s.begin(), s.end(), name) - s.begin(); };
   EXPECT_EQ(std::count(s.begin(), s.end(), "remeshing"), 1);
   EXPECT_EQ(at("remeshing"), at("smoothing") + 1);
-  EXPECT_EQ(std::count(stages(*smooth).begin(), stages(*smooth).end(), "remeshing"), 0);
+  const std::vector<std::string> before = stages(*smooth);
+  EXPECT_EQ(std::count(before.begin(), before.end(), "remeshing"), 0);
   EXPECT_FALSE(smooth->surfaces.remeshing.ran);
 
   // The engine remeshes exactly as the CPU function does on the smoothed mesh.
