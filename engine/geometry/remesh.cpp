@@ -37,8 +37,10 @@ using namespace remesh;
 constexpr double kSurfaceBound = 0.1;  // voxels: new triangles off the smoothed sheet
 constexpr double kPlaneBound = 0.05;   // voxels: new in-plane edges off the cross-section
 constexpr double kTurnCos = 0.5;       // least cosine between a triangle's normal before and after
-constexpr double kFitRelaxation = 1.5;  // over-relaxation of the centring passes (fit)
-constexpr int kFitPasses = 8;
+// Centring passes (fit): moving one vertex by d moves its triangles' samples by d / 3 on
+// average, all of them together by d; 2 settles the test shapes in 4 passes as 1.5 did in 8.
+constexpr double kFitRelaxation = 2.0;
+constexpr int kFitPasses = 4;
 constexpr double kHigh = 4.0 / 3.0, kLow = 4.0 / 5.0;  // Botsch & Kobbelt's split and collapse bounds
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
