@@ -70,7 +70,8 @@ class Remesher {
  public:
   Remesher(const MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
            const RemeshOptions& options, double sliceTolerance)
-      : length_(options.edgeLength > 0 ? options.edgeLength : std::min(grid.spacingX, grid.spacingY)),
+      : length_(std::isfinite(options.edgeLength) && options.edgeLength > 0 ? options.edgeLength
+                                                                        : std::min(grid.spacingX, grid.spacingY)),
         voxel_(std::min(grid.spacingX, grid.spacingY)),
         net_(mesh, contourPlanes(contours, sliceTolerance), sliceTolerance, length_),
         surfaces_(mesh, nesting),

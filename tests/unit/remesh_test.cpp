@@ -321,6 +321,14 @@ TEST(Remesh, OffLeavesTheMeshAsItIs) {
   EXPECT_EQ(b.mesh.keys, before.keys);
 }
 
+TEST(Remesh, EdgeLengthThatIsNotFiniteAndPositiveMeansTheVoxelSize) {
+  for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    Built b = buildCpu(thinBarsContours(2.2), 1.0);
+    smooth(b);
+    EXPECT_EQ(remesh(b, remeshOn(bad)).edgeLength, 1.0) << bad;
+  }
+}
+
 TEST(Remesh, LongerEdgesGiveFewerTriangles) {
   Built fine = buildCpu(sphereContours(10, 2.0), 1.0);
   smooth(fine);

@@ -10,8 +10,8 @@ struct RemeshOptions {
   // Off by default in the library (Engine::build); the command-line tool turns it on. Runs
   // after smoothing, on the whole multi-label mesh.
   bool enabled = false;
-  // Target edge length in input units; 0 = the grid's in-plane voxel size (the smaller of
-  // its x and y spacings). Must be finite and >= 0.
+  // Target edge length in input units; 0 (or anything not finite and positive) = the grid's
+  // in-plane voxel size, the smaller of its x and y spacings. The CLI refuses such values.
   double edgeLength = 0;
   // Split / collapse / flip / relax rounds (Botsch & Kobbelt use 5 to 10; past 4 the angles
   // of the test shapes no longer improve, see tests/unit/remesh_test.cpp).
