@@ -64,6 +64,7 @@ struct Flags {
   std::string convention = "enclosing";
   std::string overlaps = "layers";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
+  bool remesh = false;
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
@@ -146,6 +147,15 @@ void addInterpolation(CLI::App& app, Flags& f) {
       ->capture_default_str();
 }
 
+void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
+  app.add_flag("--remesh,!--no-remesh", f.remesh,
+               "remesh the smoothed surfaces into well-shaped triangles of about --edge-length (default: off; "
+               "it takes minutes on a million triangles, see README \"Remeshing\")");
+  app.add_option("--edge-length", o.build.remeshing.edgeLength,
+                 "remeshing's target edge length, input units (default: the in-plane voxel size)")
+      ->check(numberIn(0, 1e9, true, "a positive, finite number"));
+}
+
 void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--roi", o.read.roiPatterns, "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
       ->expected(1)
@@ -205,6 +215,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.enabled = !f.noSmooth;
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
+  o.build.remeshing.enabled = f.remesh;
   o.scene.draco = !f.noDraco;
   o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
@@ -225,6 +236,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   addGeneral(app, parsed.options, flags);
   addInterpolation(app, flags);
   addSmoothing(app, parsed.options, flags);
+  addRemeshing(app, parsed.options, flags);
   addDicom(app, parsed.options, flags);
   addObjects(app, parsed.options);
   addOutputs(app, parsed.options, flags);
@@ -255,6 +267,8 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
                                                                                     : std::to_string(b.interpolation.factor)},
           {"caps", b.interpolation.caps == CapShape::Flat ? "flat" : "round"},
           {"smoothing", b.smoothing.enabled},
+          {"remeshing", b.remeshing.enabled},
+          {"edge_length", b.remeshing.edgeLength},  // 0: the in-plane voxel size
           {"draco", o.scene.draco},
           {"draco_bits", static_cast<double>(d.quantizationBits)},  // 0: from draco_max_error
           {"draco_max_error", d.quantizationBits ? 0.0 : defaultQuantizationError(grid)},

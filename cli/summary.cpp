@@ -81,6 +81,12 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
                 volumeFlag(s.volume, v.contour).c_str());
   }
   printOverlaps(set, built.overlaps);
+  if (const RemeshReport& r = built.surfaces.remeshing; r.ran)
+    std::printf("remeshing (edge length %g %s): %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> "
+                "%.1f, mean %.1f -> %.1f; at most %.3g %s from the smoothed surface\n",
+                r.edgeLength, printable(set.units).c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min,
+                r.anglesAfter.min, r.anglesBefore.p5, r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance,
+                printable(set.units).c_str());
   double total = 0;
   std::printf("time:");
   for (const StageTime& t : facts.timings) {

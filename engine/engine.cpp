@@ -14,6 +14,7 @@
 #include "geometry/feature_surfaces.h"
 #include "geometry/footprint.h"
 #include "geometry/overlaps.h"
+#include "geometry/remesh.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
 #include "gpu/context.h"
@@ -102,6 +103,10 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance, clearance);
     clock.lap("smoothing");
   }
+  if (options.remeshing.enabled) {
+    surfaces.remeshing = remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.grid.sliceTolerance);
+    clock.lap("remeshing");
+  }
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
   clock.lap("feature surfaces");
   return surfaces;
@@ -182,6 +187,7 @@ void appendLayer(Surfaces& into, const Surfaces& layer, const OverlapReport& rep
   for (std::uint32_t v : layer.mesh.triangles) into.mesh.triangles.push_back(v + offset);
   into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
   into.mesh.keys.clear();  // per-layer lattice keys do not combine; smoothing is done
+  accumulate(into.remeshing, layer.remeshing);
   for (std::size_t f = 0; f < layer.features.size(); ++f) {
     if (report.features[f].layer != index) continue;
     for (std::uint32_t v : layer.features[f].triangles) into.features[f].triangles.push_back(v + offset);

@@ -78,12 +78,30 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.memoryLimit = built.memoryLimit;
   r.interpolation = built.interpolation;
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
+  r.remeshing = built.surfaces.remeshing;
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
   return r;
 }
 
 namespace {
+
+nlohmann::ordered_json anglesJson(const AngleFigures& a) {
+  return {{"min", a.min}, {"p5", a.p5}, {"mean", a.mean}};
+}
+
+// Remeshing's figures: triangle counts, the smallest angle of each triangle (degrees: least,
+// 5th percentile, mean) before and after, and the largest distance from the smoothed surface.
+nlohmann::ordered_json remeshingJson(const RemeshReport& r) {
+  return {{"edge_length", r.edgeLength},
+          {"triangles_before", r.trianglesBefore},
+          {"triangles_after", r.trianglesAfter},
+          {"smallest_angle_before", anglesJson(r.anglesBefore)},
+          {"smallest_angle_after", anglesJson(r.anglesAfter)},
+          {"max_distance", r.maxDistance},
+          {"operations", {{"splits", r.splits}, {"collapses", r.collapses}, {"flips", r.flips}, {"moves", r.moves},
+                          {"refused", r.rejected}}}};
+}
 
 nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, double>>& overlaps) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
@@ -152,6 +170,7 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
     losses.push_back({{"feature", l.feature}, {"to", l.to}, {"volume", l.volume}, {"percent_of_contour_volume", l.percentOfContour},
                       {"nested", l.nested}});
   j["overlaps"]["losses"] = losses;
+  if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
   ordered_json timings = ordered_json::array();
   double total = 0;
   for (const auto& [stage, seconds] : report.timings) {

@@ -2,10 +2,10 @@
 //
 //   scansurf_bench generate OUTDIR [SET...]    writes OUTDIR/<set>.json and OUTDIR/<set>.dcm (RTSTRUCT)
 //                                              for the sets pelvis, head-neck, em-cells
-//   scansurf_bench run INPUT.json PIXELS [--repeat N] [--no-smooth]
+//   scansurf_bench run INPUT.json PIXELS [--repeat N] [--no-smooth] [--interpolate auto|off|N] [--remesh]
 //
 // `run` times every stage of the method on one input (parse, nesting, grid, scan conversion,
-// classification, assembly, feature surfaces, smoothing when enabled, writing PLY), reports
+// classification, assembly, smoothing and remeshing when enabled, feature surfaces, writing PLY), reports
 // peak resident memory, the label volume and mesh sizes, and the floor: one copy of a buffer
 // the size of the label volume. It prints one JSON object on stdout for the table script.
 #include <sys/resource.h>
@@ -73,7 +73,7 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
   return 0;
 }
 
-int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate) {
+int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate, bool remesh) {
   std::string json = "{";
   auto add = [&](const std::string& key, double value) {
     char buf[64];
@@ -97,6 +97,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   BuildOptions options;
   options.smoothing.enabled = smooth;  // as the command-line tool does by default
   options.interpolation.factor = interpolate;  // kAuto, as the command-line tool does by default
+  options.remeshing.enabled = smooth && remesh;  // off, as the command-line tool does by default (--remesh)
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {
@@ -172,6 +173,15 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   add("structures", static_cast<double>(contours->features.size()));
   add("mesh_triangles", static_cast<double>(best.surfaces.mesh.triangleCount()));
   add("feature_triangles", static_cast<double>(featureTriangles));
+  if (const RemeshReport& rr = best.surfaces.remeshing; rr.ran) {
+    add("remesh_triangles_before", static_cast<double>(rr.trianglesBefore));
+    add("remesh_min_angle_before", rr.anglesBefore.min);
+    add("remesh_p5_angle_before", rr.anglesBefore.p5);
+    add("remesh_min_angle", rr.anglesAfter.min);
+    add("remesh_p5_angle", rr.anglesAfter.p5);
+    add("remesh_mean_angle", rr.anglesAfter.mean);
+    add("remesh_max_distance", rr.maxDistance);
+  }
   json += ", \"device\": \"" + engine->device().name + "\"}";
   std::printf("%s\n", json.c_str());
   return 0;
@@ -184,19 +194,20 @@ int main(int argc, char** argv) {
   if (args.size() >= 2 && args[0] == "generate") return generate(args[1], {args.begin() + 2, args.end()});
   if (args.size() >= 3 && args[0] == "run") {
     int repeat = 1, interpolate = InterpolationOptions::kAuto;
-    bool smooth = true;
+    bool smooth = true, remesh = false;
     for (std::size_t a = 3; a < args.size(); ++a) {
       if (args[a] == "--repeat" && a + 1 < args.size()) repeat = std::stoi(args[++a]);
       if (args[a] == "--no-smooth") smooth = false;
+      if (args[a] == "--remesh") remesh = true;
       if (args[a] == "--interpolate" && a + 1 < args.size()) {
         const std::string& v = args[++a];
         interpolate = v == "auto" ? InterpolationOptions::kAuto : v == "off" ? 1 : std::stoi(v);
       }
     }
-    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate);
+    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate, remesh);
   }
   std::fprintf(stderr,
                "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth] "
-               "[--interpolate auto|off|N]\n");
+               "[--interpolate auto|off|N] [--remesh]\n");
   return 2;
 }

@@ -38,6 +38,31 @@ run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/options" --grid 96 64 -q --
              --smooth-strength 0.5 --no-contour-fit --no-junction-smoothing)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength 1.5)
 
+# Remeshing (off by default): --remesh remeshes, --no-remesh keeps the smoothed mesh,
+# --edge-length is accepted, and a length that is not a positive finite number is a usage
+# error naming it.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/remeshed" --grid 96 64 --remesh -q)
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/unremeshed" --grid 96 64 --no-remesh -q)
+file(SHA256 "${OUT}/remeshed/BODY.ply" remeshed_hash)
+file(SHA256 "${OUT}/unremeshed/BODY.ply" unremeshed_hash)
+if(remeshed_hash STREQUAL unremeshed_hash OR NOT smoothed_hash STREQUAL unremeshed_hash)
+  message(FATAL_ERROR "--remesh wrote the same surface as --no-remesh, or the default remeshed")
+endif()
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/coarse" --grid 96 64 --remesh --edge-length 6 --report "${OUT}/coarse/report.json")
+expect_output("remeshing \\(edge length 6 mm\\): [0-9]+ -> [0-9]+ triangles")
+expect_output("time:.* remeshing [0-9.]+ s;")
+file(READ "${OUT}/coarse/report.json" coarse_report)
+string(JSON coarse_length GET "${coarse_report}" remeshing edge_length)
+string(JSON coarse_after GET "${coarse_report}" remeshing triangles_after)
+string(JSON coarse_triangles GET "${coarse_report}" multilabel_mesh triangles)
+if(NOT coarse_length EQUAL 6 OR NOT coarse_after EQUAL coarse_triangles)
+  message(FATAL_ERROR "report.json remeshing: edge length ${coarse_length}, ${coarse_after} triangles, mesh ${coarse_triangles}")
+endif()
+foreach(bad 0 -1 nan inf abc)
+  run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --edge-length ${bad})
+  expect_output("--edge-length: '${bad}' is not a positive, finite number")
+endforeach()
+
 # Bad input: exit 3, naming the file, feature, slice and contour; nothing written, and an
 # existing output left as it was.
 file(MAKE_DIRECTORY "${OUT}/bad")

@@ -141,6 +141,19 @@ ContourSet nestedSpheresContours(double outerRadius, double innerRadius, double 
   return set;
 }
 
+ContourSet thinBarsContours(double width) {
+  ContourSet set;
+  set.source = "thin bars";
+  for (int f = 0; f < 2; ++f) {
+    Feature feature;
+    feature.name = f == 0 ? "a" : "b";
+    for (int k = 0; k < 5; ++k)
+      feature.slices.push_back({2.0 * k, {ellipseContour({0, f == 0 ? -1.6 : 1.6}, 10 - k, width / 2, 96)}});
+    set.features.push_back(feature);
+  }
+  return set;
+}
+
 ContourSet abuttingContours(double radius, int slices, double sliceSpacing) {
   ContourSet set;
   set.source = "abutting";

@@ -35,6 +35,10 @@ ContourSet nestedSpheresContours(double outerRadius = 20, double innerRadius = 8
 // x = 0, on `slices` slices; both contain the identical shared polyline along x = 0.
 ContourSet abuttingContours(double radius = 10, int slices = 6, double sliceSpacing = 2.5);
 
+// Features "a" and "b": two thin bars `width` mm across (ellipses of half-width width / 2 and
+// half-length 10 - k on slice k), centres 3.2 mm apart, on five slices 2 mm apart from z = 0.
+ContourSet thinBarsContours(double width);
+
 // The bundled demo: BODY (ellipse skin), abutting "prostate" and "rectum", "target" nested in
 // the prostate, a branching "vessel", and a "vertebra" that is ring-shaped on its middle
 // slices; 40 slices at 2.5 mm, about 1 mm between contour points, coordinates rounded to 0.01.

@@ -31,6 +31,7 @@
 #include "scansurf/nesting.h"
 #include "scansurf/overlaps.h"
 #include "scansurf/preview.h"
+#include "scansurf/remesh.h"
 #include "scansurf/result.h"
 #include "scansurf/smoothing.h"
 #include "scansurf/surfaces.h"
@@ -66,6 +67,8 @@ struct BuildOptions {
   InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
+  // Isotropic remeshing after smoothing (stage "remeshing"); off unless enabled.
+  RemeshOptions remeshing;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
 };

@@ -52,6 +52,7 @@ struct RunReport {
   };
   std::vector<Loss> losses;  // --overlaps partition
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  RemeshReport remeshing;  // BuildResult::surfaces.remeshing
   std::vector<std::string> warnings;
   std::vector<std::string> outputs;
 };

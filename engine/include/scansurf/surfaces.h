@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scansurf/label_volume.h"
+#include "scansurf/remesh.h"
 
 namespace scansurf {
 
@@ -47,6 +48,9 @@ struct Surfaces {
   MultiLabelMesh mesh;
   SurfaceConvention convention = SurfaceConvention::Enclosing;
   std::vector<FeatureSurface> features;  // one per input feature, in input order
+  // What remeshing did (ran = false when it did not run); with several layers, the layers'
+  // counts summed, their smallest angles' minimum and their means weighted by triangles.
+  RemeshReport remeshing;
 };
 
 // Topological and metric properties of a triangle mesh.

@@ -1,0 +1,134 @@
+// scansurf: the editable non-manifold triangle network that remeshing works on. No half-edges:
+// a junction edge has three or more triangles, so each vertex keeps its live triangles and an
+// edge's triangles are the ones its two ends share. Every edit is recorded in a Change so that
+// an operation can be tried, checked and undone.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "scansurf/nesting.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf::remesh {
+
+using Vec3 = std::array<double, 3>;
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+// Rounded to float and back: the mesh stores float, and every check runs on what is stored.
+inline Vec3 storable(const Vec3& p) {
+  return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
+}
+
+// How a vertex may move and go. Sheet: anywhere on its sheet. Curve: on a junction curve
+// (exactly two junction edges), along it. Plane: on a contour plane's cross-section polyline
+// (exactly two in-plane edges), along it. Corner: stays (curve meeting points, curves crossing
+// a contour plane, polyline branch points).
+enum class Role : std::uint8_t { Sheet, Curve, Plane, Corner };
+
+// A triangle's label pair {a < b} as one number.
+inline std::uint32_t pairKey(Label a, Label b) { return a | (static_cast<std::uint32_t>(b) << 16); }
+
+// One closed feature surface (a feature in one convention) a triangle belongs to, and whether
+// the triangle is flipped to face outward in it (geometry/feature_surfaces.h).
+struct SurfaceUse {
+  int surface = 0;
+  bool flip = false;
+};
+
+// The feature surfaces, in both conventions, that each label pair's triangles belong to.
+class SurfaceTable {
+ public:
+  SurfaceTable(const MultiLabelMesh& mesh, const Nesting& nesting);
+  const std::vector<SurfaceUse>& usesOf(std::uint32_t pair) const;
+
+ private:
+  std::unordered_map<std::uint32_t, std::vector<SurfaceUse>> uses_;
+};
+
+// Live triangles in the cells of a uniform grid their bounding boxes touch (broad phase).
+class TriangleGrid {
+ public:
+  explicit TriangleGrid(double cell) : cell_(cell) {}
+  void insert(std::uint32_t t, const Vec3& lo, const Vec3& hi);
+  void clear() { cells_.clear(); }
+  // Every triangle id inserted into a cell that [lo, hi] touches, each once (dead ones too).
+  void query(const Vec3& lo, const Vec3& hi, std::vector<std::uint32_t>& out);
+
+ private:
+  template <typename F>
+  void forCells(const Vec3& lo, const Vec3& hi, F f) const;
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t round_ = 0;
+};
+
+// Edits since an operation began, for undo.
+struct Change {
+  std::vector<std::uint32_t> removed;  // triangles made dead
+  std::uint32_t firstAdded = 0;        // triangles >= this were added
+  std::vector<std::pair<std::uint32_t, Vec3>> moved;  // vertex, its old position
+  bool addedVertex = false;
+};
+
+class Network {
+ public:
+  // Vertices whose z lies within sliceTolerance of one of planeZ (sorted) are on that contour
+  // plane; roles follow from the junction edges and in-plane edges around each vertex.
+  Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, double sliceTolerance, double cell);
+
+  std::vector<Vec3> pos;
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::vector<std::uint32_t> pair;  // pairKey per triangle
+  std::vector<char> alive;
+  std::vector<std::vector<std::uint32_t>> vtris;  // live triangles per vertex
+  std::vector<Role> role;
+  std::vector<int> plane;               // contour plane index, or -1
+  std::vector<std::uint8_t> junctions;  // junction edges a corner must keep
+  std::vector<std::uint8_t> inPlane;    // in-plane edges a corner must keep
+  TriangleGrid grid;
+
+  std::uint32_t vertexCount() const { return static_cast<std::uint32_t>(pos.size()); }
+  // The live triangles holding both a and b.
+  void edgeTriangles(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out) const;
+  // An edge is a junction edge unless it has exactly two triangles of one label pair.
+  bool isJunctionEdge(const std::vector<std::uint32_t>& edgeTris) const;
+  // Distinct neighbours of v, ascending.
+  void neighbours(std::uint32_t v, std::vector<std::uint32_t>& out) const;
+  Vec3 normal(std::uint32_t t) const;  // area-weighted (twice the area)
+
+  // Edits, each recorded in `change` (begin() first).
+  void begin(Change& change) const;
+  std::uint32_t addVertex(const Vec3& p, Role r, int planeIndex, Change& change);
+  void removeTriangle(std::uint32_t t, Change& change);
+  std::uint32_t addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t pairOf, Change& change);
+  void move(std::uint32_t v, const Vec3& p, Change& change);
+  void undo(Change& change);
+  void commit(const Change& change);  // added triangles into the grid
+
+  // Drops dead triangles and rebuilds the grid; triangle ids change, vertex ids stay.
+  void compact();
+  // The live triangles and the vertices they use (renumbered in vertex order) into mesh;
+  // mesh.keys cleared.
+  void storeInto(MultiLabelMesh& mesh) const;
+
+ private:
+  void insertIntoGrid(std::uint32_t t);
+  void assignRoles();
+};
+
+// Whether every vertex in `vertices` (with triangles) still has the junction and in-plane
+// edges its role allows, each feature surface around it is one consistently oriented fan, and
+// no two of its triangles use the same three vertices.
+bool topologyHolds(const Network& net, const SurfaceTable& surfaces, const std::vector<std::uint32_t>& vertices);
+
+}  // namespace scansurf::remesh

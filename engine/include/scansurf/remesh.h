@@ -1,0 +1,39 @@
+// scansurf: options and figures of the remeshing of the separating-surface network into
+// well-shaped triangles of about one edge length (after Botsch & Kobbelt 2004).
+#pragma once
+
+#include <cstddef>
+
+namespace scansurf {
+
+struct RemeshOptions {
+  // Off by default, in the library and the command-line tool (--remesh): it is slow yet. Runs
+  // after smoothing, on the whole multi-label mesh.
+  bool enabled = false;
+  // Target edge length in input units; 0 (or anything not finite and positive) = the grid's
+  // in-plane voxel size, the smaller of its x and y spacings. The CLI refuses such values.
+  double edgeLength = 0;
+  // Split / collapse / flip / relax rounds (Botsch & Kobbelt use 5 to 10; past 4 the angles
+  // of the test shapes no longer improve, see tests/unit/remesh_test.cpp).
+  int iterations = 4;
+};
+
+// Triangle angles in degrees.
+struct AngleFigures {
+  double min = 0, p5 = 0, mean = 0;  // smallest, 5th percentile, mean of every triangle's smallest angle
+};
+
+// What remeshing did; ran = false when it did not run.
+struct RemeshReport {
+  bool ran = false;
+  std::size_t trianglesBefore = 0, trianglesAfter = 0;
+  AngleFigures anglesBefore, anglesAfter;
+  double edgeLength = 0;   // the target used, input units
+  // Largest distance of the remeshed surface (vertices, edge midpoints and centroids) from
+  // the smoothed surface it replaced, input units.
+  double maxDistance = 0;
+  std::size_t splits = 0, collapses = 0, flips = 0, moves = 0;  // operations applied
+  std::size_t rejected = 0;  // operations refused by a validity check
+};
+
+}  // namespace scansurf

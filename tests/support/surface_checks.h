@@ -1,0 +1,50 @@
+// scansurf tests: the CPU pipeline (makeGrid -> referenceScanConvert -> classifyCellsReference
+// -> assembleMesh) and the measures the smoothing and remeshing tests share.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "scansurf/contours.h"
+#include "scansurf/grid.h"
+#include "scansurf/nesting.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf::test {
+
+struct Built {
+  ContourSet set;
+  Grid grid;
+  Nesting nesting;
+  MultiLabelMesh mesh;
+  std::vector<FeatureSurface> features;  // Enclosing
+};
+
+// The raw (unsmoothed) separating surfaces of `set` at this in-plane voxel size, slices as layers.
+Built buildCpu(const ContourSet& set, double voxelSize);
+// Recomputes b.features (Enclosing) after the mesh changed.
+void refreshFeatures(Built& b);
+
+struct Angles {
+  double min = 180, p5 = 180;
+};
+// Smallest and 5th percentile of every triangle's smallest angle, degrees.
+Angles minAngles(const MultiLabelMesh& m);
+
+using Distance = std::function<double(double, double, double)>;
+struct Accuracy {
+  double mean = 0, max = 0, volume = 0;
+};
+// Area-weighted mean and max distance of feature 0's surface to the analytic surface over 7
+// samples per triangle, and its volume.
+Accuracy accuracy(const Built& b, const Distance& distance);
+
+// Mean distance, in pixels, from feature 0's cross-sections at the contour planes (every mesh
+// edge with both ends at a slice's z, sampled at 5 points, weighted by length) to the
+// original contours.
+double crossSectionError(const Built& b);
+
+// Distance in the plane from (x, y) to the nearest contour of the slice.
+double distanceToContours(const FeatureSlice& slice, double x, double y);
+
+}  // namespace scansurf::test

@@ -1,0 +1,344 @@
+// Remeshing of the separating-surface network (issue 11), on the CPU pipeline:
+// makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh ->
+// remeshMesh. Every shape the smoothing tests use, checked exactly after remeshing.
+#include "geometry/remesh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <set>
+#include <vector>
+
+#include "geometry/feature_surfaces.h"
+#include "geometry/smoothing.h"
+#include "support/intersections.h"
+#include "support/shapes.h"
+#include "support/surface_checks.h"
+
+namespace scansurf::test {
+namespace {
+
+RemeshOptions remeshOn(double edgeLength = 0) {
+  RemeshOptions o;
+  o.enabled = true;
+  o.edgeLength = edgeLength;
+  return o;
+}
+
+void smooth(Built& b, int threads = 0) {
+  SmoothingOptions o;
+  o.enabled = true;
+  smoothMesh(b.mesh, b.grid, &b.set, o, threads);
+}
+
+RemeshReport remesh(Built& b, const RemeshOptions& options = remeshOn()) {
+  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options);
+  refreshFeatures(b);
+  return r;
+}
+
+// Per feature surface of one convention: its statistics.
+std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention) {
+  std::vector<MeshStats> out;
+  for (const FeatureSurface& s : extractFeatureSurfaces(b.mesh, static_cast<int>(b.set.features.size()), b.nesting, convention))
+    out.push_back(computeMeshStats(b.mesh.positions, s.triangles));
+  return out;
+}
+
+// Area of the triangles of each label pair.
+std::map<std::pair<Label, Label>, double> areaByPair(const MultiLabelMesh& m) {
+  std::map<std::pair<Label, Label>, double> out;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+    const float* p[3] = {&m.positions[3 * m.triangles[3 * t]], &m.positions[3 * m.triangles[3 * t + 1]],
+                         &m.positions[3 * m.triangles[3 * t + 2]]};
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) u[k] = p[1][k] - p[0][k], v[k] = p[2][k] - p[0][k];
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    out[{m.labels[2 * t], m.labels[2 * t + 1]}] += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  }
+  return out;
+}
+
+// Every vertex of a triangle between two abutting features (neither inside the other) lies on
+// both features' enclosing surfaces.
+void expectSharedInterfaces(const Built& b) {
+  std::vector<std::set<std::uint32_t>> vertices;
+  for (const FeatureSurface& s : b.features) vertices.emplace_back(s.triangles.begin(), s.triangles.end());
+  std::size_t shared = 0;
+  for (std::size_t t = 0; t < b.mesh.triangleCount(); ++t) {
+    const int fa = featureOfLabel(b.mesh.labels[2 * t]), fb = featureOfLabel(b.mesh.labels[2 * t + 1]);
+    if (fa < 0 || fb < 0 || isInside(b.nesting, fa, fb) || isInside(b.nesting, fb, fa)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = b.mesh.triangles[3 * t + c];
+      EXPECT_TRUE(vertices[static_cast<std::size_t>(fa)].count(v) && vertices[static_cast<std::size_t>(fb)].count(v));
+      ++shared;
+    }
+  }
+  std::printf("[ figure   ] %-14s %zu interface vertex uses shared\n", b.set.source.c_str(), shared);
+}
+
+// Smooths and remeshes `set`, checking everything remeshing promises against the smoothed mesh.
+Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& options = remeshOn()) {
+  Built b = buildCpu(set, voxel);
+  const auto t0 = std::chrono::steady_clock::now();
+  smooth(b);
+  const auto t1 = std::chrono::steady_clock::now();
+  const std::vector<MeshStats> enclosing = surfaceStats(b, SurfaceConvention::Enclosing);
+  const std::vector<MeshStats> partition = surfaceStats(b, SurfaceConvention::Partition);
+  const auto areas = areaByPair(b.mesh);
+  const auto t2 = std::chrono::steady_clock::now();
+  const RemeshReport r = remesh(b, options);
+  const auto t3 = std::chrono::steady_clock::now();
+  EXPECT_TRUE(r.ran);
+  EXPECT_TRUE(b.mesh.keys.empty());
+  for (const auto& [convention, before] : {std::pair{SurfaceConvention::Enclosing, enclosing}, std::pair{SurfaceConvention::Partition, partition}}) {
+    const std::vector<MeshStats> after = surfaceStats(b, convention);
+    for (std::size_t f = 0; f < after.size(); ++f) {
+      const MeshStats &s = after[f], &o = before[f];
+      const char* name = convention == SurfaceConvention::Enclosing ? "enclosing" : "partition";
+      EXPECT_EQ(s.triangles == 0, o.triangles == 0) << set.source << " " << name << " feature " << f;
+      if (o.triangles == 0) continue;
+      EXPECT_TRUE(s.closed && s.manifold && s.oriented) << set.source << " " << name << " feature " << f;
+      EXPECT_EQ(s.genus, o.genus) << set.source << " " << name << " feature " << f;
+      EXPECT_EQ(s.components, o.components) << set.source << " " << name << " feature " << f;
+      EXPECT_NEAR(s.volume, o.volume, 0.02 * std::abs(o.volume)) << set.source << " " << name << " feature " << f;
+    }
+  }
+  // Labels preserved: the same label pairs, each separating about the same area.
+  const auto areasAfter = areaByPair(b.mesh);
+  EXPECT_EQ(areasAfter.size(), areas.size());
+  for (const auto& [pair, area] : areas) {
+    EXPECT_TRUE(areasAfter.count(pair)) << set.source << " lost the pair " << pair.first << "/" << pair.second;
+    if (areasAfter.count(pair)) {
+      EXPECT_NEAR(areasAfter.at(pair), area, 0.03 * area) << set.source << " pair " << pair.first << "/" << pair.second;
+    }
+  }
+  const IntersectionReport x = findCrossings(b.mesh.positions, b.mesh.triangles);
+  EXPECT_EQ(x.crossings, 0u) << set.source;
+  EXPECT_EQ(x.degenerate, 0u) << set.source;
+  EXPECT_GT(x.pairsTested, b.mesh.triangleCount()) << "the broad phase must pair up neighbours";
+  EXPECT_LE(r.maxDistance, 0.1 * std::min(b.grid.spacingX, b.grid.spacingY) + 1e-6) << set.source;
+  const Angles a = minAngles(b.mesh);
+  EXPECT_NEAR(a.min, r.anglesAfter.min, 1e-4);  // float vs double acos
+  std::printf("[ figure   ] %-14s triangles %7zu -> %7zu, min angle %5.1f -> %5.1f, 5%% %5.1f -> %5.1f, mean %5.1f -> %5.1f, "
+              "max distance %.4f, %zu pairs tested exactly, %zu crossing\n",
+              set.source.c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min, r.anglesAfter.min, r.anglesBefore.p5,
+              r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance, x.pairsTested, x.crossings);
+  std::printf("[ figure   ] %-14s %zu splits, %zu collapses, %zu flips, %zu moves, %zu refused; smoothing %.3f s, remeshing %.3f s\n",
+              set.source.c_str(), r.splits, r.collapses, r.flips, r.moves, r.rejected,
+              std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count());
+  return b;
+}
+
+// ---------------------------------------------------------------- soundness on every shape
+
+TEST(Remesh, NestedSpheres) { checkRemesh(nestedSpheresContours(), 1.0); }
+TEST(Remesh, AbuttingHalvesShareEveryInterfaceVertex) {
+  const Built b = checkRemesh(abuttingContours(10, 6, 2.5), 0.5);
+  expectSharedInterfaces(b);
+}
+TEST(Remesh, BranchingVessel) { checkRemesh(yBranchContours(), 0.5); }
+TEST(Remesh, Phantom) {
+  const Built b = checkRemesh(phantomContours(), 1.0);
+  expectSharedInterfaces(b);
+}
+
+TEST(Remesh, ThinBarsOnePixelApart) { checkRemesh(thinBarsContours(2.2), 1.0); }
+
+// ---------------------------------------------------------------- feature lines
+
+// Three features meeting along the axis of a cylinder (three sectors of a disc on 6 slices):
+// junction curves where a, b and c meet, and where two of them meet the background.
+ContourSet threeSectors() {
+  ContourSet set;
+  set.source = "three sectors";
+  for (int f = 0; f < 3; ++f) {
+    Feature feature;
+    feature.name = std::string(1, static_cast<char>('a' + f));
+    for (int k = 0; k < 6; ++k) {
+      Contour c;
+      c.points.push_back({0.13, 0.07});  // off the pixel lattice
+      const double a0 = 2 * std::numbers::pi * f / 3, a1 = 2 * std::numbers::pi * (f + 1) / 3;
+      for (int i = 0; i <= 40; ++i) {
+        const double a = a0 + (a1 - a0) * i / 40;
+        c.points.push_back({0.13 + 8 * std::cos(a), 0.07 + 8 * std::sin(a)});
+      }
+      feature.slices.push_back({2.0 * k, {c}});
+    }
+    set.features.push_back(feature);
+  }
+  return set;
+}
+
+using EdgeLabels = std::map<std::pair<std::uint32_t, std::uint32_t>, std::set<Label>>;
+// Junction edges (not exactly two triangles of one label pair) and the labels around each.
+EdgeLabels junctionEdges(const MultiLabelMesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t a = m.triangles[3 * t + c], b = m.triangles[3 * t + (c + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  EdgeLabels out;
+  for (const auto& [e, tris] : edges) {
+    const auto pairOf = [&](std::size_t t) { return std::pair{m.labels[2 * t], m.labels[2 * t + 1]}; };
+    if (tris.size() == 2 && pairOf(tris[0]) == pairOf(tris[1])) continue;
+    for (std::size_t t : tris) out[e].insert({m.labels[2 * t], m.labels[2 * t + 1]});
+  }
+  return out;
+}
+
+double curveLength(const MultiLabelMesh& m, const EdgeLabels& edges) {
+  double sum = 0;
+  for (const auto& [e, labels] : edges) {
+    const float *a = &m.positions[3 * e.first], *b = &m.positions[3 * e.second];
+    sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  }
+  return sum;
+}
+
+TEST(Remesh, JunctionCurvesWhereThreeFeaturesMeetStayAndAreOnlyShortened) {
+  Built b = buildCpu(threeSectors(), 0.5);
+  smooth(b);
+  const EdgeLabels before = junctionEdges(b.mesh);
+  // Corners: vertices with other than two junction edges (curve meeting points), by position.
+  std::map<std::uint32_t, int> degree;
+  for (const auto& [e, labels] : before) ++degree[e.first], ++degree[e.second];
+  std::set<std::array<float, 3>> corners;
+  for (const auto& [v, d] : degree)
+    if (d != 2) corners.insert({b.mesh.positions[3 * v], b.mesh.positions[3 * v + 1], b.mesh.positions[3 * v + 2]});
+  const Built smoothed = b;
+  checkRemesh(threeSectors(), 0.5);  // soundness, as for every shape
+  remesh(b);
+  const EdgeLabels after = junctionEdges(b.mesh);
+  std::set<std::set<Label>> kindsBefore, kindsAfter;
+  for (const auto& [e, labels] : before) kindsBefore.insert(labels);
+  for (const auto& [e, labels] : after) kindsAfter.insert(labels);
+  EXPECT_EQ(kindsAfter, kindsBefore);  // no junction curve lost, none made up
+  EXPECT_TRUE(kindsBefore.count({1, 2, 3})) << "the three sectors must meet along the axis";
+  std::set<std::array<float, 3>> present;
+  for (std::size_t v = 0; v < b.mesh.vertexCount(); ++v)
+    present.insert({b.mesh.positions[3 * v], b.mesh.positions[3 * v + 1], b.mesh.positions[3 * v + 2]});
+  std::size_t kept = 0;
+  for (const auto& c : corners) kept += present.count(c);
+  EXPECT_EQ(kept, corners.size()) << "curve meeting points stay where they are";
+  const double lengthBefore = curveLength(smoothed.mesh, before), lengthAfter = curveLength(b.mesh, after);
+  EXPECT_NEAR(lengthAfter, lengthBefore, 0.05 * lengthBefore);
+  EXPECT_LT(after.size(), before.size());
+  std::printf("[ figure   ] three sectors  junction edges %zu -> %zu, length %.2f -> %.2f mm, %zu corners kept\n", before.size(),
+              after.size(), lengthBefore, lengthAfter, kept);
+}
+
+TEST(Remesh, FeatureThinnerThanTwoVoxelsDoesNotCollapseThroughItself) {
+  // 1.4 pixels across, 1.8 pixels from its neighbour.
+  const Built b = checkRemesh(thinBarsContours(1.4), 1.0);
+  for (const FeatureSurface& f : b.features) EXPECT_GT(computeMeshStats(b.mesh.positions, f.triangles).volume, 0);
+}
+
+TEST(Remesh, CrossSectionsAtTheContourPlanesStayOnTheContours) {
+  for (const ContourSet& set : {sphereContours(10, 2.0), torusContours(10, 4, 2.0)}) {
+    Built b = buildCpu(set, 1.0);
+    smooth(b);
+    const double before = crossSectionError(b);
+    remesh(b);
+    const double after = crossSectionError(b);
+    // Every vertex at a contour plane lies on that plane's contour.
+    double worst = 0;
+    std::size_t onPlanes = 0;
+    for (std::size_t v = 0; v < b.mesh.vertexCount(); ++v)
+      for (const FeatureSlice& s : b.set.features[0].slices)
+        if (std::abs(b.mesh.positions[3 * v + 2] - s.z) <= kDefaultSliceTolerance) {
+          worst = std::max(worst, distanceToContours(s, b.mesh.positions[3 * v], b.mesh.positions[3 * v + 1]));
+          ++onPlanes;
+        }
+    std::printf("[ figure   ] %-14s cross-section %.4f -> %.4f px; %zu vertices on contour planes, at most %.4f px off\n",
+                set.source.c_str(), before, after, onPlanes, worst / b.grid.spacingX);
+    EXPECT_GT(onPlanes, 100u);
+    EXPECT_LE(worst, 0.05 * b.grid.spacingX);
+    EXPECT_LE(after, 0.05);
+  }
+}
+
+// ---------------------------------------------------------------- accuracy, determinism
+
+void reportAccuracy(const ContourSet& set, const Distance& distance, double analyticVolume) {
+  Built b = buildCpu(set, 1.0);
+  smooth(b);
+  const Accuracy s = accuracy(b, distance);
+  const Angles as = minAngles(b.mesh);
+  const std::size_t trianglesBefore = b.mesh.triangleCount();
+  remesh(b);
+  const Accuracy r = accuracy(b, distance);
+  const Angles ar = minAngles(b.mesh);
+  std::printf("[ figure   ] %-14s smooth:   %7zu triangles, distance mean %.4f max %.4f mm, volume %+.3f %%, min angle %4.1f (5%% %4.1f)\n",
+              set.source.c_str(), trianglesBefore, s.mean, s.max, 100 * (s.volume / analyticVolume - 1), as.min, as.p5);
+  std::printf("[ figure   ] %-14s remeshed: %7zu triangles, distance mean %.4f max %.4f mm, volume %+.3f %%, min angle %4.1f (5%% %4.1f)\n",
+              set.source.c_str(), b.mesh.triangleCount(), r.mean, r.max, 100 * (r.volume / analyticVolume - 1), ar.min, ar.p5);
+  // The issue's targets: no worse than before remeshing by more than 10 % (volume error: or
+  // by more than 0.05 % of the volume, below which the analytic volume's own rounding shows).
+  EXPECT_LE(r.mean, 1.1 * s.mean);
+  EXPECT_LE(std::abs(r.volume / analyticVolume - 1), std::max(1.1 * std::abs(s.volume / analyticVolume - 1), 0.0005));
+  EXPECT_GE(ar.min, 10.0);
+  EXPECT_GE(ar.p5, 30.0);
+}
+
+TEST(RemeshAccuracy, Sphere20mmAt1mmPixels2mmSlices) {
+  reportAccuracy(sphereContours(10, 2.0), [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 10; },
+                 4.0 / 3.0 * std::numbers::pi * 1000);
+}
+
+TEST(RemeshAccuracy, TorusAt1mmPixels2mmSlices) {
+  const double R = 10, r = 4;
+  reportAccuracy(torusContours(R, r, 2.0), [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - R, z) - r; },
+                 2 * std::numbers::pi * std::numbers::pi * R * r * r);
+}
+
+TEST(Remesh, SameResultForAnyThreadCount) {
+  Built one = buildCpu(phantomContours(), 3.0);
+  Built two = one;
+  smooth(one, 1);
+  smooth(two, 2);
+  remesh(one);
+  remesh(two);
+  EXPECT_EQ(one.mesh.positions, two.mesh.positions);
+  EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
+  EXPECT_EQ(one.mesh.labels, two.mesh.labels);
+}
+
+TEST(Remesh, OffLeavesTheMeshAsItIs) {
+  Built b = buildCpu(yBranchContours(), 1.0);
+  smooth(b);
+  const MultiLabelMesh before = b.mesh;
+  const RemeshReport r = remesh(b, RemeshOptions{});
+  EXPECT_FALSE(r.ran);
+  EXPECT_EQ(b.mesh.positions, before.positions);
+  EXPECT_EQ(b.mesh.triangles, before.triangles);
+  EXPECT_EQ(b.mesh.keys, before.keys);
+}
+
+TEST(Remesh, EdgeLengthThatIsNotFiniteAndPositiveMeansTheVoxelSize) {
+  for (double bad : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    Built b = buildCpu(thinBarsContours(2.2), 1.0);
+    smooth(b);
+    EXPECT_EQ(remesh(b, remeshOn(bad)).edgeLength, 1.0) << bad;
+  }
+}
+
+TEST(Remesh, LongerEdgesGiveFewerTriangles) {
+  Built fine = buildCpu(sphereContours(10, 2.0), 1.0);
+  smooth(fine);
+  Built coarse = fine;
+  const RemeshReport f = remesh(fine, remeshOn(1.0)), c = remesh(coarse, remeshOn(2.0));
+  EXPECT_EQ(f.edgeLength, 1.0);
+  EXPECT_EQ(c.edgeLength, 2.0);
+  EXPECT_LT(c.trianglesAfter, f.trianglesAfter / 2);
+  std::printf("[ figure   ] sphere r10     edge length 1 mm: %zu triangles, 2 mm: %zu\n", f.trianglesAfter, c.trianglesAfter);
+}
+
+}  // namespace
+}  // namespace scansurf::test
