@@ -152,8 +152,7 @@ Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
   return surfacesOfVolume(impl, fine.volume, contours, nesting, options, clock, fine.clearance);
 }
 
-InterpolationSummary summarizeInterpolation(const Grid& grid, const InterpolationOptions& options) {
-  const std::vector<int> factors = interpolationFactors(grid, options);
+InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<int>& factors, CapShape caps) {
   InterpolationSummary s;
   s.planeLayers = grid.nz;
   s.surfacedLayers = fineLayerOfPlane(factors).back() + 1;
@@ -161,7 +160,7 @@ InterpolationSummary summarizeInterpolation(const Grid& grid, const Interpolatio
     s.minFactor = *std::min_element(factors.begin(), factors.end());
     s.maxFactor = *std::max_element(factors.begin(), factors.end());
   }
-  s.caps = options.caps;
+  s.caps = caps;
   return s;
 }
 
@@ -218,9 +217,9 @@ Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, cons
 }
 
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
-Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<FeatureRegion>& regions,
-                         const BuildOptions& options, BuildResult& out, StageClock& clock) {
-  const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
+Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
+                         const std::vector<FeatureRegion>& regions, const BuildOptions& options, BuildResult& out,
+                         StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
   out.surfaces.convention = options.convention;
   out.surfaces.features.resize(contours.features.size());
@@ -374,7 +373,8 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     const double tolerance = options.grid.sliceTolerance;
     // The grid and the budget first: a run that cannot fit is refused before any real work.
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
-    out.interpolation = summarizeInterpolation(grid, options.interpolation);
+    const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
+    out.interpolation = summarizeInterpolation(grid, factors, options.interpolation.caps);
     SCANSURF_TRY(checkMemoryBudget(contours, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(contours, grid);
     clock.lap("grid");
@@ -393,13 +393,13 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
       SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
       clock.lap("scan conversion");
       SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, &contours, out.nesting, options, grid,
-                                                               interpolationFactors(grid, options.interpolation), clock));
+                                                               factors, clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);
       }
     } else {
-      SCANSURF_TRY(buildLayers(*impl_, contours, grid, regions, options, out, clock));
+      SCANSURF_TRY(buildLayers(*impl_, contours, grid, factors, regions, options, out, clock));
     }
     mergeStageTimes(out.timings);
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);

@@ -181,8 +181,8 @@ class SlabPlanner {
                           factor + (last ? 1 : 0)};
     slab_.outputLayers += pair.layers;
     const std::size_t firstEntry = slab_.entries.size();
-    pairFirstEntry_ = firstEntry;
     addEntries(p, k);
+    markTouchingCaps(k, firstEntry);
     addTiles(firstEntry);
     slab_.pairs.push_back(pair);
   }
@@ -226,10 +226,7 @@ class SlabPlanner {
       }
       slab_.entries.push_back(e);
     }
-    markTouchingCaps(k, firstEntryOf(p));
   }
-
-  std::size_t firstEntryOf(int) const { return pairFirstEntry_; }
 
   // Labels that end at this pair (present on one plane only) and touch another such label on
   // their plane get flat caps.
@@ -285,7 +282,6 @@ class SlabPlanner {
   const PlaneCensus& census_;
   InterpolationSlab& slab_;
   std::vector<std::size_t> planeFields_;  // first field of each plane
-  std::size_t pairFirstEntry_ = 0;
 };
 
 }  // namespace
