@@ -180,16 +180,26 @@ ContourSet layerContours(const ContourSet& contours, const OverlapReport& report
 }
 
 // Appends a layer's surfaces of its own features to `into` (vertices not shared across layers).
-void appendLayer(Surfaces& into, const Surfaces& layer, const OverlapReport& report, int index) {
+// Layer 0 holds most of the surface and is moved in, not copied: the later layers (a few
+// planning volumes or marks) are then appended to it.
+void appendLayer(Surfaces& into, Surfaces&& layer, const OverlapReport& report, int index) {
+  if (index == 0) {  // its features of other layers have no triangles
+    into = std::move(layer);
+    into.mesh.keys.clear();  // per-layer lattice keys do not combine; smoothing is done
+    return;
+  }
   const auto offset = static_cast<std::uint32_t>(into.mesh.vertexCount());
   into.mesh.positions.insert(into.mesh.positions.end(), layer.mesh.positions.begin(), layer.mesh.positions.end());
-  for (std::uint32_t v : layer.mesh.triangles) into.mesh.triangles.push_back(v + offset);
+  const std::size_t first = into.mesh.triangles.size();
+  into.mesh.triangles.insert(into.mesh.triangles.end(), layer.mesh.triangles.begin(), layer.mesh.triangles.end());
+  for (std::size_t i = first; i < into.mesh.triangles.size(); ++i) into.mesh.triangles[i] += offset;
   into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
-  into.mesh.keys.clear();  // per-layer lattice keys do not combine; smoothing is done
   accumulate(into.remeshing, layer.remeshing);
   for (std::size_t f = 0; f < layer.features.size(); ++f) {
     if (report.features[f].layer != index) continue;
-    for (std::uint32_t v : layer.features[f].triangles) into.features[f].triangles.push_back(v + offset);
+    std::vector<std::uint32_t>& to = into.features[f].triangles;
+    to.reserve(to.size() + layer.features[f].triangles.size());
+    for (std::uint32_t v : layer.features[f].triangles) to.push_back(v + offset);
   }
 }
 
@@ -229,9 +239,9 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(const Surfaces surfaces,
+    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces,
                               surfacesOfPlanes(impl, volume, &subset, out.nesting, options, grid, factors, clock));
-    appendLayer(out.surfaces, surfaces, out.overlaps, layer);
+    appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
   return {};
