@@ -113,6 +113,7 @@ Result<Built> buildSurfaces(const cli::CliOptions& o, const ContourSet& contours
   const DeviceInfo& info = engine.device();
   if (!o.quiet) std::printf("device: %s (%s, %s)\n", info.name.c_str(), info.type.c_str(), info.driver.c_str());
   BuildOptions options = o.build;
+  options.keepLabelVolume = false;  // the outputs rasterize their own label volumes (runVolumes)
   options.onStage = [&](const std::string& stage, double seconds) { laps.report(stage, seconds); };
   laps.begin("surfaces");
   SCANSURF_ASSIGN_OR_RETURN(BuildResult built, engine.build(contours, options));

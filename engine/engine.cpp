@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "core/guard.h"
 #include "core/memory.h"
@@ -132,15 +133,23 @@ Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, cons
   return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock, clearance);
 }
 
-// Surfaces of a scan-converted volume of contour planes: interpolated first when asked.
-// `factors` are the whole grid's (interpolationFactors): a layer's part of the grid gets the
-// factors of its own gaps, so every layer is interpolated alike.
-Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const ContourSet* contours, const Nesting& nesting,
-                                  const BuildOptions& options, const Grid& grid, const std::vector<int>& gridFactors,
-                                  StageClock& clock) {
-  const auto first = std::find(grid.layerZ.begin(), grid.layerZ.end(), planes.grid.layerZ.front()) - grid.layerZ.begin();
-  const std::vector<int> factors(gridFactors.begin() + first, gridFactors.begin() + first + planes.grid.nz - 1);
-  if (!interpolates(factors)) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
+// A layer's part of the whole grid's interpolation factors (interpolationFactors): every layer
+// is interpolated alike.
+std::vector<int> factorsOf(const Grid& planes, const Grid& grid, const std::vector<int>& gridFactors) {
+  const auto first = std::find(grid.layerZ.begin(), grid.layerZ.end(), planes.layerZ.front()) - grid.layerZ.begin();
+  return {gridFactors.begin() + first, gridFactors.begin() + first + planes.nz - 1};
+}
+
+// Surfaces of a scan-converted volume of contour planes: interpolated first when asked (from
+// the host labels), else classified from the device labels when there are some (no upload).
+Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const passes::ScanConverter::DeviceLabels* device,
+                                  const ContourSet* contours, const Nesting& nesting, const BuildOptions& options,
+                                  const std::vector<int>& factors, StageClock& clock) {
+  if (!interpolates(factors)) {
+    if (!device) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
+    return surfacesOfVolume(impl, DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid}, contours, nesting, options,
+                            clock);
+  }
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
@@ -150,6 +159,23 @@ Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
                             interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads));
   clock.lap("interpolation");
   return surfacesOfVolume(impl, fine.volume, contours, nesting, options, clock, fine.clearance);
+}
+
+// Scan conversion for the surfaces. Interpolation (a host stage's input) takes the labels on
+// the host; otherwise they stay on the device for classification, and come to the host too
+// only when `toHost`. `planes` always gets the grid.
+Result<std::optional<passes::ScanConverter::DeviceLabels>> scanPlanes(passes::ScanConverter& scanner,
+                                                                      const ContourSet& contours, const Grid& grid,
+                                                                      const std::vector<int>& order, double tolerance,
+                                                                      bool interpolating, bool toHost, LabelVolume& planes) {
+  if (interpolating) {
+    SCANSURF_ASSIGN_OR_RETURN(planes, scanner.run(contours, grid, order, tolerance));
+    return std::optional<passes::ScanConverter::DeviceLabels>();
+  }
+  planes.grid = grid;
+  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter::DeviceLabels device,
+                            scanner.runOnDevice(contours, grid, order, tolerance, toHost ? &planes : nullptr));
+  return std::optional<passes::ScanConverter::DeviceLabels>(std::move(device));
 }
 
 InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<int>& factors, CapShape caps) {
@@ -237,10 +263,14 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
   for (int layer = 0; layer < out.overlaps.layers; ++layer) {
     const ContourSet subset = layerContours(contours, out.overlaps, layer);
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
-    SCANSURF_ASSIGN_OR_RETURN(LabelVolume volume, scanner->run(subset, sub, out.nesting.order, options.grid.sliceTolerance));
+    const std::vector<int> subFactors = factorsOf(sub, grid, factors);
+    LabelVolume volume;
+    SCANSURF_ASSIGN_OR_RETURN(const auto device,
+                              scanPlanes(*scanner, subset, sub, out.nesting.order, options.grid.sliceTolerance,
+                                         interpolates(subFactors), layer == 0 && options.keepLabelVolume, volume));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces,
-                              surfacesOfPlanes(impl, volume, &subset, out.nesting, options, grid, factors, clock));
+    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, device ? &*device : nullptr, &subset,
+                                                                  out.nesting, options, subFactors, clock));
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -359,7 +389,7 @@ Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesti
     SCANSURF_TRY(checkNesting(nesting));
     std::vector<StageTime> timings;
     StageClock clock(timings, options);
-    return surfacesOfPlanes(*impl_, volume, contours, nesting, options, volume.grid,
+    return surfacesOfPlanes(*impl_, volume, nullptr, contours, nesting, options,
                             interpolationFactors(volume.grid, options.interpolation), clock);
   });
 }
@@ -400,10 +430,12 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
       for (FeatureVolumes& f : out.overlaps.features) f.layer = 0;
       out.overlaps.layers = 1;
-      SCANSURF_ASSIGN_OR_RETURN(out.volume, scanner->run(contours, grid, out.nesting.order, tolerance));
+      const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
+      SCANSURF_ASSIGN_OR_RETURN(const auto device, scanPlanes(*scanner, contours, grid, out.nesting.order, tolerance,
+                                                              interpolates(factors), toHost, out.volume));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, &contours, out.nesting, options, grid,
-                                                               factors, clock));
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, device ? &*device : nullptr, &contours,
+                                                               out.nesting, options, factors, clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);

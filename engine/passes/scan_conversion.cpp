@@ -56,11 +56,18 @@ struct RunPlan {
 };
 
 // The render targets every slab reuses: a label image with a layer per slice layer of the
-// slab, one depth-stencil image shared by the layers, and the buffer labels are read back in.
+// slab, one depth-stencil image shared by the layers, and the buffer labels are read back in
+// (none when only the device keeps them).
 struct SlabTargets {
   gpu::Image labels;
   gpu::Image depthStencil;
   gpu::Buffer readback;
+};
+
+// Where a run's labels go: the host volume, a whole-volume device buffer, or both.
+struct LabelSinks {
+  LabelVolume* host = nullptr;
+  const gpu::Buffer* device = nullptr;
 };
 
 // A slab's vertices (x, y in pixels): each contour's points (a fan), then the feature's cover
@@ -134,7 +141,7 @@ int slabLayerCount(std::size_t slabBudget, std::size_t layerBytes, std::uint32_t
 }
 
 Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthStencilFormat, const Grid& grid,
-                                      int slabLayers, std::size_t layerBytes) {
+                                      int slabLayers, std::size_t layerBytes, bool toHost) {
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Image labels,
       gpu::Image::create(ctx, kLabelFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
@@ -145,10 +152,13 @@ Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthSte
       gpu::Image::create(ctx, depthStencilFormat, static_cast<std::uint32_t>(grid.nx),
                          static_cast<std::uint32_t>(grid.ny), 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                          VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT));
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer readback,
-                            gpu::Buffer::create(ctx, layerBytes * static_cast<std::size_t>(slabLayers),
-                                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
-  return SlabTargets{std::move(labels), std::move(depthStencil), std::move(readback)};
+  SlabTargets targets{std::move(labels), std::move(depthStencil), {}};
+  if (toHost) {
+    SCANSURF_ASSIGN_OR_RETURN(targets.readback,
+                              gpu::Buffer::create(ctx, layerBytes * static_cast<std::size_t>(slabLayers),
+                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
+  }
+  return targets;
 }
 
 // Cover quad: the fans stay inside the contours' bounding box; one pixel of margin.
@@ -211,18 +221,35 @@ void waitForDepthStencilTests(VkCommandBuffer cmd) {
                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
 }
 
-// Copies the slab's first `count` label layers to the readback buffer, visible to the host.
-void recordReadback(VkCommandBuffer cmd, const SlabTargets& targets, const Grid& grid, int count) {
+// Copies the slab's `count` label layers (from layer `first` of the volume) to the readback
+// buffer, visible to the host, and into the device volume.
+void recordCopyOut(VkCommandBuffer cmd, const SlabTargets& targets, const LabelSinks& sinks, const Grid& grid, int first,
+                   int count) {
   gpu::imageBarrier(cmd, targets.labels.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, static_cast<std::uint32_t>(count)};
   region.imageExtent = {static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny), 1};
-  vkCmdCopyImageToBuffer(cmd, targets.labels.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.readback.handle(), 1,
-                         &region);
+  if (sinks.host)
+    vkCmdCopyImageToBuffer(cmd, targets.labels.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, targets.readback.handle(), 1,
+                           &region);
+  if (sinks.device) {
+    region.bufferOffset = grid.index(0, 0, first) * sizeof(Label);
+    vkCmdCopyImageToBuffer(cmd, targets.labels.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, sinks.device->handle(), 1,
+                           &region);
+  }
+  // The classifier's first command waits on every earlier write before it reads the device volume.
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                      VK_ACCESS_2_HOST_READ_BIT);
+}
+
+// The device volume starts as background (its padding layers are never drawn); the first
+// slab clears it before its copy.
+void recordClear(VkCommandBuffer cmd, const gpu::Buffer& device) {
+  vkCmdFillBuffer(cmd, device.handle(), 0, VK_WHOLE_SIZE, kBackground);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT);
 }
 
 }  // namespace
@@ -305,10 +332,11 @@ void recordFeatureDraws(VkCommandBuffer cmd, const ScanConverter::State& state, 
   }
 }
 
-// Renders each layer of the slab into its layer of the label image, then reads them back.
+// Renders each layer of the slab into its layer of the label image, then copies them out.
 void recordSlab(VkCommandBuffer cmd, const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets,
-                const SlabGeometry& geometry, VkBuffer vertexBuffer) {
+                const LabelSinks& sinks, int first, const SlabGeometry& geometry, VkBuffer vertexBuffer) {
   const Grid& grid = *plan.grid;
+  if (sinks.device && first == 1) recordClear(cmd, *sinks.device);
   transitionToAttachments(cmd, targets);
   const VkDeviceSize zero = 0;
   gpu::RenderingDesc rendering;
@@ -327,12 +355,12 @@ void recordSlab(VkCommandBuffer cmd, const ScanConverter::State& state, const Ru
     recordFeatureDraws(cmd, state, geometry.draws[static_cast<std::size_t>(l)], push);
     vkCmdEndRendering(cmd);
   }
-  recordReadback(cmd, targets, grid, count);
+  recordCopyOut(cmd, targets, sinks, grid, first, count);
 }
 
-// Scan converts layers first .. first + count - 1 in one submit into volume.
+// Scan converts layers first .. first + count - 1 in one submit into the sinks.
 Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets, int first,
-                         int count, LabelVolume& volume) {
+                         int count, const LabelSinks& sinks) {
   const gpu::Context& ctx = *state.ctx;
   const SlabGeometry geometry = buildSlabGeometry(plan, first, count);
   const std::size_t vertexBytes = geometry.vertices.size() * sizeof(float);
@@ -341,11 +369,30 @@ Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan,
   std::memcpy(vertexBuffer.mapped(), geometry.vertices.data(), vertexBytes);
 
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
-  recordSlab(commands.cmd(), state, plan, targets, geometry, vertexBuffer.handle());
+  recordSlab(commands.cmd(), state, plan, targets, sinks, first, geometry, vertexBuffer.handle());
   SCANSURF_TRY(commands.submitAndWait());
+  if (!sinks.host) return {};
   SCANSURF_TRY(targets.readback.invalidate());
-  std::memcpy(volume.labels.data() + plan.grid->index(0, 0, first), targets.readback.mapped(),
+  std::memcpy(sinks.host->labels.data() + plan.grid->index(0, 0, first), targets.readback.mapped(),
               plan.layerBytes * static_cast<std::size_t>(count));
+  return {};
+}
+
+// Scan converts every slice layer, slab by slab, into the sinks.
+Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours, const Grid& grid,
+                        const std::vector<int>& order, double sliceTolerance, const LabelSinks& sinks) {
+  const gpu::Context& ctx = *state.ctx;
+  SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state.subPixelBits, sliceTolerance));
+  const int sliceLayers = grid.nz - 2;
+  const int slabLayers = slabLayerCount(state.slabBudget, plan.layerBytes, ctx.limits().maxImageArrayLayers, sliceLayers);
+  SCANSURF_ASSIGN_OR_RETURN(const SlabTargets targets, createSlabTargets(ctx, state.depthStencilFormat, grid, slabLayers,
+                                                                         plan.layerBytes, sinks.host != nullptr));
+  state.lastSlabs = 0;
+  for (int first = 1; first <= sliceLayers; first += slabLayers) {
+    const int count = std::min(slabLayers, sliceLayers + 1 - first);
+    SCANSURF_TRY(convertSlab(state, plan, targets, first, count, sinks));
+    ++state.lastSlabs;
+  }
   return {};
 }
 
@@ -353,25 +400,28 @@ Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan,
 
 Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
                                        double sliceTolerance) {
-  const gpu::Context& ctx = *state_->ctx;
-  SCANSURF_TRY(checkRunArguments(ctx.limits(), grid, contours.features.size(), order.size()));
-  SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state_->subPixelBits, sliceTolerance));
-
+  SCANSURF_TRY(checkRunArguments(state_->ctx->limits(), grid, contours.features.size(), order.size()));
   LabelVolume volume;
   volume.grid = grid;
   volume.labels.assign(grid.voxelCount(), kBackground);
-
-  const int sliceLayers = grid.nz - 2;
-  const int slabLayers = slabLayerCount(state_->slabBudget, plan.layerBytes, ctx.limits().maxImageArrayLayers, sliceLayers);
-  SCANSURF_ASSIGN_OR_RETURN(const SlabTargets targets,
-                            createSlabTargets(ctx, state_->depthStencilFormat, grid, slabLayers, plan.layerBytes));
-  state_->lastSlabs = 0;
-  for (int first = 1; first <= sliceLayers; first += slabLayers) {
-    const int count = std::min(slabLayers, sliceLayers + 1 - first);
-    SCANSURF_TRY(convertSlab(*state_, plan, targets, first, count, volume));
-    ++state_->lastSlabs;
-  }
+  SCANSURF_TRY(convertAll(*state_, contours, grid, order, sliceTolerance, LabelSinks{&volume, nullptr}));
   return volume;
+}
+
+Result<ScanConverter::DeviceLabels> ScanConverter::runOnDevice(const ContourSet& contours, const Grid& grid,
+                                                               const std::vector<int>& order, double sliceTolerance,
+                                                               LabelVolume* host) {
+  SCANSURF_TRY(checkRunArguments(state_->ctx->limits(), grid, contours.features.size(), order.size()));
+  const VkDeviceSize bytes = (grid.voxelCount() * sizeof(Label) + 3) / 4 * 4;  // fills take whole words
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer buffer,
+                            gpu::Buffer::create(*state_->ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                gpu::MemoryDomain::Device));
+  if (host) {
+    host->grid = grid;
+    host->labels.assign(grid.voxelCount(), kBackground);
+  }
+  SCANSURF_TRY(convertAll(*state_, contours, grid, order, sliceTolerance, LabelSinks{host, &buffer}));
+  return DeviceLabels{std::move(buffer), grid};
 }
 
 }  // namespace scansurf::passes

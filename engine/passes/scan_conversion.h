@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gpu/context.h"
+#include "gpu/resources.h"
 #include "scansurf/contours.h"
 #include "scansurf/label_volume.h"
 
@@ -24,6 +25,16 @@ class ScanConverter {
   // volume; order is the nesting order, innermost first. Padding layers stay background.
   Result<LabelVolume> run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
                           double sliceTolerance = kDefaultSliceTolerance);
+
+  // The same labels left on the device for classification (issue 12: no readback and upload
+  // again between GPU passes): a buffer of 16-bit labels in LabelVolume's layout, usable as
+  // a DeviceLabelVolume. `host`, when given, also receives them (its labels are filled).
+  struct DeviceLabels {
+    gpu::Buffer buffer;
+    Grid grid;
+  };
+  Result<DeviceLabels> runOnDevice(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
+                                   double sliceTolerance, LabelVolume* host);
 
   int subPixelBits() const;
   // Slabs used by the last run (for reports and tests).

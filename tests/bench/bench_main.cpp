@@ -98,6 +98,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   options.smoothing.enabled = smooth;  // as the command-line tool does by default
   options.interpolation.factor = interpolate;  // kAuto, as the command-line tool does by default
   options.remeshing.enabled = smooth && remesh;  // off, as the command-line tool does by default (--remesh)
+  options.keepLabelVolume = false;  // as the command-line tool: the labels stay on the device
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {
@@ -136,12 +137,14 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   fs::remove_all(outDir);
 
   // The floor: one copy of a buffer the size of the label volume (best of 5).
-  const std::size_t volumeBytes = best.volume.labels.size() * sizeof(Label);
-  std::vector<Label> copy(best.volume.labels.size());
+  const std::size_t voxels = best.volume.grid.voxelCount();
+  const std::size_t volumeBytes = voxels * sizeof(Label);
+  const std::vector<Label> source(voxels, 1);
+  std::vector<Label> copy(voxels);
   double floor = 1e30;
   for (int r = 0; r < 5; ++r) {
     t0 = Clock::now();
-    std::memcpy(copy.data(), best.volume.labels.data(), volumeBytes);
+    std::memcpy(copy.data(), source.data(), volumeBytes);
     floor = std::min(floor, seconds(t0, Clock::now()));
   }
 

@@ -196,5 +196,43 @@ TEST(AssignLayers, CompleteGraphOfFifteenHundred) {
   EXPECT_TRUE(std::all_of(together.begin(), together.end(), [](int l) { return l == 0; }));
 }
 
+// Issue 12, item 3: without BuildOptions::keepLabelVolume the labels go from scan conversion
+// to classification on the device; the surfaces are exactly those of the host round trip, in
+// one partition and in layers, and the partition mode still has its labels for the losses.
+TEST_F(OverlapsTest, LabelsLeftOnTheDeviceGiveTheSameSurfaces) {
+  ContourSet set;
+  set.source = "mixed";
+  set.features = mixedFeatures();
+  for (OverlapMode mode : {OverlapMode::Layers, OverlapMode::Partition}) {
+    for (std::size_t count : {std::size_t{2}, set.features.size()}) {  // BODY and organ: one layer
+      SCOPED_TRACE(std::to_string(count) + (mode == OverlapMode::Layers ? " features, layers" : " features, partition"));
+      ContourSet part = set;
+      part.features.resize(count);
+      BuildOptions options;
+      options.grid.voxelSize = 0.5;
+      options.overlaps = mode;
+      options.smoothing.enabled = true;
+      auto kept = engine_->build(part, options);
+      options.keepLabelVolume = false;
+      auto onDevice = engine_->build(part, options);
+      ASSERT_TRUE(kept && onDevice);
+      EXPECT_EQ(onDevice->surfaces.mesh.positions, kept->surfaces.mesh.positions);
+      EXPECT_EQ(onDevice->surfaces.mesh.triangles, kept->surfaces.mesh.triangles);
+      EXPECT_EQ(onDevice->surfaces.mesh.labels, kept->surfaces.mesh.labels);
+      for (std::size_t f = 0; f < count; ++f)
+        EXPECT_EQ(onDevice->surfaces.features[f].triangles, kept->surfaces.features[f].triangles);
+      EXPECT_EQ(onDevice->volume.grid.nx, kept->volume.grid.nx);
+      EXPECT_EQ(kept->volume.labels.size(), kept->volume.grid.voxelCount());
+      if (mode == OverlapMode::Partition) {
+        EXPECT_EQ(onDevice->volume.labels, kept->volume.labels);  // the losses need them
+        ASSERT_EQ(onDevice->overlaps.losses.size(), kept->overlaps.losses.size());
+      } else {
+        EXPECT_TRUE(onDevice->volume.labels.empty());
+      }
+      EXPECT_GT(kept->surfaces.mesh.triangleCount(), 0u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace scansurf::test

@@ -1,12 +1,15 @@
 // Scan conversion on the GPU against the CPU reference rasterizer, pixel for pixel.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <random>
 
 #include "geometry/raster_rules.h"
 #include "gpu/gpu_test_env.h"
+#include "passes/classification.h"
 #include "passes/scan_conversion.h"
+#include "scansurf/vulkan_interop.h"
 #include "support/reference_rasterizer.h"
 
 namespace scansurf::test {
@@ -191,6 +194,42 @@ TEST_F(ScanConversionTest, SlabsGiveTheSameVolumeAsOneSubmission) {
   EXPECT_EQ(lastSlabs_, 5);
   expectMatchesReference(set, grid, {0});
   EXPECT_EQ(lastSlabs_, 1);
+}
+
+// Labels left on the device (issue 12, item 3), in slabs of an odd-sized layer (2-byte copy
+// offsets): the host copy matches the reference, and classifying the device buffer gives the
+// records of the host volume, so the device copy holds the same labels, padding included.
+TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
+  std::mt19937 rng(11);
+  const Grid grid = smallGrid(33, 29, 9);
+  ContourSet set;
+  set.source = "device";
+  set.features = {Feature{"a", {}, {}}, Feature{"b", {}, {}}};
+  for (int s = 0; s < 9; ++s)
+    for (Feature& f : set.features) f.slices.push_back({grid.layerZ[static_cast<std::size_t>(s + 1)], {randomStar(rng, grid, 13)}});
+  auto converter = passes::ScanConverter::create(sharedContext());
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(converter && classifier);
+  (*converter)->setSlabBudget(3 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
+  LabelVolume host;
+  auto device = (*converter)->runOnDevice(set, grid, {0, 1}, kDefaultSliceTolerance, &host);
+  ASSERT_TRUE(device) << device.error().message;
+  EXPECT_EQ((*converter)->lastSlabCount(), 3);
+  const LabelVolume ref = referenceScanConvert(set, grid, {0, 1}, (*converter)->subPixelBits());
+  ASSERT_EQ(host.labels.size(), ref.labels.size());
+  EXPECT_EQ(countMismatches(host, ref), 0u);
+  auto fromHost = (*classifier)->run(ref);
+  auto fromDevice = (*classifier)->run(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid});
+  ASSERT_TRUE(fromHost && fromDevice);
+  ASSERT_FALSE(fromHost->empty());
+  ASSERT_EQ(fromDevice->size(), fromHost->size());
+  EXPECT_EQ(std::memcmp(fromDevice->data(), fromHost->data(), fromHost->size() * sizeof(CellCase)), 0);
+  auto deviceOnly = (*converter)->runOnDevice(set, grid, {0, 1}, kDefaultSliceTolerance, nullptr);
+  ASSERT_TRUE(deviceOnly);
+  auto again = (*classifier)->run(DeviceLabelVolume{deviceOnly->buffer.handle(), 0, 16, deviceOnly->grid});
+  ASSERT_TRUE(again);
+  ASSERT_EQ(again->size(), fromHost->size());
+  EXPECT_EQ(std::memcmp(again->data(), fromHost->data(), fromHost->size() * sizeof(CellCase)), 0);
 }
 
 }  // namespace

@@ -69,6 +69,13 @@ struct BuildOptions {
   SmoothingOptions smoothing;
   // Isotropic remeshing after smoothing (stage "remeshing"); off unless enabled.
   RemeshOptions remeshing;
+  // BuildResult::volume's labels. true: the scan-converted labels are read back to the host.
+  // false: they stay on the device from scan conversion to classification (no readback and no
+  // upload again: two copies of the whole volume, over PCIe on a discrete GPU), and
+  // BuildResult::volume holds only its grid. The command-line tool's label-volume and DICOM SEG
+  // outputs rasterize their own volumes, so it passes false. Interpolation and the partition
+  // mode's volume losses read the labels on the host, so they are kept there anyway.
+  bool keepLabelVolume = true;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
 };
@@ -87,7 +94,8 @@ struct BuildResult {
   // The label volume of the contour planes as scan conversion made it: the single partition,
   // or with several layers the volume of layer 0 (OverlapReport::features[f].layer says which
   // features it holds). With interpolation the surfaces come from a volume with more layers
-  // (interpolation says how many), which is not kept.
+  // (interpolation says how many), which is not kept. Without BuildOptions::keepLabelVolume,
+  // only its grid (labels empty, unless interpolation or the partition mode needed them).
   LabelVolume volume;
   InterpolationSummary interpolation;
   // Every feature's surface; with several layers the layers' meshes side by side in one mesh
