@@ -142,13 +142,20 @@ std::vector<int> factorsOf(const Grid& planes, const Grid& grid, const std::vect
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked (from
 // the host labels), else classified from the device labels when there are some (no upload).
-Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes, const passes::ScanConverter::DeviceLabels* device,
-                                  const ContourSet* contours, const Nesting& nesting, const BuildOptions& options,
-                                  const std::vector<int>& factors, StageClock& clock) {
+// The device labels are released once classified: the CPU stages' peak memory need not hold them.
+Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
+                                  std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
+                                  const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
+                                  StageClock& clock) {
   if (!interpolates(factors)) {
     if (!device) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
-    return surfacesOfVolume(impl, DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid}, contours, nesting, options,
-                            clock);
+    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
+                              classifier->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid},
+                                                     device->buffer.size()));
+    device.reset();
+    clock.lap("classification");
+    return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock);
   }
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
@@ -265,12 +272,12 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     const std::vector<int> subFactors = factorsOf(sub, grid, factors);
     LabelVolume volume;
-    SCANSURF_ASSIGN_OR_RETURN(const auto device,
+    SCANSURF_ASSIGN_OR_RETURN(auto device,
                               scanPlanes(*scanner, subset, sub, out.nesting.order, options.grid.sliceTolerance,
                                          interpolates(subFactors), layer == 0 && options.keepLabelVolume, volume));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, device ? &*device : nullptr, &subset,
-                                                                  out.nesting, options, subFactors, clock));
+    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, std::move(device), &subset, out.nesting,
+                                                                  options, subFactors, clock));
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -389,7 +396,7 @@ Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesti
     SCANSURF_TRY(checkNesting(nesting));
     std::vector<StageTime> timings;
     StageClock clock(timings, options);
-    return surfacesOfPlanes(*impl_, volume, nullptr, contours, nesting, options,
+    return surfacesOfPlanes(*impl_, volume, std::nullopt, contours, nesting, options,
                             interpolationFactors(volume.grid, options.interpolation), clock);
   });
 }
@@ -431,11 +438,11 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
       for (FeatureVolumes& f : out.overlaps.features) f.layer = 0;
       out.overlaps.layers = 1;
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
-      SCANSURF_ASSIGN_OR_RETURN(const auto device, scanPlanes(*scanner, contours, grid, out.nesting.order, tolerance,
-                                                              interpolates(factors), toHost, out.volume));
+      SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, out.nesting.order, tolerance,
+                                                        interpolates(factors), toHost, out.volume));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, device ? &*device : nullptr, &contours,
-                                                               out.nesting, options, factors, clock));
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, std::move(device), &contours, out.nesting,
+                                                               options, factors, clock));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);

@@ -18,7 +18,7 @@ layout(std430, binding = 2) writeonly buffer Cases { CellCase records[]; } cases
 const uint kTets[24] = uint[24](0, 1, 3, 7,  0, 1, 5, 7,  0, 2, 3, 7,  0, 2, 6, 7,  0, 4, 5, 7,  0, 4, 6, 7);
 
 uint labelAt(uint i, uint j, uint k) {
-  const uint n = i + push.nx * (j + push.ny * k);
+  const uint n = push.labelOffset + i + push.nx * (j + push.ny * k);
   if (push.labelBits == 32u) {
     const uint label = labels.words[n];
     if (label > 0xFFFFu) atomicMax(counter.largestLabel, label);

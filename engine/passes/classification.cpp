@@ -59,6 +59,7 @@ struct Classifier::Source {
   const LabelVolume* host = nullptr;
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceSize offset = 0;
+  VkDeviceSize size = 0;  // of `buffer` when known: slabs are then bound in place
   std::uint32_t bits = 16;
 
   std::size_t layerBytes() const {
@@ -76,10 +77,13 @@ struct SlabPlan {
   std::size_t maxRecords = 0;
 };
 
-Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_t layerBytes, std::size_t slabBudget) {
+// Labels bound in place start up to one offset alignment before the slab's first.
+Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_t layerBytes, std::size_t slabBudget,
+                           bool inPlace) {
   if (cellCount(grid) > 0xFFFFFFFFull)
     return makeError(Errc::InvalidArgument, "classification: more than 2^32 cells; use a coarser grid");
-  const std::size_t maxRange = ctx.limits().maxStorageBufferRange;
+  const std::size_t maxRange = ctx.limits().maxStorageBufferRange -
+                               (inPlace ? std::max<std::size_t>(4, ctx.limits().minStorageBufferOffsetAlignment) : 0);
   const std::size_t labelBudget = std::min(slabBudget, maxRange);
   if (2 * layerBytes + 4 > labelBudget)
     return makeError(Errc::InvalidArgument, "classification: two layers of " + std::to_string(grid.nx) + " x " +
@@ -92,10 +96,38 @@ Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_
   return plan;
 }
 
-void bindBuffers(const gpu::Context& ctx, VkDescriptorSet set, const gpu::Buffer& labels, const gpu::Buffer& counter,
-                 const gpu::Buffer& cases) {
-  const VkBuffer buffers[3] = {labels.handle(), counter.handle(), cases.handle()};
-  gpu::bindStorageBuffers(ctx, set, buffers);
+void bindBuffer(const gpu::Context& ctx, VkDescriptorSet set, std::uint32_t binding, VkBuffer buffer,
+                VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE) {
+  const VkDescriptorBufferInfo info{buffer, offset, range};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  write.pBufferInfo = &info;
+  vkUpdateDescriptorSets(ctx.device(), 1, &write, 0, nullptr);
+}
+
+// In place: binds the slab's labels (layers first .. first + layers) of the source buffer,
+// from the aligned offset at or before them; returns how many labels precede them there.
+std::uint32_t bindSlabInPlace(const gpu::Context& ctx, VkDescriptorSet set, const Classifier::Source& source, int first,
+                              int layers) {
+  const VkDeviceSize align = std::max<VkDeviceSize>(4, ctx.limits().minStorageBufferOffsetAlignment);
+  const VkDeviceSize start = source.offset + source.layerBytes() * static_cast<VkDeviceSize>(first);
+  const VkDeviceSize bound = start / align * align;
+  const VkDeviceSize end = start + source.layerBytes() * static_cast<VkDeviceSize>(layers + 1);
+  bindBuffer(ctx, set, 0, source.buffer, bound, std::min((end - bound + 3) / 4 * 4, source.size - bound));
+  return static_cast<std::uint32_t>((start - bound) / (source.bits / 8));
+}
+
+// The buffer a slab's labels are copied into: mapped for host labels, on the device for a
+// device buffer copied slab by slab; none (an empty Buffer) when bound in place.
+Result<gpu::Buffer> createSlabBuffer(const gpu::Context& ctx, const Classifier::Source& source, const SlabPlan& plan) {
+  if (source.size > 0) return gpu::Buffer{};
+  const VkDeviceSize bytes = (plan.layerBytes * static_cast<std::size_t>(plan.slabCellLayers + 1) + 3) / 4 * 4;
+  if (source.host) return gpu::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
+  return gpu::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             gpu::MemoryDomain::Device);
 }
 
 // Host labels: written straight into the mapped slab buffer before recording.
@@ -107,6 +139,11 @@ void fillSlab(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::
   const std::size_t start = source.layerBytes() * static_cast<std::size_t>(firstLayer);
   if (source.host) {
     std::memcpy(labels.mapped(), reinterpret_cast<const std::uint8_t*>(source.host->labels.data()) + start, bytes);
+    return;
+  }
+  if (source.size > 0) {  // bound in place: only wait for the earlier writes to the buffer
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     return;
   }
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -128,7 +165,7 @@ Result<std::vector<CellCase>> Classifier::run(const LabelVolume& volume) {
   return classify(source);
 }
 
-Result<std::vector<CellCase>> Classifier::run(const DeviceLabelVolume& volume) {
+Result<Classifier::Source> Classifier::deviceSource(const DeviceLabelVolume& volume) const {
   if (volume.buffer == VK_NULL_HANDLE) return makeError(Errc::InvalidArgument, "DeviceLabelVolume: no buffer");
   if (volume.bitsPerLabel != 16 && volume.bitsPerLabel != 32)
     return makeError(Errc::InvalidArgument, "DeviceLabelVolume: bitsPerLabel is " + std::to_string(volume.bitsPerLabel) +
@@ -140,6 +177,21 @@ Result<std::vector<CellCase>> Classifier::run(const DeviceLabelVolume& volume) {
   source.buffer = volume.buffer;
   source.offset = volume.offset;
   source.bits = volume.bitsPerLabel;
+  return source;
+}
+
+Result<std::vector<CellCase>> Classifier::run(const DeviceLabelVolume& volume) {
+  SCANSURF_ASSIGN_OR_RETURN(const Source source, deviceSource(volume));
+  return classify(source);
+}
+
+Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize) {
+  SCANSURF_ASSIGN_OR_RETURN(Source source, deviceSource(volume));
+  const VkDeviceSize need = volume.offset + volume.grid.voxelCount() * (volume.bitsPerLabel / 8);
+  if (bufferSize < need)
+    return makeError(Errc::InvalidArgument, "DeviceLabelVolume: the buffer holds " + std::to_string(bufferSize) +
+                                                " bytes; the grid needs " + std::to_string(need));
+  source.size = bufferSize;
   return classify(source);
 }
 
@@ -147,14 +199,10 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& grid = source.grid;
   if (grid.nx < 2 || grid.ny < 2 || grid.nz < 2) return std::vector<CellCase>{};
-  SCANSURF_ASSIGN_OR_RETURN(const SlabPlan plan, planSlabs(ctx, grid, source.layerBytes(), state_->slabBudget));
+  SCANSURF_ASSIGN_OR_RETURN(const SlabPlan plan, planSlabs(ctx, grid, source.layerBytes(), state_->slabBudget, source.size > 0));
 
-  const VkDeviceSize labelBytes = (plan.layerBytes * static_cast<std::size_t>(plan.slabCellLayers + 1) + 3) / 4 * 4;
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels,
-                            source.host ? gpu::Buffer::create(ctx, labelBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload)
-                                        : gpu::Buffer::create(ctx, labelBytes,
-                                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                              gpu::MemoryDomain::Device));
+  const bool inPlace = source.size > 0;
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels, createSlabBuffer(ctx, source, plan));
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer counter,
                             gpu::Buffer::create(ctx, 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                 gpu::MemoryDomain::Readback));
@@ -174,9 +222,12 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     if (!casesBound) {
       SCANSURF_ASSIGN_OR_RETURN(cases, gpu::Buffer::create(ctx, capacity * sizeof(CellCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                            gpu::MemoryDomain::Readback));
-      bindBuffers(ctx, state_->set, labels, counter, cases);
+      if (!inPlace) bindBuffer(ctx, state_->set, 0, labels.handle());
+      bindBuffer(ctx, state_->set, 1, counter.handle());
+      bindBuffer(ctx, state_->set, 2, cases.handle());
       casesBound = true;
     }
+    const std::uint32_t labelOffset = inPlace ? bindSlabInPlace(ctx, state_->set, source, first, layers) : 0;
     SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
     VkCommandBuffer cmd = commands.cmd();
     fillSlab(cmd, source, labels, first, layers);
@@ -187,7 +238,7 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
     const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
                                     static_cast<std::uint32_t>(layers),  static_cast<std::uint32_t>(first),
-                                    static_cast<std::uint32_t>(capacity), source.bits};
+                                    static_cast<std::uint32_t>(capacity), source.bits, labelOffset};
     vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
                   (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));

@@ -26,6 +26,9 @@ class Classifier {
   // DeviceLabelVolume in scansurf/vulkan_interop.h): each slab is copied on the device, never
   // through the host. A 32-bit label above 65535 is Errc::InvalidInput.
   Result<std::vector<CellCase>> run(const DeviceLabelVolume& volume);
+  // The same with the buffer's size known (scansurf's own buffers): each slab's labels are
+  // bound in place, with no copy and no slab buffer.
+  Result<std::vector<CellCase>> runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize);
 
   // Bytes of labels one slab may upload; smaller forces more slabs (tests use it).
   void setSlabBudget(std::size_t bytes);
@@ -36,6 +39,7 @@ class Classifier {
 
  private:
   Result<std::vector<CellCase>> classify(const Source& source);
+  Result<Source> deviceSource(const DeviceLabelVolume& volume) const;
   explicit Classifier(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
 };

@@ -414,7 +414,9 @@ Result<ScanConverter::DeviceLabels> ScanConverter::runOnDevice(const ContourSet&
   SCANSURF_TRY(checkRunArguments(state_->ctx->limits(), grid, contours.features.size(), order.size()));
   const VkDeviceSize bytes = (grid.voxelCount() * sizeof(Label) + 3) / 4 * 4;  // fills take whole words
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer buffer,
-                            gpu::Buffer::create(*state_->ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            gpu::Buffer::create(*state_->ctx, bytes,
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                 gpu::MemoryDomain::Device));
   if (host) {
     host->grid = grid;

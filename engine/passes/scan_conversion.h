@@ -28,7 +28,8 @@ class ScanConverter {
 
   // The same labels left on the device for classification (issue 12: no readback and upload
   // again between GPU passes): a buffer of 16-bit labels in LabelVolume's layout, usable as
-  // a DeviceLabelVolume. `host`, when given, also receives them (its labels are filled).
+  // a DeviceLabelVolume (storage and transfer usage; classified in place by
+  // Classifier::runInPlace). `host`, when given, also receives them (its labels are filled).
   struct DeviceLabels {
     gpu::Buffer buffer;
     Grid grid;

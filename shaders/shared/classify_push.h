@@ -11,8 +11,9 @@ struct ClassifyPush {
   std::uint32_t firstCellLayer;  // global index of the first cell layer of the slab
   std::uint32_t capacity;        // records the output buffer holds
   std::uint32_t labelBits;       // 16: two labels per word; 32: one label per word
+  std::uint32_t labelOffset;     // labels before the slab's first in the bound range (alignment)
 };
-static_assert(sizeof(ClassifyPush) == 24, "ClassifyPush must match the GLSL push-constant block");
+static_assert(sizeof(ClassifyPush) == 28, "ClassifyPush must match the GLSL push-constant block");
 }  // namespace scansurf::shared
 #else
 layout(push_constant) uniform ClassifyPush {
@@ -22,6 +23,7 @@ layout(push_constant) uniform ClassifyPush {
   uint firstCellLayer;
   uint capacity;
   uint labelBits;
+  uint labelOffset;
 } push;
 #endif
 

@@ -135,6 +135,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   }
   const double write = seconds(t0, Clock::now());
   fs::remove_all(outDir);
+  const double peakRss = peakRssMiB();  // the run's, before the floor's own buffers below
 
   // The floor: one copy of a buffer the size of the label volume (best of 5).
   const std::size_t voxels = best.volume.grid.voxelCount();
@@ -164,7 +165,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   add("write", write);
   add("total", total);
   add("floor_copy", floor);
-  add("peak_rss_mib", peakRssMiB());
+  add("peak_rss_mib", peakRss);
   add("label_volume_mib", static_cast<double>(volumeBytes) / (1 << 20));
   add("mesh_mib", static_cast<double>(meshBytes) / (1 << 20));
   add("nx", g.nx);
