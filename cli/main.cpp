@@ -198,6 +198,7 @@ int run(const cli::CliOptions& o) {
 
 int main(int argc, char** argv) {
   cli::installInterruptHandling();
+  scansurf::keepFreedMemoryForReuse();  // a batch run: stages reuse freed pages (scansurf/process.h)
   // Nothing may escape as an abort: whatever is left over is an internal error, exit 7.
   try {
     const cli::ParsedCommandLine parsed = cli::parseCommandLine(argc, argv);

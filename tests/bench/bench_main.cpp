@@ -22,6 +22,7 @@
 #include "io/contours_json.h"
 #include "io/ply_writer.h"
 #include "scansurf/engine.h"
+#include "scansurf/process.h"
 #include "support/rtstruct_builder.h"
 
 namespace fs = std::filesystem;
@@ -194,6 +195,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
 }  // namespace
 
 int main(int argc, char** argv) {
+  scansurf::keepFreedMemoryForReuse();  // as the command-line tool does at start
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.size() >= 2 && args[0] == "generate") return generate(args[1], {args.begin() + 2, args.end()});
   if (args.size() >= 3 && args[0] == "run") {

@@ -23,6 +23,7 @@
 #include "scansurf/outputs.h"
 #include "scansurf/palette.h"
 #include "scansurf/preview.h"
+#include "scansurf/process.h"
 #include "scansurf/report.h"
 #include "scansurf/result.h"
 #include "scansurf/smoothing.h"
