@@ -190,11 +190,12 @@ Blocks planBlocks(const CaseTable& table, std::span<const CellCase> cases, int t
 
 // The vertex keys of the block's triangles (3 per triangle) into `keys`, their label pairs into
 // `labels` (2 per triangle), each wound from the smaller label to the larger.
-void emitTriangles(const CaseTable& table, const Grid& grid, std::span<const CellCase> cases, std::vector<std::uint64_t>& keys,
-                   Label* labels) {
+void emitTriangles(const CaseTable& table, const Grid& grid, std::span<const CellCase> cases, std::size_t triangles,
+                   std::vector<std::uint64_t>& keys, Label* labels) {
   const auto cellsX = static_cast<std::uint64_t>(grid.nx - 1);
   const auto cellsY = static_cast<std::uint64_t>(grid.ny - 1);
-  keys.clear();
+  keys.resize(3 * triangles);
+  std::uint64_t* out = keys.data();
   for (const CellCase& c : cases) {
     const std::uint64_t ci = c.cell % cellsX;
     const std::uint64_t cj = (c.cell / cellsX) % cellsY;
@@ -210,7 +211,9 @@ void emitTriangles(const CaseTable& table, const Grid& grid, std::span<const Cel
         const Label la = cellCornerLabel(c, lt.from);
         const Label lb = cellCornerLabel(c, lt.to);
         const bool keep = la < lb;  // else reverse the winding so it points from min to max
-        keys.insert(keys.end(), {k[0], keep ? k[1] : k[2], keep ? k[2] : k[1]});
+        *out++ = k[0];
+        *out++ = keep ? k[1] : k[2];
+        *out++ = keep ? k[2] : k[1];
         *labels++ = keep ? la : lb;
         *labels++ = keep ? lb : la;
       }
@@ -294,7 +297,8 @@ MultiLabelMesh assembleMesh(const Grid& grid, std::span<const CellCase> cases, i
     std::vector<std::uint64_t> keys, scratch;  // reused by the thread's blocks
     for (std::size_t b = b0; b < b1; ++b) {
       const std::size_t first = blocks.firstTriangle[b];
-      emitTriangles(table, grid, blocks.cases(cases, b), keys, mesh.labels.data() + 2 * first);
+      emitTriangles(table, grid, blocks.cases(cases, b), blocks.firstTriangle[b + 1] - first, keys,
+                    mesh.labels.data() + 2 * first);
       blockKeys[b] = indexBlock(keys, scratch, mesh.triangles.data() + 3 * first);
     }
   });
