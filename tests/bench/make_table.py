@@ -70,8 +70,12 @@ def main():
   shrink by orders of magnitude while the CPU stages stay.
 - scansurf's surfaces have more triangles than flying edges': the separating surface is
   extracted over six tetrahedra per voxel cube (what makes it consistent between abutting
-  labels, with no ambiguous cases), and smoothing (150 constrained Jacobi sweeps, on the CPU)
-  costs in proportion to them.
+  labels, with no ambiguous cases), and smoothing (150 sweeps' worth of constrained fairing,
+  run as 35 Jacobi sweeps on the CPU) costs in proportion to them.
+- The scansurf runs use the defaults of the command-line tool: smoothing on, layers for
+  overlapping structures, interpolation `auto` (off at these grids: the slices are 2-2.5 px
+  apart), the labels kept on the device between scan conversion and classification, and
+  freed memory kept for reuse (`keepFreedMemoryForReuse`, as the tool does at start).
 - The Slicer route rasterizes and surfaces each structure on its own, so it grows with the
   number of structures; scansurf renders all structures of a slice at once and extracts every
   surface in one pass, so it grows with the surface area.""")

@@ -55,7 +55,7 @@ if command -v perf > /dev/null && [ -f "$work/pelvis.json" ] && perf stat -e tas
     echo "## Profile: scansurf on pelvis (perf record, self time by symbol, top 10)"
     echo
     echo '```'
-    perf report -i "$work/perf.data" --no-children --sort dso,symbol --stdio > "$work/perf.txt" 2> /dev/null || true
+    perf report -i "$work/perf.data" --no-children -g none --sort dso,symbol --stdio > "$work/perf.txt" 2> /dev/null || true
     grep -E '^ +[0-9]' "$work/perf.txt" | sed -n '1,10p' | cut -c1-170 | sed 's/ *$//'
     echo '```'
   } >> docs/benchmarks.md
