@@ -19,6 +19,7 @@
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
 #include "gpu/context.h"
+#include "gpu/resources.h"
 #include "passes/classification.h"
 #include "passes/interpolation.h"
 #include "geometry/interpolated_volume.h"
@@ -140,49 +141,63 @@ std::vector<int> factorsOf(const Grid& planes, const Grid& grid, const std::vect
   return {gridFactors.begin() + first, gridFactors.begin() + first + planes.nz - 1};
 }
 
-// Surfaces of a scan-converted volume of contour planes: interpolated first when asked (from
-// the host labels), else classified from the device labels when there are some (no upload).
-// The device labels are released once classified: the CPU stages' peak memory need not hold them.
-Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
-                                  std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
-                                  const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                  StageClock& clock) {
-  if (!interpolates(factors)) {
-    if (!device) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
-    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
-    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
-                              classifier->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid},
-                                                     device->buffer.size()));
-    device.reset();
-    clock.lap("classification");
-    return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock);
-  }
+// Surfaces of contour planes with interpolated layers between them. The planes come to the
+// host for their edge crossings (a CPU stage), but the interpolation passes copy them from the
+// device labels when there are some; the interpolated labels stay on the device for
+// classification (as label | clearance words), and the host gets the clearances, which
+// smoothing needs.
+Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& planes,
+                                      std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
+                                      const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
+                                      StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
       contours ? planeEdgeCrossings(planes, *contours, options.grid.sliceTolerance, options.threads)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
+  const Grid fineGrid = interpolatedGrid(planes.grid, factors);
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer words, gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,
+                                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                                   gpu::MemoryDomain::Device));
   SCANSURF_ASSIGN_OR_RETURN(InterpolatedVolume fine,
-                            interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads));
+                            interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads,
+                                              {device ? &device->buffer : nullptr, &words}));
+  device.reset();
   clock.lap("interpolation");
-  return surfacesOfVolume(impl, fine.volume, contours, nesting, options, clock, fine.clearance);
+  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
+                            classifier->runInPlace(DeviceLabelVolume{words.handle(), 0, 32, fineGrid}, words.size(), true));
+  words = gpu::Buffer{};
+  clock.lap("classification");
+  return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance);
 }
 
-// Scan conversion for the surfaces. Interpolation (a host stage's input) takes the labels on
-// the host; otherwise they stay on the device for classification, and come to the host too
-// only when `toHost`. `planes` always gets the grid.
-Result<std::optional<passes::ScanConverter::DeviceLabels>> scanPlanes(passes::ScanConverter& scanner,
-                                                                      const ContourSet& contours, const Grid& grid,
-                                                                      const std::vector<int>& order, double tolerance,
-                                                                      bool interpolating, bool toHost, LabelVolume& planes) {
-  if (interpolating) {
-    SCANSURF_ASSIGN_OR_RETURN(planes, scanner.run(contours, grid, order, tolerance));
-    return std::optional<passes::ScanConverter::DeviceLabels>();
-  }
+// Surfaces of a scan-converted volume of contour planes: interpolated first when asked, else
+// classified from the device labels when there are some (bound in place, no upload). The
+// device labels are released once used: the CPU stages' peak memory need not hold them.
+Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
+                                  std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
+                                  const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
+                                  StageClock& clock) {
+  if (interpolates(factors)) return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock);
+  if (!device) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
+  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
+                            classifier->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid},
+                                                   device->buffer.size()));
+  device.reset();
+  clock.lap("classification");
+  return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock);
+}
+
+// Scan conversion for the surfaces: the labels stay on the device for the next GPU pass, and
+// come to the host too when `toHost` or when interpolating (the edge crossings of the planes
+// are a CPU stage). `planes` always gets the grid.
+Result<passes::ScanConverter::DeviceLabels> scanPlanes(passes::ScanConverter& scanner, const ContourSet& contours,
+                                                       const Grid& grid, const std::vector<int>& order, double tolerance,
+                                                       bool interpolating, bool toHost, LabelVolume& planes) {
   planes.grid = grid;
-  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter::DeviceLabels device,
-                            scanner.runOnDevice(contours, grid, order, tolerance, toHost ? &planes : nullptr));
-  return std::optional<passes::ScanConverter::DeviceLabels>(std::move(device));
+  return scanner.runOnDevice(contours, grid, order, tolerance, toHost || interpolating ? &planes : nullptr);
 }
 
 InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<int>& factors, CapShape caps) {

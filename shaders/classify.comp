@@ -21,7 +21,7 @@ uint labelAt(uint i, uint j, uint k) {
   const uint n = push.labelOffset + i + push.nx * (j + push.ny * k);
   if (push.labelBits == 32u) {
     const uint label = labels.words[n];
-    if (label > 0xFFFFu) atomicMax(counter.largestLabel, label);
+    if (label > 0xFFFFu && push.upperIsData == 0u) atomicMax(counter.largestLabel, label);
     return label & 0xFFFFu;
   }
   return (labels.words[n >> 1] >> ((n & 1u) * 16u)) & 0xFFFFu;

@@ -50,6 +50,15 @@ bool deepInside(PairPlan pair, int x, int y, int first, int count) {
   return false;
 }
 
+// The word of a voxel: its label and clearance. On the contour planes (m = 0, and m = n for the
+// volume's last plane) the label is the plane's own, so the words of every pair, copied side
+// by side, are the whole interpolated label volume (classified on the device).
+void store(PairPlan pair, int m, int x, int y, int slot, uint label, uint clearance) {
+  if (m == 0) label = planeLabel(pair.planeA, x, y);
+  else if (m == pair.factor) label = planeLabel(pair.planeA + 1, x, y);
+  outputLabels.labels[slot] = label | (clearance << 16);
+}
+
 void main() {
   const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
   if (x >= int(push.nx) || y >= int(push.ny)) return;
@@ -60,7 +69,7 @@ void main() {
   const int count = flagged & ~kMovingTile;
   const int slot = (pair.firstLayer + m) * int(push.nx * push.ny) + y * int(push.nx) + x;
   if ((flagged & kMovingTile) == 0 && deepInside(pair, x, y, first, count)) {
-    outputLabels.labels[slot] = planeLabel(pair.planeA, x, y) | 0xFFFF0000u;
+    store(pair, m, x, y, slot, planeLabel(pair.planeA, x, y), 0xFFFFu);
     return;
   }
   int best = kFarAway, second = kFarAway, united = kFarAway, winner = 0, extruded = 0, extrudedLabel = 0;
@@ -77,7 +86,7 @@ void main() {
   }
   if (extrudedLabel != 0) {  // a flat cap keeps its plane's region up to its lid
     const uint c = uint(min((-extruded + pair.factor / 2) / pair.factor, 65535));
-    outputLabels.labels[slot] = uint(extrudedLabel) | (c << 16);
+    store(pair, m, x, y, slot, uint(extrudedLabel), c);
     return;
   }
   const int level = min(best, united);
@@ -85,5 +94,5 @@ void main() {
   const int clearance = labelled ? min(second - best, -level) : level;
   const uint c = uint(min((clearance + pair.factor / 2) / pair.factor, 65535));
   const uint label = labelled ? uint(winner) : 0u;
-  outputLabels.labels[slot] = label | (c << 16);
+  store(pair, m, x, y, slot, label, c);
 }

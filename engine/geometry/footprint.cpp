@@ -68,7 +68,10 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) + interpolated +
                       static_cast<double>(f.surfaceVertices) * kBytesPerVertex;
   f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
-  f.deviceBytes = std::max(kSlabBudget, plane * kDeviceBytesPerPixel);
+  // One slab of scan conversion, the label volume kept on the device until classified and,
+  // with interpolation, its volume of 32-bit label | clearance words.
+  const double deviceVolumes = static_cast<double>(f.labelVoxels) * sizeof(Label) + (finer > 1 ? 4.0 * static_cast<double>(plane) * layers : 0.0);
+  f.deviceBytes = std::max(kSlabBudget, plane * kDeviceBytesPerPixel) + static_cast<std::uint64_t>(std::min(deviceVolumes, 1.8e19));
   return f;
 }
 

@@ -61,6 +61,7 @@ struct Classifier::Source {
   VkDeviceSize offset = 0;
   VkDeviceSize size = 0;  // of `buffer` when known: slabs are then bound in place
   std::uint32_t bits = 16;
+  bool upperIsData = false;  // 32-bit words: the label is the lower half
 
   std::size_t layerBytes() const {
     return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8);
@@ -185,8 +186,9 @@ Result<std::vector<CellCase>> Classifier::run(const DeviceLabelVolume& volume) {
   return classify(source);
 }
 
-Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize) {
+Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData) {
   SCANSURF_ASSIGN_OR_RETURN(Source source, deviceSource(volume));
+  source.upperIsData = upperIsData && volume.bitsPerLabel == 32;
   const VkDeviceSize need = volume.offset + volume.grid.voxelCount() * (volume.bitsPerLabel / 8);
   if (bufferSize < need)
     return makeError(Errc::InvalidArgument, "DeviceLabelVolume: the buffer holds " + std::to_string(bufferSize) +
@@ -238,7 +240,8 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
     const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
                                     static_cast<std::uint32_t>(layers),  static_cast<std::uint32_t>(first),
-                                    static_cast<std::uint32_t>(capacity), source.bits, labelOffset};
+                                    static_cast<std::uint32_t>(capacity), source.bits, labelOffset,
+                                    source.upperIsData ? 1u : 0u};
     vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
                   (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));

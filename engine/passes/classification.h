@@ -27,8 +27,9 @@ class Classifier {
   // through the host. A 32-bit label above 65535 is Errc::InvalidInput.
   Result<std::vector<CellCase>> run(const DeviceLabelVolume& volume);
   // The same with the buffer's size known (scansurf's own buffers): each slab's labels are
-  // bound in place, with no copy and no slab buffer.
-  Result<std::vector<CellCase>> runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize);
+  // bound in place, with no copy and no slab buffer. upperIsData: 32-bit words whose upper
+  // 16 bits are other data (the interpolation's words, label | clearance << 16).
+  Result<std::vector<CellCase>> runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData = false);
 
   // Bytes of labels one slab may upload; smaller forces more slabs (tests use it).
   void setSlabBudget(std::size_t bytes);

@@ -37,7 +37,9 @@ struct SlabBuffers {
     if (buffers[binding].handle() != VK_NULL_HANDLE && buffers[binding].size() >= bytes) return false;
     const gpu::MemoryDomain domain = domainOf(binding);
     const VkBufferUsageFlags usage =
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | (domain == gpu::MemoryDomain::Device ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : VkBufferUsageFlags{0});
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | (domain == gpu::MemoryDomain::Device ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : VkBufferUsageFlags{0}) |
+        (binding == kOutput ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_SRC_BIT) : VkBufferUsageFlags{0}) |
+        (binding == kPlanes ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : VkBufferUsageFlags{0});
     buffers[binding] = gpu::Buffer{};  // release before allocating the larger one
     SCANSURF_ASSIGN_OR_RETURN(buffers[binding], gpu::Buffer::create(ctx, bytes + bytes / 4, usage, domain));
     return true;
@@ -104,9 +106,10 @@ std::vector<std::int32_t> capTable() {
   return table;
 }
 
-// Fills the buffers for `slab`; true when any buffer is new.
+// Fills the buffers for `slab` (the planes only when they are not copied on the device from
+// devicePlanes); true when any buffer is new.
 Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                         const InterpolationSlab& slab) {
+                         const InterpolationSlab& slab, bool devicePlanes) {
   const std::size_t plane = static_cast<std::size_t>(volume.grid.nx) * static_cast<std::size_t>(volume.grid.ny);
   const std::size_t first = plane * static_cast<std::size_t>(slab.firstPlane), count = plane * static_cast<std::size_t>(slab.planes);
   bool fresh = false;
@@ -115,7 +118,8 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
     fresh = fresh || *r;
     return {};
   };
-  SCANSURF_TRY(track(b.upload(ctx, kPlanes, volume.labels.data() + first, count * sizeof(Label))));
+  SCANSURF_TRY(track(devicePlanes ? b.reserve(ctx, kPlanes, count * sizeof(Label))
+                                   : b.upload(ctx, kPlanes, volume.labels.data() + first, count * sizeof(Label))));
   SCANSURF_TRY(track(b.upload(ctx, kCrossings, crossings.data() + first, count * sizeof(std::uint16_t))));
   SCANSURF_TRY(track(b.upload(ctx, kFields, slab.fields)));
   SCANSURF_TRY(track(b.reserve(ctx, kValues, slab.fieldValues * 4)));
@@ -160,15 +164,41 @@ Result<std::unique_ptr<Interpolator>> Interpolator::create(const gpu::Context& c
   return std::unique_ptr<Interpolator>(new Interpolator(std::move(s)));
 }
 
+// The slab's planes from the scan-converted labels on the device, instead of an upload.
+void recordPlanesCopy(VkCommandBuffer cmd, const gpu::Buffer& devicePlanes, const gpu::Buffer& planes, VkDeviceSize offset,
+                      VkDeviceSize bytes) {
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  const VkBufferCopy region{offset, 0, bytes};
+  vkCmdCopyBuffer(cmd, devicePlanes.handle(), planes.handle(), 1, &region);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+// The slab's words into the device volume of words (its output layers are consecutive fine
+// layers), ahead of the host's readback.
+void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::Buffer& words, VkDeviceSize offset,
+                     VkDeviceSize bytes) {
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
+  const VkBufferCopy region{0, offset, bytes};
+  vkCmdCopyBuffer(cmd, output.handle(), words.handle(), 1, &region);
+}
+
 Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
-                                   const DistanceWeights& weights, CapShape caps, const SlabWords& store) {
+                                   const DistanceWeights& weights, CapShape caps, const SlabWords& store,
+                                   const InterpolationDeviceIo& device) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& g = volume.grid;
   SlabBuffers& buffers = state_->buffers;
-  SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareSlab(ctx, buffers, volume, crossings, slab));
+  SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareSlab(ctx, buffers, volume, crossings, slab, device.planes != nullptr));
   if (fresh) bindSlab(ctx, state_->set, buffers);
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
+  const VkDeviceSize plane = static_cast<VkDeviceSize>(g.nx) * static_cast<VkDeviceSize>(g.ny);
+  if (device.planes)
+    recordPlanesCopy(cmd, *device.planes, buffers.buffers[kPlanes], plane * static_cast<VkDeviceSize>(slab.firstPlane) * sizeof(Label),
+                     plane * static_cast<VkDeviceSize>(slab.planes) * sizeof(Label));
   vkCmdFillBuffer(cmd, buffers.buffers[kRadii].handle(), 0, VK_WHOLE_SIZE, 0);  // atomicMax starts from 0
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -194,25 +224,29 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(g.nx) + kPixelGroup - 1) / kPixelGroup,
                   (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup, static_cast<std::uint32_t>(slab.pairs[p].layers));
   }
+  const gpu::Buffer& output = buffers.buffers[kOutput];
+  if (device.words) recordWordsCopy(cmd, output, *device.words, device.wordsOffset, plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                      VK_ACCESS_2_HOST_READ_BIT);
   SCANSURF_TRY(commands.submitAndWait());
-  const gpu::Buffer& output = buffers.buffers[kOutput];
   SCANSURF_TRY(output.invalidate());
   store(static_cast<const std::uint32_t*>(output.mapped()));
   return {};
 }
 
 Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                             const std::vector<int>& factors, CapShape caps, int threads) {
+                                             const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device) {
   if (crossings.size() != volume.labels.size())
     return makeError(Errc::InvalidArgument, "interpolation: one edge-crossing word per voxel is needed");
   SCANSURF_ASSIGN_OR_RETURN(const DistanceWeights weights, distanceWeights(volume.grid));
   const std::size_t budget = std::min<std::size_t>(state_->slabBudget, state_->ctx->limits().maxStorageBufferRange);
   state_->lastSlabs = 0;
+  const std::vector<int> fineOf = fineLayerOfPlane(factors);
+  const VkDeviceSize plane = static_cast<VkDeviceSize>(volume.grid.nx) * static_cast<VkDeviceSize>(volume.grid.ny);
   return interpolateVolume(volume, factors, budget, threads, [&](const InterpolationSlab& slab, const SlabWords& store) {
     ++state_->lastSlabs;
-    return runSlab(volume, crossings, slab, weights, caps, store);
+    device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(slab.firstPlane)]) * 4;
+    return runSlab(volume, crossings, slab, weights, caps, store, device);
   });
 }
 

@@ -10,8 +10,20 @@
 
 #include "geometry/interpolated_volume.h"
 #include "gpu/context.h"
+#include "gpu/resources.h"
 
 namespace scansurf::passes {
+
+// What of an interpolation stays on the device (issue 12): `planes`, the same labels as the
+// planes volume in a buffer of 16-bit labels (ScanConverter::runOnDevice), copied there into
+// each slab instead of uploaded; `words` (at least 4 bytes per voxel of the interpolated grid)
+// receives every voxel's word, label | clearance << 16 (the contour planes' own labels on
+// their layers), to be classified there (Classifier::runInPlace, upper half as data).
+struct InterpolationDeviceIo {
+  const gpu::Buffer* planes = nullptr;
+  const gpu::Buffer* words = nullptr;
+  VkDeviceSize wordsOffset = 0;  // runSlab: where the slab's first output layer goes
+};
 
 class Interpolator {
  public:
@@ -21,11 +33,12 @@ class Interpolator {
   // The volume on interpolatedGrid(volume.grid, factors) (see interpolated_volume.h);
   // crossings: planeEdgeCrossings of the volume (geometry/edge_crossings.h).
   Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const std::vector<int>& factors,
-                                 CapShape caps, int threads);
+                                 CapShape caps, int threads, InterpolationDeviceIo device = {});
   // One slab's output layers, handed to `store` (InterpolationSlab::outputLayers of nx * ny
   // label | clearance << 16 words, read straight from the device's readback buffer).
   Result<void> runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
-                       const DistanceWeights& weights, CapShape caps, const SlabWords& store);
+                       const DistanceWeights& weights, CapShape caps, const SlabWords& store,
+                       const InterpolationDeviceIo& device = {});
 
   // Bytes one slab may use on the device; smaller forces more slabs (tests use it).
   void setSlabBudget(std::size_t bytes);

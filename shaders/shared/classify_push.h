@@ -12,8 +12,9 @@ struct ClassifyPush {
   std::uint32_t capacity;        // records the output buffer holds
   std::uint32_t labelBits;       // 16: two labels per word; 32: one label per word
   std::uint32_t labelOffset;     // labels before the slab's first in the bound range (alignment)
+  std::uint32_t upperIsData;     // 32-bit words whose upper half is other data (clearances)
 };
-static_assert(sizeof(ClassifyPush) == 28, "ClassifyPush must match the GLSL push-constant block");
+static_assert(sizeof(ClassifyPush) == 32, "ClassifyPush must match the GLSL push-constant block");
 }  // namespace scansurf::shared
 #else
 layout(push_constant) uniform ClassifyPush {
@@ -24,6 +25,7 @@ layout(push_constant) uniform ClassifyPush {
   uint capacity;
   uint labelBits;
   uint labelOffset;
+  uint upperIsData;
 } push;
 #endif
 
