@@ -35,9 +35,9 @@ void storePair(const std::uint32_t* words, const shared::PairPlan& pair, std::si
   for (int m = 0; m < pair.layers; ++m) {
     const std::uint32_t* in = words + plane * static_cast<std::size_t>(pair.firstLayer + m);
     const std::size_t at = plane * static_cast<std::size_t>(fineA + m);
-    Label* labels = out.volume.labels.data() + at;
+    Label* labels = out.volume.labels.empty() ? nullptr : out.volume.labels.data() + at;
     std::uint16_t* clearance = out.clearance.data() + at;
-    const bool interpolated = m > 0 && m < pair.factor;
+    const bool interpolated = labels && m > 0 && m < pair.factor;
     for (std::size_t i = 0; i < plane; ++i) {
       if (interpolated) labels[i] = static_cast<Label>(in[i] & 0xFFFFu);
       clearance[i] = static_cast<std::uint16_t>(in[i] >> 16);
@@ -46,21 +46,23 @@ void storePair(const std::uint32_t* words, const shared::PairPlan& pair, std::si
 }
 
 Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
-                                             int threads, const SlabInterpolator& interpolate) {
+                                             int threads, const SlabInterpolator& interpolate, bool withLabels) {
   const Grid& g = volume.grid;
   if (factors.size() + 1 != static_cast<std::size_t>(g.nz))
     return makeError(Errc::InvalidArgument, "interpolation: one factor per gap between layers is needed");
   InterpolatedVolume out;
   LabelVolume& fine = out.volume;
   fine.grid = interpolatedGrid(g, factors);
-  fine.labels.assign(fine.grid.voxelCount(), kBackground);
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   const std::vector<int> fineOf = fineLayerOfPlane(factors);
-  for (int k = 0; k < g.nz; ++k)
-    std::memcpy(fine.labels.data() + plane * static_cast<std::size_t>(fineOf[static_cast<std::size_t>(k)]),
-                volume.labels.data() + plane * static_cast<std::size_t>(k), plane * sizeof(Label));
+  if (withLabels || !interpolates(factors)) {
+    fine.labels.assign(fine.grid.voxelCount(), kBackground);
+    for (int k = 0; k < g.nz; ++k)
+      std::memcpy(fine.labels.data() + plane * static_cast<std::size_t>(fineOf[static_cast<std::size_t>(k)]),
+                  volume.labels.data() + plane * static_cast<std::size_t>(k), plane * sizeof(Label));
+  }
   if (!interpolates(factors)) return out;
-  out.clearance.assign(fine.labels.size(), 0);
+  out.clearance.assign(fine.grid.voxelCount(), 0);
 
   const PlaneCensus census = takePlaneCensus(volume, threads);
   for (int first = 0; first + 1 < g.nz;) {

@@ -15,6 +15,7 @@ using SlabWords = std::function<void(const std::uint32_t* words)>;
 using SlabInterpolator = std::function<Result<void>(const InterpolationSlab& slab, const SlabWords& store)>;
 
 struct InterpolatedVolume {
+  // Its labels are empty when asked for the clearances only (the labels stayed on the device).
   LabelVolume volume;
   // Per voxel, how far (1/16 of the smaller pixel spacing) its interpolated value is from
   // losing its label; a surface vertex between voxels p and q lies at c(p) / (c(p) + c(q)).
@@ -23,8 +24,8 @@ struct InterpolatedVolume {
 
 // The volume on interpolatedGrid(volume.grid, factors): the original layers as they are, the
 // others from `interpolate`, in slabs whose plan needs at most about slabBytes (at least two
-// layers each).
+// layers each). Without `withLabels`, only the grid and the clearances.
 Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
-                                             int threads, const SlabInterpolator& interpolate);
+                                             int threads, const SlabInterpolator& interpolate, bool withLabels = true);
 
 }  // namespace scansurf

@@ -247,7 +247,7 @@ Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const st
     ++state_->lastSlabs;
     device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(slab.firstPlane)]) * 4;
     return runSlab(volume, crossings, slab, weights, caps, store, device);
-  });
+  }, device.words == nullptr);
 }
 
 }  // namespace scansurf::passes

@@ -79,8 +79,11 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
                                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryDomain::Upload);
     ASSERT_TRUE(planesBuffer);
     std::memcpy(planesBuffer->mapped(), planes.labels.data(), planes.labels.size() * sizeof(Label));
-    auto gpu = (*interpolator)->run(planes, crossings, factors, caps, 1, {round % 2 ? &*planesBuffer : nullptr, &*words});
+    auto gpu = (*interpolator)->run(planes, crossings, factors, caps, 1);
     ASSERT_TRUE(gpu) << gpu.error().message;
+    auto onDeviceRun = (*interpolator)->run(planes, crossings, factors, caps, 1, {round % 2 ? &*planesBuffer : nullptr, &*words});
+    ASSERT_TRUE(onDeviceRun) << onDeviceRun.error().message;
+    EXPECT_TRUE(onDeviceRun->volume.labels.empty());  // they stayed on the device
     const DistanceWeights weights = *distanceWeights(planes.grid);
     auto cpu = interpolateVolume(planes, factors, std::size_t{64} << 20, 1, [&](const InterpolationSlab& slab, const SlabWords& store) {
       store(interpolateSlabReference(planes, crossings, slab, weights, caps).data());
@@ -90,6 +93,7 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     ASSERT_EQ(gpu->volume.grid.nz, cpu->volume.grid.nz);
     ASSERT_EQ(gpu->volume.labels, cpu->volume.labels) << "round " << round;
     ASSERT_EQ(gpu->clearance, cpu->clearance) << "round " << round;
+    ASSERT_EQ(onDeviceRun->clearance, cpu->clearance) << "round " << round;
     // Small classification slabs in some rounds: slab starts off the offset alignment.
     (*classifier)->setSlabBudget(round % 2 ? static_cast<std::size_t>(nx * ny) * 4 * 3 : std::size_t{64} << 20);
     auto onDevice = (*classifier)->runInPlace(DeviceLabelVolume{words->handle(), 0, 32, fineGrid}, words->size(), true);
