@@ -95,6 +95,10 @@ int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d)
                            std::abs(cdx) * (std::abs(ady * bdz) + std::abs(adz * bdy));
   if (std::abs(det) > kFilter * permanent) return signOf(det);
   if (a == d || b == d || c == d || a == b || a == c || b == c) return 0;  // common in meshes: exact
+  // Four points in one axis plane (a contour plane's flat cap, every triangle of a contour
+  // plane's cross-section): a column of exact zeros (x - y == 0 only when x == y), so the
+  // determinant is exactly 0 without the expansions.
+  if ((adx == 0 && bdx == 0 && cdx == 0) || (ady == 0 && bdy == 0 && cdy == 0) || (adz == 0 && bdz == 0 && cdz == 0)) return 0;
   Expansion ad[3], bd[3], cd[3];
   for (int k = 0; k < 3; ++k) ad[k] = diff(a[k], d[k]), bd[k] = diff(b[k], d[k]), cd[k] = diff(c[k], d[k]);
   const auto minor = [](const Expansion& p, const Expansion& q, const Expansion& r, const Expansion& s) {

@@ -38,6 +38,14 @@ TEST(Intersections, OrientationIsExactOnNearlyCoplanarPoints) {
   const Point3 p{big, big, big}, q{big + 1, big, big}, r{big, big + 1, big};
   EXPECT_EQ(orient3d(p, q, r, {big + 0.5, big + 0.5, big}), 0);
   EXPECT_EQ(orient3d(p, q, r, {big + 0.5, big + 0.5, std::nextafter(big, 2 * big)}), -1);
+  // A tilted plane (z = x + y): no axis-plane shortcut, the expansions decide.
+  const Point3 e{0, 0, 0}, f{1, 0, 1}, g{0, 1, 1};
+  EXPECT_EQ(orient3d(e, f, g, {0.5, 0.5, 1}), 0);
+  EXPECT_EQ(orient3d(e, f, g, {0.5, 0.5, std::nextafter(1.0, 2.0)}), -1);
+  EXPECT_EQ(orient3d(e, f, g, {0.5, 0.5, std::nextafter(1.0, 0.0)}), 1);
+  // Four points in one axis plane other than z: exactly 0 (the shortcut), however far out.
+  EXPECT_EQ(orient3d({big, 0.1, 0.3}, {big, 0.7, 0.2}, {big, 0.3, 0.9}, {big, 0.5, 0.5}), 0);
+  EXPECT_EQ(orient3d({big, 0.1, 0.3}, {big, 0.7, 0.2}, {big, 0.3, 0.9}, {std::nextafter(big, 2 * big), 0.5, 0.5}), -1);
   EXPECT_EQ(orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1), orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1));
   EXPECT_EQ(orient2d({1, 1, 0}, {2, 2, 0}, {3, 3, 0}, 0, 1), 0);
 }
