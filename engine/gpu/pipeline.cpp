@@ -159,19 +159,35 @@ Result<StorageBufferSet> createStorageBufferSet(const Context& ctx, VkDescriptor
   return out;
 }
 
+namespace {
+
+VkWriteDescriptorSet storageBufferWrite(VkDescriptorSet set, std::uint32_t binding, const VkDescriptorBufferInfo& info) {
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = binding;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  write.pBufferInfo = &info;
+  return write;
+}
+
+}  // namespace
+
 void bindStorageBuffers(const Context& ctx, VkDescriptorSet set, std::span<const VkBuffer> buffers) {
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());
   for (std::uint32_t i = 0; i < buffers.size(); ++i) {
     infos[i] = {buffers[i], 0, VK_WHOLE_SIZE};
-    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstSet = set;
-    writes[i].dstBinding = i;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &infos[i];
+    writes[i] = storageBufferWrite(set, i, infos[i]);
   }
   vkUpdateDescriptorSets(ctx.device(), static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void bindStorageBuffer(const Context& ctx, VkDescriptorSet set, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset,
+                       VkDeviceSize range) {
+  const VkDescriptorBufferInfo info{buffer, offset, range};
+  const VkWriteDescriptorSet write = storageBufferWrite(set, binding, info);
+  vkUpdateDescriptorSets(ctx.device(), 1, &write, 0, nullptr);
 }
 
 }  // namespace scansurf::gpu

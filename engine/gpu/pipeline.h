@@ -27,6 +27,9 @@ struct StorageBufferSet {
 Result<StorageBufferSet> createStorageBufferSet(const Context& ctx, VkDescriptorSetLayout layout, std::uint32_t count);
 // Points binding i of `set` at the whole of buffers[i].
 void bindStorageBuffers(const Context& ctx, VkDescriptorSet set, std::span<const VkBuffer> buffers);
+// Points one binding of `set` at [offset, offset + range) of `buffer`.
+void bindStorageBuffer(const Context& ctx, VkDescriptorSet set, std::uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0,
+                       VkDeviceSize range = VK_WHOLE_SIZE);
 
 Result<Owned<VkPipelineLayout>> createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,
                                                      std::uint32_t pushConstantBytes, VkShaderStageFlags pushStages);

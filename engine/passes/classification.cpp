@@ -66,6 +66,7 @@ struct Classifier::Source {
   std::size_t layerBytes() const {
     return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8);
   }
+  bool inPlace() const { return size > 0; }
 };
 
 namespace {
@@ -97,18 +98,6 @@ Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_
   return plan;
 }
 
-void bindBuffer(const gpu::Context& ctx, VkDescriptorSet set, std::uint32_t binding, VkBuffer buffer,
-                VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE) {
-  const VkDescriptorBufferInfo info{buffer, offset, range};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.dstBinding = binding;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  write.pBufferInfo = &info;
-  vkUpdateDescriptorSets(ctx.device(), 1, &write, 0, nullptr);
-}
-
 // In place: binds the slab's labels (layers first .. first + layers) of the source buffer,
 // from the aligned offset at or before them; returns how many labels precede them there.
 std::uint32_t bindSlabInPlace(const gpu::Context& ctx, VkDescriptorSet set, const Classifier::Source& source, int first,
@@ -117,14 +106,14 @@ std::uint32_t bindSlabInPlace(const gpu::Context& ctx, VkDescriptorSet set, cons
   const VkDeviceSize start = source.offset + source.layerBytes() * static_cast<VkDeviceSize>(first);
   const VkDeviceSize bound = start / align * align;
   const VkDeviceSize end = start + source.layerBytes() * static_cast<VkDeviceSize>(layers + 1);
-  bindBuffer(ctx, set, 0, source.buffer, bound, std::min((end - bound + 3) / 4 * 4, source.size - bound));
+  gpu::bindStorageBuffer(ctx, set, 0, source.buffer, bound, std::min((end - bound + 3) / 4 * 4, source.size - bound));
   return static_cast<std::uint32_t>((start - bound) / (source.bits / 8));
 }
 
 // The buffer a slab's labels are copied into: mapped for host labels, on the device for a
 // device buffer copied slab by slab; none (an empty Buffer) when bound in place.
 Result<gpu::Buffer> createSlabBuffer(const gpu::Context& ctx, const Classifier::Source& source, const SlabPlan& plan) {
-  if (source.size > 0) return gpu::Buffer{};
+  if (source.inPlace()) return gpu::Buffer{};
   const VkDeviceSize bytes = (plan.layerBytes * static_cast<std::size_t>(plan.slabCellLayers + 1) + 3) / 4 * 4;
   if (source.host) return gpu::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
   return gpu::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -142,7 +131,7 @@ void fillSlab(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::
     std::memcpy(labels.mapped(), reinterpret_cast<const std::uint8_t*>(source.host->labels.data()) + start, bytes);
     return;
   }
-  if (source.size > 0) {  // bound in place: only wait for the earlier writes to the buffer
+  if (source.inPlace()) {  // only wait for the earlier writes to the buffer
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
     return;
@@ -201,9 +190,8 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& grid = source.grid;
   if (grid.nx < 2 || grid.ny < 2 || grid.nz < 2) return std::vector<CellCase>{};
-  SCANSURF_ASSIGN_OR_RETURN(const SlabPlan plan, planSlabs(ctx, grid, source.layerBytes(), state_->slabBudget, source.size > 0));
-
-  const bool inPlace = source.size > 0;
+  const bool inPlace = source.inPlace();
+  SCANSURF_ASSIGN_OR_RETURN(const SlabPlan plan, planSlabs(ctx, grid, source.layerBytes(), state_->slabBudget, inPlace));
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels, createSlabBuffer(ctx, source, plan));
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer counter,
                             gpu::Buffer::create(ctx, 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -224,9 +212,9 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     if (!casesBound) {
       SCANSURF_ASSIGN_OR_RETURN(cases, gpu::Buffer::create(ctx, capacity * sizeof(CellCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                            gpu::MemoryDomain::Readback));
-      if (!inPlace) bindBuffer(ctx, state_->set, 0, labels.handle());
-      bindBuffer(ctx, state_->set, 1, counter.handle());
-      bindBuffer(ctx, state_->set, 2, cases.handle());
+      if (!inPlace) gpu::bindStorageBuffer(ctx, state_->set, 0, labels.handle());
+      gpu::bindStorageBuffer(ctx, state_->set, 1, counter.handle());
+      gpu::bindStorageBuffer(ctx, state_->set, 2, cases.handle());
       casesBound = true;
     }
     const std::uint32_t labelOffset = inPlace ? bindSlabInPlace(ctx, state_->set, source, first, layers) : 0;
