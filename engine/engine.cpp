@@ -14,6 +14,7 @@
 #include "geometry/edge_crossings.h"
 #include "geometry/feature_surfaces.h"
 #include "geometry/footprint.h"
+#include "geometry/interpolated_volume.h"
 #include "geometry/overlaps.h"
 #include "geometry/remesh.h"
 #include "geometry/smoothing.h"
@@ -22,7 +23,6 @@
 #include "gpu/resources.h"
 #include "passes/classification.h"
 #include "passes/interpolation.h"
-#include "geometry/interpolated_volume.h"
 #include "passes/preview.h"
 #include "passes/scan_conversion.h"
 #include "scansurf/vulkan_interop.h"
@@ -127,11 +127,24 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
 // already on the device (DeviceLabelVolume).
 template <typename Volume>
 Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
-                                  const BuildOptions& options, StageClock& clock, std::span<const std::uint16_t> clearance = {}) {
+                                  const BuildOptions& options, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
   clock.lap("classification");
-  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock, clearance);
+  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock);
+}
+
+// Classification of labels in one of scansurf's own device buffers, bound in place; the buffer
+// is released once classified: the CPU stages' peak memory need not hold it.
+// upperIsData: 32-bit label | clearance words (interpolation).
+Result<std::vector<CellCase>> classifyOwnBuffer(Engine::Impl& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
+                                                bool upperIsData, StageClock& clock) {
+  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
+                            classifier->runInPlace(DeviceLabelVolume{buffer.handle(), 0, bits, grid}, buffer.size(), upperIsData));
+  buffer = gpu::Buffer{};
+  clock.lap("classification");
+  return cells;
 }
 
 // A layer's part of the whole grid's interpolation factors (interpolationFactors): every layer
@@ -164,29 +177,20 @@ Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& pla
                                               {device ? &device->buffer : nullptr, &words}));
   device.reset();
   clock.lap("interpolation");
-  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
-  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
-                            classifier->runInPlace(DeviceLabelVolume{words.handle(), 0, 32, fineGrid}, words.size(), true));
-  words = gpu::Buffer{};
-  clock.lap("classification");
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, clock));
   return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance);
 }
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked, else
-// classified from the device labels when there are some (bound in place, no upload). The
-// device labels are released once used: the CPU stages' peak memory need not hold them.
+// classified from the device labels when there are some (bound in place, no upload).
 Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
                                   std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                   const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
                                   StageClock& clock) {
   if (interpolates(factors)) return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock);
   if (!device) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
-  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
-                            classifier->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid},
-                                                   device->buffer.size()));
-  device.reset();
-  clock.lap("classification");
+                            classifyOwnBuffer(impl, std::move(device->buffer), device->grid, 16, false, clock));
   return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock);
 }
 
@@ -359,15 +363,14 @@ void mergeStageTimes(std::vector<StageTime>& timings) {
   timings = std::move(merged);
 }
 
-// Stage 2 from host or device labels (LabelVolume or DeviceLabelVolume).
-template <typename Volume>
-Result<Surfaces> extractFrom(Engine::Impl& impl, const Volume& volume, const Nesting& nesting, const BuildOptions& options,
-                             const ContourSet* contours) {
-  return guarded("surface extraction on " + describeGrid(volume.grid), [&]() -> Result<Surfaces> {
+// Stage 2's frame for the stage calls: errors guarded, the nesting checked, the stages timed.
+template <typename Extract>
+Result<Surfaces> extractFrom(const Grid& grid, const Nesting& nesting, const BuildOptions& options, const Extract& extract) {
+  return guarded("surface extraction on " + describeGrid(grid), [&]() -> Result<Surfaces> {
     SCANSURF_TRY(checkNesting(nesting));
     std::vector<StageTime> timings;
     StageClock clock(timings, options);
-    return surfacesOfVolume(impl, volume, contours, nesting, options, clock);
+    return extract(clock);
   });
 }
 
@@ -407,10 +410,7 @@ Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nestin
 
 Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  return guarded("surface extraction on " + describeGrid(volume.grid), [&]() -> Result<Surfaces> {
-    SCANSURF_TRY(checkNesting(nesting));
-    std::vector<StageTime> timings;
-    StageClock clock(timings, options);
+  return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
     return surfacesOfPlanes(*impl_, volume, std::nullopt, contours, nesting, options,
                             interpolationFactors(volume.grid, options.interpolation), clock);
   });
@@ -418,7 +418,9 @@ Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesti
 
 Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  return extractFrom(*impl_, volume, nesting, options, contours);
+  return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
+    return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock);
+  });
 }
 
 Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const PreviewOptions& options) {

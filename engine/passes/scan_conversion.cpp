@@ -378,6 +378,9 @@ Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan,
   return {};
 }
 
+// The volume before drawing: padding layers are never drawn and stay background.
+LabelVolume backgroundVolume(const Grid& grid) { return LabelVolume{grid, std::vector<Label>(grid.voxelCount(), kBackground)}; }
+
 // Scan converts every slice layer, slab by slab, into the sinks.
 Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours, const Grid& grid,
                         const std::vector<int>& order, double sliceTolerance, const LabelSinks& sinks) {
@@ -401,9 +404,7 @@ Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours,
 Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
                                        double sliceTolerance) {
   SCANSURF_TRY(checkRunArguments(state_->ctx->limits(), grid, contours.features.size(), order.size()));
-  LabelVolume volume;
-  volume.grid = grid;
-  volume.labels.assign(grid.voxelCount(), kBackground);
+  LabelVolume volume = backgroundVolume(grid);
   SCANSURF_TRY(convertAll(*state_, contours, grid, order, sliceTolerance, LabelSinks{&volume, nullptr}));
   return volume;
 }
@@ -418,10 +419,7 @@ Result<ScanConverter::DeviceLabels> ScanConverter::runOnDevice(const ContourSet&
                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                 gpu::MemoryDomain::Device));
-  if (host) {
-    host->grid = grid;
-    host->labels.assign(grid.voxelCount(), kBackground);
-  }
+  if (host) *host = backgroundVolume(grid);
   SCANSURF_TRY(convertAll(*state_, contours, grid, order, sliceTolerance, LabelSinks{host, &buffer}));
   return DeviceLabels{std::move(buffer), grid};
 }
