@@ -17,6 +17,7 @@
 #include "passes/scan_conversion.h"
 #include "scansurf/nesting.h"
 #include "support/shapes.h"
+#include "support/surface_checks.h"
 
 namespace scansurf::test {
 namespace {
@@ -297,19 +298,9 @@ TEST_F(InterpolatedShapesTest, AbuttingFeaturesWithAMovingInterfaceShareEveryInt
     expectTopology(b, 0, 1, 0);
     expectTopology(b, 1, 1, 0);
     // The interface: triangles between the two labels, in both surfaces; no background between.
-    const MultiLabelMesh& m = b.surfaces.mesh;
-    std::size_t shared = 0;
-    std::set<std::uint32_t> left(b.surfaces.features[0].triangles.begin(), b.surfaces.features[0].triangles.end());
-    std::set<std::uint32_t> right(b.surfaces.features[1].triangles.begin(), b.surfaces.features[1].triangles.end());
-    for (std::size_t t = 0; t < m.triangleCount(); ++t) {
-      if (m.labels[2 * t] != 1 || m.labels[2 * t + 1] != 2) continue;
-      ++shared;
-      for (int c = 0; c < 3; ++c) {
-        EXPECT_TRUE(left.count(m.triangles[3 * t + c]));
-        EXPECT_TRUE(right.count(m.triangles[3 * t + c]));
-      }
-    }
-    EXPECT_GT(shared, 500u);
+    const InterfaceUse use = interfaceUse(b.surfaces.mesh, b.surfaces.features[0], b.surfaces.features[1], 1, 2);
+    EXPECT_EQ(use.unshared, 0u);
+    EXPECT_GT(use.triangles, 500u);
     // Every interpolated voxel between the halves is one of them: no background gap.
     const double volume = stats(b, 0).volume + stats(b, 1).volume;
     const BuildResult whole = build(movingInterface(), 0.5, InterpolationOptions::kAuto, true, CapShape::Round, convention);

@@ -7,6 +7,7 @@
 #include "gpu/gpu_test_env.h"
 #include "io/contours_json.h"
 #include "support/shapes.h"
+#include "support/surface_checks.h"
 
 namespace scansurf::test {
 namespace {
@@ -100,17 +101,10 @@ TEST_F(SurfacesTest, AbuttingFeaturesShareEveryInterfaceVertex) {
   const BuildResult b = build(abuttingContours(10, 6, 2.5), 0.5);
   expectClosedManifold(b);
   const auto& mesh = b.surfaces.mesh;
-  const auto left = vertices(b.surfaces.features[0].triangles), right = vertices(b.surfaces.features[1].triangles);
-  std::size_t interfaceTriangles = 0;
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    if (mesh.labels[2 * t] != labelOfFeature(0) || mesh.labels[2 * t + 1] != labelOfFeature(1)) continue;
-    ++interfaceTriangles;
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t v = mesh.triangles[3 * t + static_cast<std::size_t>(c)];
-      ASSERT_TRUE(left.count(v) && right.count(v)) << "interface vertex missing from a surface";
-    }
-  }
-  EXPECT_GT(interfaceTriangles, 50u);
+  const InterfaceUse use =
+      interfaceUse(mesh, b.surfaces.features[0], b.surfaces.features[1], labelOfFeature(0), labelOfFeature(1));
+  ASSERT_EQ(use.unshared, 0u) << "interface vertices missing from a surface";
+  EXPECT_GT(use.triangles, 50u);
   // No gap, no overlap: the interface triangles are shared with opposite orientations, so the
   // two volumes add up exactly to the volume inside the union's outer boundary (the
   // triangles between background and either feature, whose normals point into the feature).

@@ -125,4 +125,18 @@ double crossSectionError(const Built& b) {
   return length > 0 ? sum / length / b.grid.spacingX : 0;
 }
 
+InterfaceUse interfaceUse(const MultiLabelMesh& mesh, const FeatureSurface& a, const FeatureSurface& b, Label la, Label lb) {
+  const std::set<std::uint32_t> onA(a.triangles.begin(), a.triangles.end()), onB(b.triangles.begin(), b.triangles.end());
+  InterfaceUse use;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    if (mesh.labels[2 * t] != la || mesh.labels[2 * t + 1] != lb) continue;
+    ++use.triangles;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = mesh.triangles[3 * t + static_cast<std::size_t>(c)];
+      use.unshared += !onA.count(v) || !onB.count(v);
+    }
+  }
+  return use;
+}
+
 }  // namespace scansurf::test

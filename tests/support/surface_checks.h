@@ -47,4 +47,11 @@ double crossSectionError(const Built& b);
 // Distance in the plane from (x, y) to the nearest contour of the slice.
 double distanceToContours(const FeatureSlice& slice, double x, double y);
 
+// The interface of two abutting features: the triangles between labels la and lb, and how
+// many of their vertex uses lie on only one of the two surfaces a and b (0: they share it).
+struct InterfaceUse {
+  std::size_t triangles = 0, unshared = 0;
+};
+InterfaceUse interfaceUse(const MultiLabelMesh& mesh, const FeatureSurface& a, const FeatureSurface& b, Label la, Label lb);
+
 }  // namespace scansurf::test

@@ -12,6 +12,7 @@
 
 #include "geometry/cell_cases.h"
 #include "geometry/feature_surfaces.h"
+#include "support/surface_checks.h"
 
 namespace scansurf {
 namespace {
@@ -186,18 +187,9 @@ TEST(Assembly, AbuttingHalfBallsShareInterfaceVertices) {
   EXPECT_EQ(positions.size(), mesh.vertexCount());
   for (SurfaceConvention convention : {SurfaceConvention::Enclosing, SurfaceConvention::Partition}) {
     const auto surfaces = extractFeatureSurfaces(mesh, 2, flatNesting(2), convention);
-    std::set<std::uint32_t> used0(surfaces[0].triangles.begin(), surfaces[0].triangles.end());
-    std::set<std::uint32_t> used1(surfaces[1].triangles.begin(), surfaces[1].triangles.end());
-    std::size_t interface = 0;
-    for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-      if (mesh.labels[2 * t] != 1 || mesh.labels[2 * t + 1] != 2) continue;
-      ++interface;
-      for (int c = 0; c < 3; ++c) {
-        EXPECT_TRUE(used0.count(mesh.triangles[3 * t + c]));
-        EXPECT_TRUE(used1.count(mesh.triangles[3 * t + c]));
-      }
-    }
-    EXPECT_GT(interface, 50u);
+    const test::InterfaceUse use = test::interfaceUse(mesh, surfaces[0], surfaces[1], 1, 2);
+    EXPECT_EQ(use.unshared, 0u);
+    EXPECT_GT(use.triangles, 50u);
     // The interface is a flat disk at x = 0.5 - 1/2 voxel... its vertices lie on x = 0 or 1.
     const MeshStats s0 = statsOf(mesh, surfaces[0]), s1 = statsOf(mesh, surfaces[1]);
     EXPECT_EQ(s0.components, 1);
