@@ -157,7 +157,7 @@ std::uint32_t triangleCountOf(const CaseTable& table, const CellCase& c) {
   return n;
 }
 
-// Assembly works in blocks of consecutive cells (a few rows of one cell layer): each block's
+// Assembly works in blocks of consecutive surface cells (a few cell layers on a clinical set): each block's
 // vertex keys are sorted and made unique in a scratch array of a few MiB that stays in cache
 // and is reused, instead of one array of every triangle's keys (24 bytes per triangle, 150 MiB
 // on a clinical set) and a sorted copy of it. Blocks depend on the records only, so the mesh

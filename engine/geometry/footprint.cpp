@@ -63,14 +63,15 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   crossings *= finer;
   f.surfaceVertices = static_cast<std::uint64_t>(std::min(crossings * kVerticesPerCrossing, 1e18));
   // The label volume, once on the host and once as it arrives from the device, plus the mesh.
-  // With interpolation, the interpolated volume and its slab's 32-bit readback besides.
+  // With interpolation, the interpolated volume's clearances besides (2 bytes per voxel).
   const double interpolated = finer > 1 ? static_cast<double>(plane) * layers * sizeof(Label) : 0.0;
   const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) + interpolated +
                       static_cast<double>(f.surfaceVertices) * kBytesPerVertex;
   f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
   // One slab of scan conversion, the label volume kept on the device until classified and,
   // with interpolation, its volume of 32-bit label | clearance words.
-  const double deviceVolumes = static_cast<double>(f.labelVoxels) * sizeof(Label) + (finer > 1 ? 4.0 * static_cast<double>(plane) * layers : 0.0);
+  const double words = finer > 1 ? 4.0 * static_cast<double>(plane) * layers : 0.0;
+  const double deviceVolumes = static_cast<double>(f.labelVoxels) * sizeof(Label) + words;
   f.deviceBytes = std::max(kSlabBudget, plane * kDeviceBytesPerPixel) + static_cast<std::uint64_t>(std::min(deviceVolumes, 1.8e19));
   return f;
 }

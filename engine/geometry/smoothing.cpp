@@ -460,7 +460,7 @@ Float4 Relaxation::edgeStartOf(std::size_t v) const {
   return Float4{static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(b[2] - a[2])};
 }
 
-// b - a of the carrier edge whose edgeStart is a.
+// b - a of the carrier edge that starts at a (edgeStartOf).
 Float4 Relaxation::edgeVectorOf(std::uint8_t kind, const Float4& a) const {
   return Float4{(kind & kStepX) ? stepX_ : 0.0f, (kind & kStepY) ? stepY_ : 0.0f, a[3], 0.0f};
 }
