@@ -31,17 +31,20 @@ struct SlabBuffers {
     if (binding == kValues || binding == kScratch || binding == kRadii) return gpu::MemoryDomain::Device;
     return binding == kOutput ? gpu::MemoryDomain::Readback : gpu::MemoryDomain::Upload;
   }
+  // Device buffers are cleared by fills; the planes may arrive by a device copy, and the
+  // output leaves by one into the device words (InterpolationDeviceIo).
+  static VkBufferUsageFlags usageOf(std::uint32_t binding) {
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (domainOf(binding) == gpu::MemoryDomain::Device || binding == kPlanes) usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    if (binding == kOutput) usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    return usage;
+  }
   // Whether the binding now has a new buffer (the descriptor set needs rewriting).
   Result<bool> reserve(const gpu::Context& ctx, std::uint32_t binding, std::size_t bytes) {
     bytes = std::max<std::size_t>(16, (bytes + 3) / 4 * 4);
     if (buffers[binding].handle() != VK_NULL_HANDLE && buffers[binding].size() >= bytes) return false;
-    const gpu::MemoryDomain domain = domainOf(binding);
-    const VkBufferUsageFlags usage =
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | (domain == gpu::MemoryDomain::Device ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : VkBufferUsageFlags{0}) |
-        (binding == kOutput ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_SRC_BIT) : VkBufferUsageFlags{0}) |
-        (binding == kPlanes ? static_cast<VkBufferUsageFlags>(VK_BUFFER_USAGE_TRANSFER_DST_BIT) : VkBufferUsageFlags{0});
     buffers[binding] = gpu::Buffer{};  // release before allocating the larger one
-    SCANSURF_ASSIGN_OR_RETURN(buffers[binding], gpu::Buffer::create(ctx, bytes + bytes / 4, usage, domain));
+    SCANSURF_ASSIGN_OR_RETURN(buffers[binding], gpu::Buffer::create(ctx, bytes + bytes / 4, usageOf(binding), domainOf(binding)));
     return true;
   }
   Result<bool> upload(const gpu::Context& ctx, std::uint32_t binding, const void* data, std::size_t bytes) {
