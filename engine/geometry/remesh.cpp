@@ -110,7 +110,7 @@ class Remesher {
   ReferenceSurface reference_;
   Change change_;
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
-  std::vector<std::uint32_t> scratch_, candidates_;
+  std::vector<std::uint32_t> scratch_, candidates_, pending_;
 };
 
 void Remesher::liveEdges(std::vector<Edge>& out) const {
@@ -140,8 +140,11 @@ bool Remesher::shapeHolds() const {
 }
 
 // Edge midpoints whose geometry the change did not touch (an edge of a removed triangle of the
-// same pair, between unmoved vertices) passed when they were made; the others, every centroid
-// and every vertex (once per label pair) are looked up.
+// same pair, between unmoved vertices) passed when they were made, and so did unmoved
+// vertices: each was checked against every sheet it lies on when it was placed, and no edit
+// puts a vertex on a new sheet (a collapse moves u's triangles to v only along an edge that
+// already joins v to u's sheets). Every centroid, the new and moved vertices and the other
+// edges' midpoints are looked up.
 bool Remesher::nearSmoothed() const {
   const double bound = kSurfaceBound * voxel_, planeBound = kPlaneBound * voxel_;
   const auto changed = [&](std::uint32_t v) {
@@ -171,7 +174,7 @@ bool Remesher::nearSmoothed() const {
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = c[e], b = c[(e + 1) % 3];
       const bool moved = changed(a) || changed(b);
-      if (once(a, a, net_.pair[t]) && !reference_.within(net_.pos[a], sheet, bound)) return false;
+      if (changed(a) && once(a, a, net_.pair[t]) && !reference_.within(net_.pos[a], sheet, bound)) return false;
       if ((!moved && oldEdge(a, b, net_.pair[t])) || !once(a, b, net_.pair[t])) continue;
       if (!reference_.within(0.5 * (net_.pos[a] + net_.pos[b]), sheet, bound)) return false;
       if (net_.plane[a] < 0 || net_.plane[a] != net_.plane[b]) continue;
@@ -203,7 +206,9 @@ bool Remesher::crossesNothing() {
     boxOf(corners(t), lo, hi);
     for (int k = 0; k < 3; ++k) allLo[k] = std::min(allLo[k], lo[k]), allHi[k] = std::max(allHi[k], hi[k]);
   }
-  net_.grid.query(allLo, allHi, candidates_);
+  pending_ = change_.removed;
+  std::sort(pending_.begin(), pending_.end());
+  net_.grid.query(allLo, allHi, net_.alive, pending_, candidates_);
   for (std::uint32_t t = change_.firstAdded; t < end; ++t) {
     if (!net_.alive[t]) continue;
     const auto a = corners(t);
@@ -215,7 +220,7 @@ bool Remesher::crossesNothing() {
       return trianglesCross(net_.tris[t], a, net_.tris[u], b);
     };
     for (std::uint32_t u : candidates_)
-      if (net_.alive[u] && u < change_.firstAdded && test(u)) return false;
+      if (u < change_.firstAdded && test(u)) return false;
     for (std::uint32_t u = t + 1; u < end; ++u)
       if (net_.alive[u] && test(u)) return false;
   }

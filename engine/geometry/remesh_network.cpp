@@ -7,6 +7,7 @@
 #include "geometry/remesh_network.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace scansurf::remesh {
@@ -68,22 +69,68 @@ void TriangleGrid::forCells(const Vec3& lo, const Vec3& hi, F f) const {
       for (std::int64_t x = a[0]; x <= b[0]; ++x) f(key(x, y, z));
 }
 
-void TriangleGrid::insert(std::uint32_t t, const Vec3& lo, const Vec3& hi) {
-  forCells(lo, hi, [&](std::uint64_t key) { cells_[key].push_back(t); });
+void TriangleGrid::clear() {
+  keys_.clear();
+  lists_.clear();
+  cells_.clear();
+  shift_ = 64;
 }
 
-void TriangleGrid::query(const Vec3& lo, const Vec3& hi, std::vector<std::uint32_t>& out) {
+std::vector<std::uint32_t>* TriangleGrid::find(std::uint64_t key) {
+  if (keys_.empty()) return nullptr;
+  for (std::size_t s = slotOf(key);; s = (s + 1) & (keys_.size() - 1)) {
+    if (keys_[s] == key) return &cells_[lists_[s]];
+    if (keys_[s] == kEmpty) return nullptr;
+  }
+}
+
+std::vector<std::uint32_t>& TriangleGrid::findOrAdd(std::uint64_t key) {
+  if (2 * (cells_.size() + 1) > keys_.size()) {  // at most half full: short probes
+    const std::vector<std::uint64_t> oldKeys = std::move(keys_);
+    const std::vector<std::uint32_t> oldLists = std::move(lists_);
+    const std::size_t size = std::max<std::size_t>(1024, 2 * oldKeys.size());
+    keys_.assign(size, kEmpty);
+    lists_.assign(size, 0);
+    shift_ = 64 - std::countr_zero(size);
+    for (std::size_t s = 0; s < oldKeys.size(); ++s) {
+      if (oldKeys[s] == kEmpty) continue;
+      std::size_t t = slotOf(oldKeys[s]);
+      while (keys_[t] != kEmpty) t = (t + 1) & (size - 1);
+      keys_[t] = oldKeys[s], lists_[t] = oldLists[s];
+    }
+  }
+  std::size_t s = slotOf(key);
+  for (; keys_[s] != kEmpty; s = (s + 1) & (keys_.size() - 1))
+    if (keys_[s] == key) return cells_[lists_[s]];
+  keys_[s] = key;
+  lists_[s] = static_cast<std::uint32_t>(cells_.size());
+  return cells_.emplace_back();
+}
+
+void TriangleGrid::insert(std::uint32_t t, const Vec3& lo, const Vec3& hi) {
+  forCells(lo, hi, [&](std::uint64_t key) { findOrAdd(key).push_back(t); });
+}
+
+void TriangleGrid::query(const Vec3& lo, const Vec3& hi, const std::vector<char>& alive,
+                         const std::vector<std::uint32_t>& pending, std::vector<std::uint32_t>& out) {
   out.clear();
   ++round_;
   forCells(lo, hi, [&](std::uint64_t key) {
-    const auto it = cells_.find(key);
-    if (it == cells_.end()) return;
-    for (std::uint32_t t : it->second) {
+    std::vector<std::uint32_t>* list = find(key);
+    if (!list) return;
+    std::size_t kept = 0;
+    for (std::uint32_t t : *list) {
+      if (!alive[t]) {
+        if (std::binary_search(pending.begin(), pending.end(), t)) (*list)[kept++] = t;
+        continue;
+      }
+      (*list)[kept++] = t;
       if (t >= stamp_.size()) stamp_.resize(std::max<std::size_t>(t + 1, 2 * stamp_.size()), 0);  // amortized
       if (stamp_[t] == round_) continue;
       stamp_[t] = round_;
       out.push_back(t);
     }
+    list->resize(kept);
   });
 }
 

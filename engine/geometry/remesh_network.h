@@ -54,20 +54,33 @@ class SurfaceTable {
   std::unordered_map<std::uint32_t, std::vector<SurfaceUse>> uses_;
 };
 
-// Live triangles in the cells of a uniform grid their bounding boxes touch (broad phase).
+// Live triangles in the cells of a uniform grid their bounding boxes touch (broad phase). Cells
+// live in an open-addressing table (linear probing on a multiplicative hash): the queries of
+// the exact crossing checks are remeshing's most frequent lookup.
 class TriangleGrid {
  public:
   explicit TriangleGrid(double cell) : cell_(cell) {}
   void insert(std::uint32_t t, const Vec3& lo, const Vec3& hi);
-  void clear() { cells_.clear(); }
-  // Every triangle id inserted into a cell that [lo, hi] touches, each once (dead ones too).
-  void query(const Vec3& lo, const Vec3& hi, std::vector<std::uint32_t>& out);
+  void clear();
+  // Every live triangle inserted into a cell that [lo, hi] touches, each once. Dead ones are
+  // dropped from the cells for good, except `pending` (sorted): the open change's removed
+  // triangles, which an undo brings back.
+  void query(const Vec3& lo, const Vec3& hi, const std::vector<char>& alive, const std::vector<std::uint32_t>& pending,
+             std::vector<std::uint32_t>& out);
 
  private:
   template <typename F>
   void forCells(const Vec3& lo, const Vec3& hi, F f) const;
+  std::vector<std::uint32_t>* find(std::uint64_t key);
+  std::vector<std::uint32_t>& findOrAdd(std::uint64_t key);
+  std::size_t slotOf(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> shift_); }
+
   double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+  static constexpr std::uint64_t kEmpty = ~0ull;
+  std::vector<std::uint64_t> keys_;   // per slot, kEmpty when free
+  std::vector<std::uint32_t> lists_;  // per slot, into cells_
+  std::vector<std::vector<std::uint32_t>> cells_;
+  int shift_ = 64;
   std::vector<std::uint32_t> stamp_;
   std::uint32_t round_ = 0;
 };
