@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry/feature_surfaces.h"
+#include "geometry/remesh_network.h"
 #include "geometry/smoothing.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -338,6 +339,32 @@ TEST(Remesh, LongerEdgesGiveFewerTriangles) {
   EXPECT_EQ(c.edgeLength, 2.0);
   EXPECT_LT(c.trianglesAfter, f.trianglesAfter / 2);
   std::printf("[ figure   ] sphere r10     edge length 1 mm: %zu triangles, 2 mm: %zu\n", f.trianglesAfter, c.trianglesAfter);
+}
+
+
+// The broad phase drops dead triangles from its cells for good, except the open change's
+// removed ones, which an undo brings back: after the revival they are found again.
+TEST(RemeshBroadPhase, DropsDeadTrianglesButKeepsThoseAnUndoMayRevive) {
+  remesh::TriangleGrid grid(1.0);
+  std::vector<char> alive(3000, 1);
+  for (std::uint32_t t = 0; t < 3000; ++t) {  // enough cells to grow the table several times
+    const double x = static_cast<double>(t % 30), y = static_cast<double>(t / 30 % 10), z = static_cast<double>(t / 300);
+    grid.insert(t, {x, y, z}, {x + 0.5, y + 0.5, z + 0.5});
+  }
+  std::vector<std::uint32_t> out;
+  grid.query({0, 0, 0}, {1.2, 0.2, 0.2}, alive, {}, out);
+  EXPECT_EQ(out, (std::vector<std::uint32_t>{0, 1}));
+  alive[0] = alive[1] = 0;
+  const std::vector<std::uint32_t> pending = {1};  // 0 died for good, 1 may come back
+  grid.query({0, 0, 0}, {1.2, 0.2, 0.2}, alive, pending, out);
+  EXPECT_TRUE(out.empty());
+  alive[0] = alive[1] = 1;  // 0 revived by mistake: it was dropped, so it is not found
+  grid.query({0, 0, 0}, {1.2, 0.2, 0.2}, alive, {}, out);
+  EXPECT_EQ(out, (std::vector<std::uint32_t>{1}));
+  grid.query({29, 9, 9}, {29.1, 9.1, 9.1}, alive, {}, out);  // the last cell, far from the first
+  EXPECT_EQ(out, (std::vector<std::uint32_t>{2999}));
+  grid.query({40, 40, 40}, {41, 41, 41}, alive, {}, out);
+  EXPECT_TRUE(out.empty());
 }
 
 }  // namespace
