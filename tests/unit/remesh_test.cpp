@@ -338,6 +338,13 @@ TEST(Remesh, EdgeLengthThatIsNotFiniteAndPositiveMeansTheDefault) {
   }
 }
 
+// Slices far apart for the pixels: the default length follows the contour planes' gap.
+TEST(Remesh, DefaultEdgeLengthIsAtLeastAThirdOfThePlaneGap) {
+  Built fine = buildCpu(thinBarsContours(2.2), 0.5);  // 2 mm between planes, 0.5 mm pixels
+  smooth(fine);
+  EXPECT_DOUBLE_EQ(remesh(fine).edgeLength, 0.3 * 2.0);  // not 1.15 * 0.5
+}
+
 TEST(Remesh, LongerEdgesGiveFewerTriangles) {
   Built fine = buildCpu(sphereContours(10, 2.0), 1.0);
   smooth(fine);
