@@ -152,7 +152,7 @@ void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
                "remesh the smoothed surfaces into well-shaped triangles of about --edge-length (default: off; "
                "it takes minutes on a million triangles, see README \"Remeshing\")");
   app.add_option("--edge-length", o.build.remeshing.edgeLength,
-                 "remeshing's target edge length, input units (default: 1.15 in-plane voxels or 0.3 slice gaps, the longer)")
+                 "remeshing's target edge length, input units (default: 1.15 in-plane voxels or 0.33 slice gaps, the longer)")
       ->check(numberIn(0, 1e9, true, "a positive, finite number"));
 }
 
@@ -268,7 +268,7 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
           {"caps", b.interpolation.caps == CapShape::Flat ? "flat" : "round"},
           {"smoothing", b.smoothing.enabled},
           {"remeshing", b.remeshing.enabled},
-          {"edge_length", b.remeshing.edgeLength},  // 0: 1.15 in-plane voxels or 0.3 slice gaps
+          {"edge_length", b.remeshing.edgeLength},  // 0: 1.15 in-plane voxels or 0.33 slice gaps
           {"draco", o.scene.draco},
           {"draco_bits", static_cast<double>(d.quantizationBits)},  // 0: from draco_max_error
           {"draco_max_error", d.quantizationBits ? 0.0 : defaultQuantizationError(grid)},

@@ -342,7 +342,7 @@ TEST(Remesh, EdgeLengthThatIsNotFiniteAndPositiveMeansTheDefault) {
 TEST(Remesh, DefaultEdgeLengthIsAtLeastAThirdOfThePlaneGap) {
   Built fine = buildCpu(thinBarsContours(2.2), 0.5);  // 2 mm between planes, 0.5 mm pixels
   smooth(fine);
-  EXPECT_DOUBLE_EQ(remesh(fine).edgeLength, 0.3 * 2.0);  // not 1.15 * 0.5
+  EXPECT_DOUBLE_EQ(remesh(fine).edgeLength, 0.33 * 2.0);  // not 1.15 * 0.5
 }
 
 TEST(Remesh, LongerEdgesGiveFewerTriangles) {

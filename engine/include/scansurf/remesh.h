@@ -11,7 +11,7 @@ struct RemeshOptions {
   // after smoothing, on the whole multi-label mesh.
   bool enabled = false;
   // Target edge length in input units; 0 (or anything not finite and positive) = 1.15 times
-  // the grid's in-plane voxel size (the smaller of its x and y spacings) or 0.3 times the
+  // the grid's in-plane voxel size (the smaller of its x and y spacings) or 0.33 times the
   // median gap between contour planes, whichever is longer: the benchmark sets then get fewer
   // triangles than the Slicer route's. The CLI refuses such values. Around
   // feature-line edges that stay shorter (a contour's close points) the target shrinks
