@@ -45,7 +45,7 @@ constexpr double kTurnCos = 0.5;       // least cosine between a triangle's norm
 constexpr double kFitRelaxation = 2.0;
 constexpr int kFitPasses = 4;
 // The default edge length, in in-plane voxels: at 1.15 the benchmark sets get fewer triangles
-// than flying edges + windowed sinc (pelvis 0.94x at 1.15, 1.31x at 1) while the analytic
+// than flying edges + windowed sinc (pelvis 0.96x, 1.31x at 1) while the analytic
 // shapes stay within 10 % of smoothing's volume error (sphere -0.403 % against -0.371 %; at
 // 1.2 and beyond, with contour planes two pixels apart, one row of free vertices no longer fits
 // between them and the chords from plane to plane lose volume that centring cannot restore).
@@ -126,9 +126,6 @@ class Remesher {
   // The target edge length at v, and of the edge ab.
   double sizeAt(std::uint32_t v) const { return v < size_.size() ? size_[v] : length_; }
   double target(std::uint32_t a, std::uint32_t b) const { return std::min(sizeAt(a), sizeAt(b)); }
-  bool isFeatureEdge(std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& edgeTris) const {
-    return net_.isJunctionEdge(edgeTris) || (net_.plane[a] >= 0 && net_.plane[a] == net_.plane[b]);
-  }
   bool collapse(std::uint32_t u, std::uint32_t v);
   bool flip(std::uint32_t a, std::uint32_t b);
   bool relax(std::uint32_t v);
@@ -149,7 +146,7 @@ class Remesher {
   Change change_;
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
   std::vector<double> size_;  // per vertex, the target edge length (empty: length_ everywhere)
-  std::vector<std::uint32_t> scratch_, candidates_, pending_;
+  std::vector<std::uint32_t> scratch_, candidates_;
 };
 
 void Remesher::liveEdges(std::vector<Edge>& out) const {
@@ -216,7 +213,7 @@ bool Remesher::nearSmoothed() const {
       if (changed(a) && once(a, a, net_.pair[t]) && !reference_.within(net_.pos[a], sheet, bound)) return false;
       if ((!moved && oldEdge(a, b, net_.pair[t])) || !once(a, b, net_.pair[t])) continue;
       if (!reference_.within(0.5 * (net_.pos[a] + net_.pos[b]), sheet, bound)) return false;
-      if (net_.plane[a] < 0 || net_.plane[a] != net_.plane[b]) continue;
+      if (!net_.isInPlaneEdge(a, b)) continue;
       const FeatureKey key = planeKey(net_.plane[a], net_.pair[t]);
       for (double f : {0.25, 0.5, 0.75})
         if (!reference_.within(net_.pos[a] + f * (net_.pos[b] - net_.pos[a]), key, planeBound)) return false;
@@ -245,9 +242,7 @@ bool Remesher::crossesNothing() {
     boxOf(corners(t), lo, hi);
     for (int k = 0; k < 3; ++k) allLo[k] = std::min(allLo[k], lo[k]), allHi[k] = std::max(allHi[k], hi[k]);
   }
-  pending_ = change_.removed;
-  std::sort(pending_.begin(), pending_.end());
-  net_.grid.query(allLo, allHi, net_.alive, pending_, candidates_);
+  net_.grid.query(allLo, allHi, net_.alive, change_.removed, candidates_);
   for (std::uint32_t t = change_.firstAdded; t < end; ++t) {
     if (!net_.alive[t]) continue;
     const auto a = corners(t);
@@ -283,7 +278,7 @@ bool Remesher::split(std::uint32_t a, std::uint32_t b) {
   net_.edgeTriangles(a, b, edgeTris);
   if (edgeTris.empty()) return false;
   const bool junction = net_.isJunctionEdge(edgeTris);
-  const bool inPlane = !junction && net_.plane[a] >= 0 && net_.plane[a] == net_.plane[b];
+  const bool inPlane = !junction && net_.isInPlaneEdge(a, b);
   const FeatureKey key = junction  ? curveKey(net_, edgeTris)
                          : inPlane ? planeKey(net_.plane[a], net_.pair[edgeTris[0]])
                                    : sheetKey(net_.pair[edgeTris[0]]);
@@ -323,7 +318,7 @@ bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
   net_.edgeTriangles(u, v, edgeTris);
   const bool junction = net_.isJunctionEdge(edgeTris);
   if (ru == Role::Curve && !junction) return false;                  // only along its curve
-  if (ru == Role::Plane && net_.plane[u] != net_.plane[v]) return false;  // only along its cross-section
+  if (ru == Role::Plane && !net_.isInPlaneEdge(u, v)) return false;  // only along its cross-section
   net_.neighbours(u, scratch_);
   for (std::uint32_t w : scratch_)
     if (w != v && length(v, w) > kHigh * target(v, w)) return false;
@@ -345,7 +340,7 @@ bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
 }
 
 bool Remesher::flip(std::uint32_t a, std::uint32_t b) {
-  if (net_.plane[a] >= 0 && net_.plane[a] == net_.plane[b]) return false;
+  if (net_.isInPlaneEdge(a, b)) return false;
   std::vector<std::uint32_t> edgeTris;
   net_.edgeTriangles(a, b, edgeTris);
   if (net_.isJunctionEdge(edgeTris)) return false;
@@ -402,7 +397,7 @@ bool Remesher::relax(std::uint32_t v) {
     }
     net_.edgeTriangles(v, w, edgeTris);
     if (r == Role::Curve && net_.isJunctionEdge(edgeTris)) along.push_back(w), key = curveKey(net_, edgeTris);
-    if (r == Role::Plane && net_.plane[w] == net_.plane[v]) along.push_back(w), key = planeKey(net_.plane[v], net_.pair[edgeTris[0]]);
+    if (r == Role::Plane && net_.isInPlaneEdge(v, w)) along.push_back(w), key = planeKey(net_.plane[v], net_.pair[edgeTris[0]]);
   }
   if (along.empty()) return false;
   Vec3 centroid{0, 0, 0};
@@ -498,7 +493,7 @@ void Remesher::gradeSizes() {
     net_.neighbours(v, scratch_);
     for (std::uint32_t w : scratch_) {
       net_.edgeTriangles(v, w, edgeTris);
-      if (isFeatureEdge(v, w, edgeTris)) size_[v] = std::min(size_[v], std::max(kFeatureGrade * length(v, w), 0.05 * length_));
+      if (net_.isFeatureEdge(v, w, edgeTris)) size_[v] = std::min(size_[v], std::max(kFeatureGrade * length(v, w), 0.05 * length_));
     }
   }
   // Dijkstra from every shortened vertex: size(w) <= size(v) + slope |vw|.

@@ -14,8 +14,8 @@ namespace scansurf {
 
 // Remeshes `mesh` in place toward triangles of edge length options.edgeLength (0: 1.15 times
 // the grid's in-plane voxel size or 0.33 times the median contour-plane gap, whichever is
-// longer), graded down around short feature-line edges. Labels stay with their triangles; junction curves (three or more
-// labels) and the cross-sections at the contour planes (the z of contours' slices, within
+// longer), graded down around short feature-line edges. Labels stay with their triangles;
+// junction curves (three or more labels) and the cross-sections at the contour planes (the z of contours' slices, within
 // sliceTolerance; contours may be null: no planes) are feature lines that are only split or
 // shortened along themselves, and their meeting points stay. An operation is kept only if,
 // afterwards, every feature surface of both conventions (nesting.parent.size() features) is

@@ -121,7 +121,7 @@ void TriangleGrid::query(const Vec3& lo, const Vec3& hi, const std::vector<char>
     std::size_t kept = 0;
     for (std::uint32_t t : *list) {
       if (!alive[t]) {
-        if (std::binary_search(pending.begin(), pending.end(), t)) (*list)[kept++] = t;
+        if (std::find(pending.begin(), pending.end(), t) != pending.end()) (*list)[kept++] = t;
         continue;
       }
       (*list)[kept++] = t;
@@ -171,7 +171,7 @@ void countFeatureEdges(const Network& net, std::uint32_t v, int& junction, int& 
   for (std::uint32_t w : nb) {
     net.edgeTriangles(v, w, et);
     junction += net.isJunctionEdge(et);
-    inPlane += net.plane[v] >= 0 && net.plane[w] == net.plane[v];
+    inPlane += net.isInPlaneEdge(v, w);
   }
 }
 

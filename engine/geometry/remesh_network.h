@@ -63,8 +63,8 @@ class TriangleGrid {
   void insert(std::uint32_t t, const Vec3& lo, const Vec3& hi);
   void clear();
   // Every live triangle inserted into a cell that [lo, hi] touches, each once. Dead ones are
-  // dropped from the cells for good, except `pending` (sorted): the open change's removed
-  // triangles, which an undo brings back.
+  // dropped from the cells for good, except `pending`: the open change's removed triangles (a
+  // handful), which an undo brings back.
   void query(const Vec3& lo, const Vec3& hi, const std::vector<char>& alive, const std::vector<std::uint32_t>& pending,
              std::vector<std::uint32_t>& out);
 
@@ -115,6 +115,12 @@ class Network {
   void edgeTriangles(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out) const;
   // An edge is a junction edge unless it has exactly two triangles of one label pair.
   bool isJunctionEdge(const std::vector<std::uint32_t>& edgeTris) const;
+  // Both ends on one contour plane: a piece of that plane's cross-section.
+  bool isInPlaneEdge(std::uint32_t a, std::uint32_t b) const { return plane[a] >= 0 && plane[a] == plane[b]; }
+  // A feature line's edge: on a junction curve or a cross-section.
+  bool isFeatureEdge(std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& edgeTris) const {
+    return isJunctionEdge(edgeTris) || isInPlaneEdge(a, b);
+  }
   // Distinct neighbours of v, ascending.
   void neighbours(std::uint32_t v, std::vector<std::uint32_t>& out) const;
   Vec3 normal(std::uint32_t t) const;  // area-weighted (twice the area)

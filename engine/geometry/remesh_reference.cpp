@@ -68,7 +68,7 @@ ReferenceSurface::ReferenceSurface(const Network& net, double cell) : cell_(cell
       const Vec3 c[2] = {net.pos[v], net.pos[w]};
       if (net.isJunctionEdge(et))
         add(curveKey(net, et), c, 2);
-      else if (net.plane[v] >= 0 && net.plane[v] == net.plane[w])
+      else if (net.isInPlaneEdge(v, w))
         add(planeKey(net.plane[v], net.pair[et[0]]), c, 2);
     }
   }
