@@ -106,7 +106,8 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {
-    surfaces.remeshing = remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.grid.sliceTolerance);
+    surfaces.remeshing =
+        remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.grid.sliceTolerance, options.threads);
     clock.lap("remeshing");
   }
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);

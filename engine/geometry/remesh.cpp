@@ -18,18 +18,22 @@
 // its feature edges unchanged (closed, manifold, oriented, same genus), every new triangle is
 // tested exactly against every triangle near it (geometry/triangle_intersection.h), none
 // turns over, and new triangles stay within a tenth of a voxel of the smoothed sheet of their
-// label pair (in-plane edges: a twentieth of the cross-section). All of it serial: the same
-// result for any thread count.
+// label pair (in-plane edges: a twentieth of the cross-section). Large networks are remeshed
+// slab by slab, the slabs of a phase in parallel (remesh_slabs.h); each slab serially, so
+// the result is the same for any thread count.
 #include "geometry/remesh.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <queue>
 #include <vector>
 
+#include "core/parallel.h"
 #include "geometry/remesh_network.h"
 #include "geometry/remesh_reference.h"
+#include "geometry/remesh_slabs.h"
 #include "geometry/triangle_intersection.h"
 
 namespace scansurf {
@@ -96,26 +100,50 @@ double angleAt(const Vec3& o, const Vec3& p, const Vec3& q) {
   return std::acos(std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0));
 }
 
+// What every remesher of one run shares: read-only, so slabs may use it at once.
+struct Context {
+  std::vector<double> planes;  // the contour planes' z, ascending
+  double sliceTolerance, length, voxel;
+  int iterations;
+  const SurfaceTable& surfaces;
+  const ReferenceSurface& reference;
+};
+
 class Remesher {
  public:
-  Remesher(const MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-           const RemeshOptions& options, double sliceTolerance)
-      : planes_(contourPlanes(contours, sliceTolerance)),
-        length_(targetLength(options, grid, planes_)),
-        voxel_(std::min(grid.spacingX, grid.spacingY)),
-        net_(mesh, planes_, sliceTolerance, length_),
-        surfaces_(mesh, nesting),
-        reference_(net_, length_) {}
+  // The whole network (sub = null), or a work unit's part of it with its pins.
+  Remesher(Network net, const Context& context, const WorkUnit& unit, const SubMesh* sub)
+      : length_(context.length),
+        voxel_(context.voxel),
+        lo_(unit.lo),
+        hi_(unit.hi),
+        net_(std::move(net)),
+        surfaces_(context.surfaces),
+        reference_(context.reference) {
+    if (!sub) return;
+    pinned_ = sub->pinned;
+    rim_ = sub->rim;
+    for (std::uint32_t v = 0; v < pinned_.size(); ++v)
+      if (pinned_[v]) net_.pin(v);
+  }
 
+  void run(int iterations);
+  void storeInto(MultiLabelMesh& mesh) { net_.storeInto(mesh); }
+  // The unit's result: every vertex's position and the live triangles but sub's fixed ones.
+  UnitResult result(const SubMesh& sub) const;
+  // The operations applied and refused, in a report's fields.
+  RemeshReport counts() const {
+    RemeshReport r;
+    r.splits = splits, r.collapses = collapses, r.flips = flips, r.moves = moves, r.rejected = rejected;
+    return r;
+  }
+
+ private:
+  std::size_t splits = 0, collapses = 0, flips = 0, moves = 0, rejected = 0;
   void round(bool graded);
   void relaxAll();
   void fitAll();
-  double edgeLength() const { return length_; }
-  double maxDistance() const;
-  void storeInto(MultiLabelMesh& mesh) { net_.storeInto(mesh); }
-  std::size_t splits = 0, collapses = 0, flips = 0, moves = 0, rejected = 0;
-
- private:
+  bool pinned(std::uint32_t v) const { return v < pinned_.size() && pinned_[v]; }
   void liveEdges(std::vector<Edge>& out) const;
   double length(std::uint32_t a, std::uint32_t b) const {
     const Vec3 d = net_.pos[a] - net_.pos[b];
@@ -138,11 +166,12 @@ class Remesher {
   bool nearSmoothed() const;
   bool crossesNothing();
 
-  std::vector<double> planes_;  // the contour planes' z, ascending
   double length_, voxel_;
+  double lo_, hi_;  // new triangles strictly between, in z (WorkUnit)
   Network net_;
-  SurfaceTable surfaces_;
-  ReferenceSurface reference_;
+  const SurfaceTable& surfaces_;
+  const ReferenceSurface& reference_;
+  std::vector<char> pinned_, rim_;  // per vertex of a work unit's submesh (SubMesh)
   Change change_;
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
   std::vector<double> size_;  // per vertex, the target edge length (empty: length_ everywhere)
@@ -166,6 +195,8 @@ void Remesher::liveEdges(std::vector<Edge>& out) const {
 
 bool Remesher::shapeHolds() const {
   for (std::uint32_t t = change_.firstAdded; t < net_.tris.size(); ++t) {
+    for (std::uint32_t v : net_.tris[t])
+      if (!(net_.pos[v][2] > lo_ && net_.pos[v][2] < hi_)) return false;  // out of the unit's region
     const Vec3 n = net_.normal(t), m = before_[t - change_.firstAdded];
     const double nn = std::sqrt(dot(n, n)), mm = std::sqrt(dot(m, m));
     if (nn <= 1e-9 * length_ * length_ || dot(n, m) < kTurnCos * nn * mm) return false;
@@ -274,6 +305,7 @@ bool Remesher::settle(const std::vector<std::uint32_t>& touched) {
 // ---------------------------------------------------------------- operations
 
 bool Remesher::split(std::uint32_t a, std::uint32_t b) {
+  if (pinned(a) && pinned(b)) return false;  // its triangles may be another unit's
   std::vector<std::uint32_t> edgeTris;
   net_.edgeTriangles(a, b, edgeTris);
   if (edgeTris.empty()) return false;
@@ -340,7 +372,7 @@ bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
 }
 
 bool Remesher::flip(std::uint32_t a, std::uint32_t b) {
-  if (net_.isInPlaneEdge(a, b)) return false;
+  if (net_.isInPlaneEdge(a, b) || (pinned(a) && pinned(b))) return false;
   std::vector<std::uint32_t> edgeTris;
   net_.edgeTriangles(a, b, edgeTris);
   if (net_.isJunctionEdge(edgeTris)) return false;
@@ -489,7 +521,8 @@ void Remesher::gradeSizes() {
   size_.assign(n, length_);
   std::vector<std::uint32_t> edgeTris;
   for (std::uint32_t v = 0; v < n; ++v) {
-    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty()) continue;
+    // A rim vertex's edges to outside the submesh are missing: it would look like a junction.
+    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty() || (v < rim_.size() && rim_[v])) continue;
     net_.neighbours(v, scratch_);
     for (std::uint32_t w : scratch_) {
       net_.edgeTriangles(v, w, edgeTris);
@@ -514,6 +547,29 @@ void Remesher::gradeSizes() {
   }
 }
 
+void Remesher::run(int iterations) {
+  for (int i = 0; i < iterations; ++i) round(/*graded=*/i > 0);
+  for (int i = 0; i < kFitPasses; ++i) fitAll();
+}
+
+UnitResult Remesher::result(const SubMesh& sub) const {
+  UnitResult r;
+  r.positions = net_.pos;
+  const auto original = static_cast<std::uint32_t>(sub.globalVertex.size());
+  for (std::uint32_t t = 0; t < net_.tris.size(); ++t) {
+    if (!net_.alive[t]) continue;
+    const auto& c = net_.tris[t];
+    if (c[0] < original && c[1] < original && c[2] < original && pinned(c[0]) && pinned(c[1]) && pinned(c[2])) {
+      std::array<std::uint32_t, 4> key = {c[0], c[1], c[2], net_.pair[t]};
+      std::sort(key.begin(), key.begin() + 3);
+      if (std::binary_search(sub.fixed.begin(), sub.fixed.end(), key)) continue;  // the whole mesh keeps it
+    }
+    r.triangles.push_back(c);
+    r.pairs.push_back(net_.pair[t]);
+  }
+  return r;
+}
+
 void Remesher::relaxAll() {
   for (std::uint32_t v = 0; v < net_.vertexCount(); ++v)
     if (relax(v)) ++moves;
@@ -521,19 +577,52 @@ void Remesher::relaxAll() {
 
 // Largest distance of any vertex, edge midpoint or centroid from the smoothed sheet of its
 // triangle's label pair.
-double Remesher::maxDistance() const {
-  double worst = 0;
-  for (std::uint32_t t = 0; t < net_.tris.size(); ++t) {
-    if (!net_.alive[t]) continue;
-    const auto& c = net_.tris[t];
-    const Vec3 &p0 = net_.pos[c[0]], &p1 = net_.pos[c[1]], &p2 = net_.pos[c[2]];
-    const Vec3 samples[7] = {p0, p1, p2, 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0), (1.0 / 3) * (p0 + p1 + p2)};
-    for (const Vec3& q : samples) {
-      const Nearest n = reference_.nearestNear(q, sheetKey(net_.pair[t]), length_);
-      worst = std::max(worst, n.found ? n.distance : length_);
+double largestDistance(const MultiLabelMesh& mesh, const ReferenceSurface& reference, double length, int threads) {
+  const std::size_t n = mesh.triangleCount();
+  std::vector<double> worst(static_cast<std::size_t>(chunkCount(n, threads)), 0);
+  parallelChunks(n, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    const auto at = [&](std::size_t t, int c) {
+      const std::uint32_t v = mesh.triangles[3 * t + static_cast<std::size_t>(c)];
+      return Vec3{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
+    };
+    for (std::size_t t = begin; t < end; ++t) {
+      const Vec3 p0 = at(t, 0), p1 = at(t, 1), p2 = at(t, 2);
+      const Vec3 samples[7] = {p0, p1, p2, 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0), (1.0 / 3) * (p0 + p1 + p2)};
+      const FeatureKey key = sheetKey(pairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]));
+      for (const Vec3& q : samples) {
+        const Nearest r = reference.nearestNear(q, key, length);
+        worst[static_cast<std::size_t>(chunk)] = std::max(worst[static_cast<std::size_t>(chunk)], r.found ? r.distance : length);
+      }
     }
-  }
-  return worst;
+  });
+  return *std::max_element(worst.begin(), worst.end());
+}
+
+void addCounts(RemeshReport& into, const RemeshReport& from) {
+  into.splits += from.splits, into.collapses += from.collapses, into.flips += from.flips;
+  into.moves += from.moves, into.rejected += from.rejected;
+}
+
+// One phase of slab units, at most `threads` at once; merged in unit order.
+void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, const Context& context, int threads,
+              RemeshReport& report) {
+  const std::vector<std::uint32_t> valence = vertexValence(mesh);
+  std::vector<SubMesh> subs(units.size());
+  std::vector<UnitResult> results(units.size());
+  std::vector<RemeshReport> counts(units.size());  // summed in unit order below
+  std::atomic<std::size_t> next{0};
+  parallelChunks(units.size(), threads, [&](int, std::size_t, std::size_t) {
+    for (std::size_t u = next++; u < units.size(); u = next++) {
+      subs[u] = extractUnit(mesh, valence, units[u]);
+      Remesher remesher(Network(subs[u].mesh, context.planes, context.sliceTolerance, context.length), context, units[u], &subs[u]);
+      subs[u].mesh = {};
+      remesher.run(context.iterations);
+      results[u] = remesher.result(subs[u]);
+      counts[u] = remesher.counts();
+    }
+  });
+  mergeUnits(mesh, subs, results);
+  for (const RemeshReport& c : counts) addCounts(report, c);
 }
 
 }  // namespace
@@ -580,22 +669,35 @@ void accumulate(RemeshReport& into, const RemeshReport& layer) {
 }
 
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, double sliceTolerance) {
+                        const RemeshOptions& options, double sliceTolerance, int threads, std::size_t trianglesPerSlab) {
   RemeshReport report;
   if (!options.enabled || mesh.triangleCount() == 0) return report;
   report.ran = true;
   report.trianglesBefore = mesh.triangleCount();
   report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles);
-  Remesher remesher(mesh, grid, contours, nesting, options, sliceTolerance);
-  for (int i = 0; i < options.iterations; ++i) remesher.round(/*graded=*/i > 0);
-  for (int i = 0; i < kFitPasses; ++i) remesher.fitAll();
-  report.edgeLength = remesher.edgeLength();
-  report.maxDistance = remesher.maxDistance();
-  remesher.storeInto(mesh);
+  std::vector<double> planes = contourPlanes(contours, sliceTolerance);
+  report.edgeLength = targetLength(options, grid, planes);
+  const SurfaceTable surfaces(mesh, nesting);
+  const SlabPlan plan = planSlabs(mesh, report.edgeLength, trianglesPerSlab);
+  const bool whole = plan.phases[0].size() == 1 && plan.phases[0][0].whole();
+  Network network(mesh, planes, sliceTolerance, report.edgeLength, /*broadPhase=*/whole);
+  const ReferenceSurface reference(network, report.edgeLength);
+  const Context context{std::move(planes), sliceTolerance, report.edgeLength, std::min(grid.spacingX, grid.spacingY),
+                        options.iterations, surfaces, reference};
+  if (whole) {
+    Remesher remesher(std::move(network), context, WorkUnit{}, nullptr);
+    remesher.run(options.iterations);
+    remesher.storeInto(mesh);
+    addCounts(report, remesher.counts());
+  } else {
+    { const Network freed = std::move(network); }
+    for (const std::vector<WorkUnit>& units : plan.phases) runPhase(mesh, units, context, threads, report);
+    compactVertices(mesh);
+    mesh.keys.clear();
+  }
+  report.maxDistance = largestDistance(mesh, reference, report.edgeLength, threads);
   report.trianglesAfter = mesh.triangleCount();
   report.anglesAfter = computeAngleFigures(mesh.positions, mesh.triangles);
-  report.splits = remesher.splits, report.collapses = remesher.collapses, report.flips = remesher.flips;
-  report.moves = remesher.moves, report.rejected = remesher.rejected;
   return report;
 }
 

@@ -21,10 +21,14 @@ namespace scansurf {
 // afterwards, every feature surface of both conventions (nesting.parent.size() features) is
 // still a closed oriented 2-manifold of the same genus and components, no triangle crosses
 // another (exact test), no triangle turned over, and the surface lies within a tenth of a
-// voxel (cross-sections: a twentieth) of the smoothed one. mesh.keys is cleared. Serial, so
-// the same output for any thread count. Returns the figures; ran = false when disabled or empty.
+// voxel (cross-sections: a twentieth) of the smoothed one. mesh.keys is cleared. A mesh of at
+// least two slabs' worth of triangles (trianglesPerSlab; 0: never) is remeshed in slabs
+// along z, up to `threads` at once (0: all); the output depends on trianglesPerSlab, never on
+// threads. Returns the figures; ran = false when disabled or empty.
+inline constexpr std::size_t kTrianglesPerSlab = 200'000;
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, double sliceTolerance = kDefaultSliceTolerance);
+                        const RemeshOptions& options, double sliceTolerance = kDefaultSliceTolerance, int threads = 0,
+                        std::size_t trianglesPerSlab = kTrianglesPerSlab);
 
 // Adds a layer's figures to the run's (Surfaces::remeshing): counts summed, smallest angle
 // and 5th percentile the least of the two, means weighted by triangles, distance the largest.

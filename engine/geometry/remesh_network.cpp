@@ -136,7 +136,8 @@ void TriangleGrid::query(const Vec3& lo, const Vec3& hi, const std::vector<char>
 
 // ---------------------------------------------------------------- the network
 
-Network::Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, double sliceTolerance, double cell)
+Network::Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, double sliceTolerance, double cell,
+                 bool broadPhase)
     : grid(cell) {
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
   pos.resize(vertexCount);
@@ -158,6 +159,7 @@ Network::Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, 
     pair[t] = pairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
   }
   assignRoles();
+  if (!broadPhase) return;
   for (std::size_t t = 0; t < triangleCount; ++t) insertIntoGrid(static_cast<std::uint32_t>(t));
 }
 
@@ -194,6 +196,15 @@ void Network::assignRoles() {
     else
       role[v] = jc == 0 ? Role::Sheet : jc == 2 ? Role::Curve : Role::Corner;
   }
+}
+
+void Network::pin(std::uint32_t v) {
+  std::vector<std::uint32_t> nb, et;
+  int jc = 0, pc = 0;
+  countFeatureEdges(*this, v, jc, pc, nb, et);
+  role[v] = Role::Corner;
+  junctions[v] = static_cast<std::uint8_t>(std::min(jc, 255));
+  inPlane[v] = static_cast<std::uint8_t>(std::min(pc, 255));
 }
 
 void Network::edgeTriangles(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out) const {

@@ -97,7 +97,9 @@ class Network {
  public:
   // Vertices whose z lies within sliceTolerance of one of planeZ (sorted) are on that contour
   // plane; roles follow from the junction edges and in-plane edges around each vertex.
-  Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, double sliceTolerance, double cell);
+  // broadPhase = false leaves the grid empty (a network only read, as by ReferenceSurface).
+  Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, double sliceTolerance, double cell,
+          bool broadPhase = true);
 
   std::vector<Vec3> pos;
   std::vector<std::array<std::uint32_t, 3>> tris;
@@ -111,6 +113,8 @@ class Network {
   TriangleGrid grid;
 
   std::uint32_t vertexCount() const { return static_cast<std::uint32_t>(pos.size()); }
+  // Makes v a corner that keeps the feature edges it has now: it never moves or goes.
+  void pin(std::uint32_t v);
   // The live triangles holding both a and b.
   void edgeTriangles(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out) const;
   // An edge is a junction edge unless it has exactly two triangles of one label pair.

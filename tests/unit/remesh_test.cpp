@@ -16,6 +16,7 @@
 
 #include "geometry/feature_surfaces.h"
 #include "geometry/remesh_network.h"
+#include "geometry/remesh_slabs.h"
 #include "geometry/smoothing.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -37,8 +38,15 @@ void smooth(Built& b, int threads = 0) {
   smoothMesh(b.mesh, b.grid, &b.set, o, threads);
 }
 
-RemeshReport remesh(Built& b, const RemeshOptions& options = remeshOn()) {
-  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options);
+// How remeshMesh splits the work: its default (these shapes are one slab), or slabs of about
+// this many triangles, on this many threads.
+struct Slabs {
+  std::size_t triangles = kTrianglesPerSlab;
+  int threads = 0;
+};
+
+RemeshReport remesh(Built& b, const RemeshOptions& options = remeshOn(), Slabs slabs = {}) {
+  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options, kDefaultSliceTolerance, slabs.threads, slabs.triangles);
   refreshFeatures(b);
   return r;
 }
@@ -89,7 +97,7 @@ constexpr double kMinAngleTarget = 10, kP5AngleTarget = 30;
 // Smooths and remeshes `set`, checking everything remeshing promises against the smoothed mesh
 // and the angle targets (p5Target: the 5th percentile's, lower for a shape that misses it).
 Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& options = remeshOn(),
-                  double p5Target = kP5AngleTarget) {
+                  double p5Target = kP5AngleTarget, Slabs slabs = {}) {
   Built b = buildCpu(set, voxel);
   const auto t0 = std::chrono::steady_clock::now();
   smooth(b);
@@ -98,7 +106,7 @@ Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& opti
   const std::vector<MeshStats> partition = surfaceStats(b, SurfaceConvention::Partition);
   const auto areas = areaByPair(b.mesh);
   const auto t2 = std::chrono::steady_clock::now();
-  const RemeshReport r = remesh(b, options);
+  const RemeshReport r = remesh(b, options, slabs);
   const auto t3 = std::chrono::steady_clock::now();
   EXPECT_TRUE(r.ran);
   EXPECT_TRUE(b.mesh.keys.empty());
@@ -321,6 +329,55 @@ TEST(Remesh, SameResultForAnyThreadCount) {
   EXPECT_EQ(one.mesh.positions, two.mesh.positions);
   EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
   EXPECT_EQ(one.mesh.labels, two.mesh.labels);
+}
+
+// ---------------------------------------------------------------- slabs
+
+// The phantom at 1 mm (290 594 triangles) in slabs of 60 000: three slabs and two bands (the
+// slabs are at least five band widths thick), each slab and band remeshed with its rim pinned.
+// Everything checkRemesh checks holds across the cuts.
+TEST(RemeshSlabs, PhantomInSlabsKeepsEveryGuarantee) {
+  const Built b = checkRemesh(phantomContours(), 1.0, remeshOn(), kP5AngleTarget, Slabs{60'000, 2});
+  expectSharedInterfaces(b);
+  EXPECT_GE(minAngles(b.mesh).min, 15.0);
+}
+
+TEST(RemeshSlabs, SameResultOnAnyThreadCount) {
+  Built smoothed = buildCpu(phantomContours(), 2.0);
+  smooth(smoothed);
+  ASSERT_GE(remesh::planSlabs(smoothed.mesh, 2.3, 15'000).phases[0].size(), 2u);
+  Built two = smoothed;
+  remesh(two, remeshOn(), Slabs{15'000, 2});
+  for (int threads : {1, 3}) {
+    Built other = smoothed;
+    remesh(other, remeshOn(), Slabs{15'000, threads});
+    EXPECT_EQ(other.mesh.positions, two.mesh.positions) << threads << " threads";
+    EXPECT_EQ(other.mesh.triangles, two.mesh.triangles) << threads << " threads";
+    EXPECT_EQ(other.mesh.labels, two.mesh.labels) << threads << " threads";
+  }
+}
+
+TEST(RemeshSlabs, PlanCutsAtQuantilesAndBandsAroundEachCut) {
+  Built b = buildCpu(phantomContours(), 1.0);
+  smooth(b);
+  const remesh::SlabPlan whole = remesh::planSlabs(b.mesh, 1.15, 0);
+  ASSERT_EQ(whole.phases[0].size(), 1u);
+  EXPECT_TRUE(whole.phases[0][0].whole());
+  EXPECT_TRUE(whole.phases[1].empty());
+  const remesh::SlabPlan plan = remesh::planSlabs(b.mesh, 1.15, 60'000);
+  ASSERT_GE(plan.phases[0].size(), 3u);
+  ASSERT_EQ(plan.phases[1].size(), plan.phases[0].size() - 1);
+  for (std::size_t i = 0; i + 1 < plan.phases[0].size(); ++i) {
+    const remesh::WorkUnit &a = plan.phases[0][i], &next = plan.phases[0][i + 1], &band = plan.phases[1][i];
+    EXPECT_EQ(a.hi, next.lo);
+    EXPECT_LT(band.lo, a.hi);
+    EXPECT_GT(band.hi, a.hi);
+    EXPECT_LT(band.freeLo, a.hi);
+    EXPECT_GT(band.freeHi, a.hi);
+    if (i > 0) {
+      EXPECT_GT(band.lo, plan.phases[1][i - 1].hi);  // the bands' regions are apart
+    }
+  }
 }
 
 TEST(Remesh, OffLeavesTheMeshAsItIs) {

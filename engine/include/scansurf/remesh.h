@@ -8,7 +8,8 @@ namespace scansurf {
 
 struct RemeshOptions {
   // Off by default, in the library and the command-line tool (--remesh): it is slow yet. Runs
-  // after smoothing, on the whole multi-label mesh.
+  // after smoothing, on the whole multi-label mesh; one of 400 000 triangles or more in slabs
+  // along z, on BuildOptions::threads threads, with the same output for any thread count.
   bool enabled = false;
   // Target edge length in input units; 0 (or anything not finite and positive) = 1.15 times
   // the grid's in-plane voxel size (the smaller of its x and y spacings) or 0.33 times the
