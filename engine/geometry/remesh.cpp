@@ -610,9 +610,15 @@ void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, const Co
   std::vector<SubMesh> subs(units.size());
   std::vector<UnitResult> results(units.size());
   std::vector<RemeshReport> counts(units.size());  // summed in unit order below
+  // The largest first (longest processing time first), so no thread is left with a big one at
+  // the end; the order of work never changes the result.
+  std::vector<std::size_t> order(units.size());
+  for (std::size_t u = 0; u < order.size(); ++u) order[u] = u;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return units[a].triangles > units[b].triangles; });
   std::atomic<std::size_t> next{0};
   parallelChunks(units.size(), threads, [&](int, std::size_t, std::size_t) {
-    for (std::size_t u = next++; u < units.size(); u = next++) {
+    for (std::size_t i = next++; i < order.size(); i = next++) {
+      const std::size_t u = order[i];
       subs[u] = extractUnit(mesh, valence, units[u]);
       Remesher remesher(Network(subs[u].mesh, context.planes, context.sliceTolerance, context.length), context, units[u], &subs[u]);
       subs[u].mesh = {};

@@ -30,6 +30,7 @@ void zRange(const MultiLabelMesh& mesh, std::size_t t, float& lo, float& hi) {
 SlabPlan planSlabs(const MultiLabelMesh& mesh, double edgeLength, std::size_t trianglesPerSlab) {
   SlabPlan plan;
   plan.phases[0].push_back(WorkUnit{});
+  plan.phases[0][0].triangles = mesh.triangleCount();
   const std::size_t n = mesh.triangleCount(), slabs = trianglesPerSlab ? n / trianglesPerSlab : 0;
   if (slabs < 2) return plan;
   std::vector<float> centre(n);
@@ -60,6 +61,10 @@ SlabPlan planSlabs(const MultiLabelMesh& mesh, double edgeLength, std::size_t tr
     plan.phases[0].push_back(u);
   }
   for (double c : cuts) plan.phases[1].push_back({c - 2 * band, c + 2 * band, c - band, c + band});
+  for (auto& phase : plan.phases)
+    for (WorkUnit& u : phase)
+      u.triangles = static_cast<std::size_t>(std::lower_bound(centre.begin(), centre.end(), u.freeHi) -
+                                             std::lower_bound(centre.begin(), centre.end(), u.freeLo));
   return plan;
 }
 

@@ -27,6 +27,7 @@ namespace scansurf::remesh {
 struct WorkUnit {
   static constexpr double kInf = std::numeric_limits<double>::infinity();
   double lo = -kInf, hi = kInf, freeLo = -kInf, freeHi = kInf;
+  std::size_t triangles = 0;  // input triangles centred in [freeLo, freeHi): the work to expect
   bool whole() const { return lo == -kInf && hi == kInf && freeLo == -kInf && freeHi == kInf; }
 };
 

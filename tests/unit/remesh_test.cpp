@@ -367,6 +367,9 @@ TEST(RemeshSlabs, PlanCutsAtQuantilesAndBandsAroundEachCut) {
   const remesh::SlabPlan plan = remesh::planSlabs(b.mesh, 1.15, 60'000);
   ASSERT_GE(plan.phases[0].size(), 3u);
   ASSERT_EQ(plan.phases[1].size(), plan.phases[0].size() - 1);
+  std::size_t centred = 0;  // every triangle is centred in one slab
+  for (const remesh::WorkUnit& u : plan.phases[0]) centred += u.triangles;
+  EXPECT_EQ(centred, b.mesh.triangleCount());
   for (std::size_t i = 0; i + 1 < plan.phases[0].size(); ++i) {
     const remesh::WorkUnit &a = plan.phases[0][i], &next = plan.phases[0][i + 1], &band = plan.phases[1][i];
     EXPECT_EQ(a.hi, next.lo);
