@@ -35,6 +35,14 @@ std::string volumeFlag(double surface, double contour) {
   return text;
 }
 
+// "; in 6 slabs and 5 bands" when remeshing split the work, else nothing.
+std::string slabsNote(const RemeshReport& r) {
+  if (r.bands == 0) return "";  // remeshed whole (each layer, with overlaps as layers)
+  char note[64];
+  std::snprintf(note, sizeof note, "; in %zu slabs and %zu bands", r.slabs, r.bands);
+  return note;
+}
+
 void printOverlaps(const ContourSet& set, const OverlapReport& report) {
   const std::vector<std::string> names = printableNames(set);
   const auto name = [&](int f) { return names[static_cast<std::size_t>(f)].c_str(); };
@@ -83,10 +91,10 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   printOverlaps(set, built.overlaps);
   if (const RemeshReport& r = built.surfaces.remeshing; r.ran)
     std::printf("remeshing (edge length %g %s): %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> "
-                "%.1f, mean %.1f -> %.1f; at most %.3g %s from the smoothed surface\n",
+                "%.1f, mean %.1f -> %.1f; at most %.3g %s from the smoothed surface%s\n",
                 r.edgeLength, printable(set.units).c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min,
                 r.anglesAfter.min, r.anglesBefore.p5, r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance,
-                printable(set.units).c_str());
+                printable(set.units).c_str(), slabsNote(r).c_str());
   double total = 0;
   std::printf("time:");
   for (const StageTime& t : facts.timings) {

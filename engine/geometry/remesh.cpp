@@ -670,6 +670,7 @@ void accumulate(RemeshReport& into, const RemeshReport& layer) {
   into.trianglesBefore += layer.trianglesBefore;
   into.trianglesAfter += layer.trianglesAfter;
   into.maxDistance = std::max(into.maxDistance, layer.maxDistance);
+  into.slabs += layer.slabs, into.bands += layer.bands;
   into.splits += layer.splits, into.collapses += layer.collapses, into.flips += layer.flips;
   into.moves += layer.moves, into.rejected += layer.rejected;
 }
@@ -686,6 +687,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   const SurfaceTable surfaces(mesh, nesting);
   const SlabPlan plan = planSlabs(mesh, report.edgeLength, trianglesPerSlab);
   const bool whole = plan.phases[0].size() == 1 && plan.phases[0][0].whole();
+  report.slabs = plan.phases[0].size(), report.bands = plan.phases[1].size();
   Network network(mesh, planes, sliceTolerance, report.edgeLength, /*broadPhase=*/whole);
   const ReferenceSurface reference(network, report.edgeLength);
   const Context context{std::move(planes), sliceTolerance, report.edgeLength, std::min(grid.spacingX, grid.spacingY),

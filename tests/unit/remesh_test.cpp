@@ -324,8 +324,8 @@ TEST(Remesh, SameResultForAnyThreadCount) {
   Built two = one;
   smooth(one, 1);
   smooth(two, 2);
-  remesh(one);
-  remesh(two);
+  EXPECT_EQ(remesh(one).slabs, 1u);  // small enough to be remeshed whole
+  EXPECT_EQ(remesh(two).bands, 0u);
   EXPECT_EQ(one.mesh.positions, two.mesh.positions);
   EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
   EXPECT_EQ(one.mesh.labels, two.mesh.labels);
@@ -345,9 +345,12 @@ TEST(RemeshSlabs, PhantomInSlabsKeepsEveryGuarantee) {
 TEST(RemeshSlabs, SameResultOnAnyThreadCount) {
   Built smoothed = buildCpu(phantomContours(), 2.0);
   smooth(smoothed);
-  ASSERT_GE(remesh::planSlabs(smoothed.mesh, 2.3, 15'000).phases[0].size(), 2u);
+  const remesh::SlabPlan plan = remesh::planSlabs(smoothed.mesh, 2.3, 15'000);
+  ASSERT_GE(plan.phases[0].size(), 2u);
   Built two = smoothed;
-  remesh(two, remeshOn(), Slabs{15'000, 2});
+  const RemeshReport r = remesh(two, remeshOn(), Slabs{15'000, 2});
+  EXPECT_EQ(r.slabs, plan.phases[0].size());
+  EXPECT_EQ(r.bands, plan.phases[1].size());
   for (int threads : {1, 3}) {
     Built other = smoothed;
     remesh(other, remeshOn(), Slabs{15'000, threads});

@@ -37,6 +37,9 @@ struct RemeshReport {
   // Largest distance of the remeshed surface (vertices, edge midpoints and centroids) from
   // the smoothed surface it replaced, input units.
   double maxDistance = 0;
+  // How the work was split: slabs remeshed in parallel, then bands around their cuts (1 and 0:
+  // the mesh was remeshed whole; with overlaps as layers, summed over the layers).
+  std::size_t slabs = 1, bands = 0;
   std::size_t splits = 0, collapses = 0, flips = 0, moves = 0;  // operations applied
   std::size_t rejected = 0;  // operations refused by a validity check
 };
