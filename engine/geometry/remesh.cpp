@@ -123,11 +123,14 @@ class Remesher {
     if (!sub) return;
     pinned_ = sub->pinned;
     rim_ = sub->rim;
+    settled_ = sub->settled;
     for (std::uint32_t v = 0; v < pinned_.size(); ++v)
       if (pinned_[v]) net_.pin(v);
   }
 
-  void run(int iterations);
+  // `iterations` rounds, graded from the second on (from the first on an already remeshed
+  // band: an ungraded round would coarsen what grading refined), then the centring passes.
+  void run(int iterations, bool remeshedBefore = false);
   void storeInto(MultiLabelMesh& mesh) { net_.storeInto(mesh); }
   // The unit's result: every vertex's position and the live triangles but sub's fixed ones.
   UnitResult result(const SubMesh& sub) const;
@@ -140,7 +143,8 @@ class Remesher {
 
  private:
   std::size_t splits = 0, collapses = 0, flips = 0, moves = 0, rejected = 0;
-  void round(bool graded);
+  // settledOnly: graded around the feature edges of settled vertices only.
+  void round(bool graded, bool settledOnly = false);
   void relaxAll();
   void fitAll();
   bool pinned(std::uint32_t v) const { return v < pinned_.size() && pinned_[v]; }
@@ -150,7 +154,7 @@ class Remesher {
     return std::sqrt(dot(d, d));
   }
   bool split(std::uint32_t a, std::uint32_t b);
-  void gradeSizes();
+  void gradeSizes(bool settledOnly);
   // The target edge length at v, and of the edge ab.
   double sizeAt(std::uint32_t v) const { return v < size_.size() ? size_[v] : length_; }
   double target(std::uint32_t a, std::uint32_t b) const { return std::min(sizeAt(a), sizeAt(b)); }
@@ -171,7 +175,7 @@ class Remesher {
   Network net_;
   const SurfaceTable& surfaces_;
   const ReferenceSurface& reference_;
-  std::vector<char> pinned_, rim_;  // per vertex of a work unit's submesh (SubMesh)
+  std::vector<char> pinned_, rim_, settled_;  // per vertex of a work unit's submesh (SubMesh)
   Change change_;
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
   std::vector<double> size_;  // per vertex, the target edge length (empty: length_ everywhere)
@@ -488,8 +492,8 @@ void Remesher::fitAll() {
 
 // ---------------------------------------------------------------- rounds
 
-void Remesher::round(bool graded) {
-  if (graded) gradeSizes();
+void Remesher::round(bool graded, bool settledOnly) {
+  if (graded) gradeSizes(settledOnly);
   std::vector<Edge> edges;
   liveEdges(edges);
   for (const auto& [a, b] : edges)
@@ -516,13 +520,14 @@ void Remesher::round(bool graded) {
 // next row. Around each, the target length drops to kFeatureGrade times the edge and grows
 // back to L by kGradeSlope per unit of distance along the mesh (a graded sizing field, as in
 // Botsch & Kobbelt's adaptive variant), so the triangles there get small rather than thin.
-void Remesher::gradeSizes() {
+void Remesher::gradeSizes(bool settledOnly) {
   const std::uint32_t n = net_.vertexCount();
   size_.assign(n, length_);
+  const auto graded = [&](std::uint32_t v) { return !settledOnly || (v < settled_.size() && settled_[v]); };
   std::vector<std::uint32_t> edgeTris;
   for (std::uint32_t v = 0; v < n; ++v) {
     // A rim vertex's edges to outside the submesh are missing: it would look like a junction.
-    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty() || (v < rim_.size() && rim_[v])) continue;
+    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty() || (v < rim_.size() && rim_[v]) || !graded(v)) continue;
     net_.neighbours(v, scratch_);
     for (std::uint32_t w : scratch_) {
       net_.edgeTriangles(v, w, edgeTris);
@@ -542,13 +547,16 @@ void Remesher::gradeSizes() {
     net_.neighbours(v, nb);
     for (std::uint32_t w : nb) {
       const double g = h + kGradeSlope * length(v, w);
-      if (g < size_[w]) size_[w] = g, queue.push({g, w});
+      if (g < size_[w] && graded(w)) size_[w] = g, queue.push({g, w});
     }
   }
 }
 
-void Remesher::run(int iterations) {
-  for (int i = 0; i < iterations; ++i) round(/*graded=*/i > 0);
+void Remesher::run(int iterations, bool remeshedBefore) {
+  // A band's first round grades what the slabs remeshed only: the cut's own triangles, pinned
+  // until now, are the smoothed mesh's and get one ungraded round, as everything did in the
+  // slabs (their short edges would otherwise keep them dense).
+  for (int i = 0; i < iterations; ++i) round(/*graded=*/i > 0 || remeshedBefore, /*settledOnly=*/remeshedBefore && i == 0);
   for (int i = 0; i < kFitPasses; ++i) fitAll();
 }
 
@@ -604,8 +612,8 @@ void addCounts(RemeshReport& into, const RemeshReport& from) {
 }
 
 // One phase of slab units, at most `threads` at once; merged in unit order.
-void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, const Context& context, int threads,
-              RemeshReport& report) {
+void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, bool remeshedBefore, std::vector<char>& settled,
+              const Context& context, int threads, RemeshReport& report) {
   const std::vector<std::uint32_t> valence = vertexValence(mesh);
   std::vector<SubMesh> subs(units.size());
   std::vector<UnitResult> results(units.size());
@@ -619,15 +627,15 @@ void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, const Co
   parallelChunks(units.size(), threads, [&](int, std::size_t, std::size_t) {
     for (std::size_t i = next++; i < order.size(); i = next++) {
       const std::size_t u = order[i];
-      subs[u] = extractUnit(mesh, valence, units[u]);
+      subs[u] = extractUnit(mesh, valence, settled, units[u]);
       Remesher remesher(Network(subs[u].mesh, context.planes, context.sliceTolerance, context.length), context, units[u], &subs[u]);
       subs[u].mesh = {};
-      remesher.run(context.iterations);
+      remesher.run(context.iterations, remeshedBefore);
       results[u] = remesher.result(subs[u]);
       counts[u] = remesher.counts();
     }
   });
-  mergeUnits(mesh, subs, results);
+  mergeUnits(mesh, subs, results, settled);
   for (const RemeshReport& c : counts) addCounts(report, c);
 }
 
@@ -699,7 +707,9 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
     addCounts(report, remesher.counts());
   } else {
     { const Network freed = std::move(network); }
-    for (const std::vector<WorkUnit>& units : plan.phases) runPhase(mesh, units, context, threads, report);
+    std::vector<char> settled;  // per vertex: remeshed by a slab
+    runPhase(mesh, plan.phases[0], /*remeshedBefore=*/false, settled, context, threads, report);
+    runPhase(mesh, plan.phases[1], /*remeshedBefore=*/true, settled, context, threads, report);
     compactVertices(mesh);
     mesh.keys.clear();
   }

@@ -74,7 +74,8 @@ std::vector<std::uint32_t> vertexValence(const MultiLabelMesh& mesh) {
   return valence;
 }
 
-SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& valence, const WorkUnit& unit) {
+SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& valence, const std::vector<char>& settled,
+                    const WorkUnit& unit) {
   SubMesh sub;
   const std::size_t n = mesh.triangleCount();
   std::vector<std::uint32_t> localOf(mesh.vertexCount(), UINT32_MAX);
@@ -103,6 +104,7 @@ SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>
     sub.globalVertex.push_back(v);
     sub.pinned.push_back(pinnedGlobal[v]);
     sub.rim.push_back(uses[v] != valence[v]);
+    sub.settled.push_back(v < settled.size() && settled[v]);
     for (int k = 0; k < 3; ++k) sub.mesh.positions.push_back(mesh.positions[3 * v + k]);
   }
   for (std::uint32_t t : taken) {
@@ -128,7 +130,8 @@ SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>
   return sub;
 }
 
-void mergeUnits(MultiLabelMesh& mesh, const std::vector<SubMesh>& subs, const std::vector<UnitResult>& results) {
+void mergeUnits(MultiLabelMesh& mesh, const std::vector<SubMesh>& subs, const std::vector<UnitResult>& results,
+                std::vector<char>& settled) {
   std::vector<char> replaced(mesh.triangleCount(), 0);
   for (const SubMesh& s : subs)
     for (std::uint32_t t : s.editable) replaced[t] = 1;
@@ -153,6 +156,8 @@ void mergeUnits(MultiLabelMesh& mesh, const std::vector<SubMesh>& subs, const st
         out.positions.resize(out.positions.size() + 3);
       }
       for (int k = 0; k < 3; ++k) out.positions[3 * globalOf[v] + k] = static_cast<float>(r.positions[v][k]);
+      if (settled.size() <= globalOf[v]) settled.resize(out.positions.size() / 3, 0);
+      settled[globalOf[v]] = 1;
     }
     for (std::size_t t = 0; t < r.triangles.size(); ++t) {
       for (std::uint32_t v : r.triangles[t]) out.triangles.push_back(globalOf[v]);

@@ -44,11 +44,14 @@ struct SubMesh {
   std::vector<std::uint32_t> globalVertex;     // per local vertex
   std::vector<char> pinned;                    // per local vertex
   std::vector<char> rim;                       // per local vertex: some of its triangles are not in the submesh
+  std::vector<char> settled;                   // per local vertex: remeshed by an earlier phase
   std::vector<std::uint32_t> editable;         // whole-mesh triangles with a free vertex
   std::vector<std::array<std::uint32_t, 4>> fixed;  // the others: sorted local corners and pair, sorted
 };
-// `valence`: the whole mesh's triangles per vertex.
-SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& valence, const WorkUnit& unit);
+// `valence`: the whole mesh's triangles per vertex; `settled`: per vertex, whether an earlier
+// phase remeshed it (empty: none did).
+SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& valence, const std::vector<char>& settled,
+                    const WorkUnit& unit);
 std::vector<std::uint32_t> vertexValence(const MultiLabelMesh& mesh);
 
 // What a unit's remesher left: every local vertex's position (new ones after the submesh's)
@@ -61,7 +64,10 @@ struct UnitResult {
 
 // Replaces each unit's editable triangles by its result, in unit order; new vertices are
 // appended in that order. Vertices no triangle uses any more stay until compactVertices.
-void mergeUnits(MultiLabelMesh& mesh, const std::vector<SubMesh>& subs, const std::vector<UnitResult>& results);
+// Marks in `settled` (per vertex, grown to the new count) every vertex a unit was free to
+// move and every new one.
+void mergeUnits(MultiLabelMesh& mesh, const std::vector<SubMesh>& subs, const std::vector<UnitResult>& results,
+                std::vector<char>& settled);
 // Drops the vertices no triangle uses, keeping the others' order.
 void compactVertices(MultiLabelMesh& mesh);
 
