@@ -157,7 +157,11 @@ class Remesher {
   void gradeSizes(bool settledOnly);
   // The target edge length at v, and of the edge ab.
   double sizeAt(std::uint32_t v) const { return v < size_.size() ? size_[v] : length_; }
-  double target(std::uint32_t a, std::uint32_t b) const { return std::min(sizeAt(a), sizeAt(b)); }
+  double target(std::uint32_t a, std::uint32_t b) const {
+    if (settledOnly_ && !(settled(a) && settled(b))) return length_;  // a cut's smoothed triangles: ungraded
+    return std::min(sizeAt(a), sizeAt(b));
+  }
+  bool settled(std::uint32_t v) const { return v < settled_.size() && settled_[v]; }
   bool collapse(std::uint32_t u, std::uint32_t v);
   bool flip(std::uint32_t a, std::uint32_t b);
   bool relax(std::uint32_t v);
@@ -176,6 +180,7 @@ class Remesher {
   const SurfaceTable& surfaces_;
   const ReferenceSurface& reference_;
   std::vector<char> pinned_, rim_, settled_;  // per vertex of a work unit's submesh (SubMesh)
+  bool settledOnly_ = false;                  // this round grades settled vertices only
   Change change_;
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
   std::vector<double> size_;  // per vertex, the target edge length (empty: length_ everywhere)
@@ -493,6 +498,7 @@ void Remesher::fitAll() {
 // ---------------------------------------------------------------- rounds
 
 void Remesher::round(bool graded, bool settledOnly) {
+  settledOnly_ = settledOnly;
   if (graded) gradeSizes(settledOnly);
   std::vector<Edge> edges;
   liveEdges(edges);
