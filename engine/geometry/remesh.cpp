@@ -147,21 +147,23 @@ class Remesher {
   void round(bool graded, bool settledOnly = false);
   void relaxAll();
   void fitAll();
-  bool pinned(std::uint32_t v) const { return v < pinned_.size() && pinned_[v]; }
+  // Per-vertex flags of a work unit's submesh; false for new vertices and whole meshes.
+  static bool flagged(const std::vector<char>& flags, std::uint32_t v) { return v < flags.size() && flags[v]; }
+  bool pinned(std::uint32_t v) const { return flagged(pinned_, v); }
+  bool settled(std::uint32_t v) const { return flagged(settled_, v); }
   void liveEdges(std::vector<Edge>& out) const;
   double length(std::uint32_t a, std::uint32_t b) const {
     const Vec3 d = net_.pos[a] - net_.pos[b];
     return std::sqrt(dot(d, d));
   }
   bool split(std::uint32_t a, std::uint32_t b);
-  void gradeSizes(bool settledOnly);
+  void gradeSizes();
   // The target edge length at v, and of the edge ab.
   double sizeAt(std::uint32_t v) const { return v < size_.size() ? size_[v] : length_; }
   double target(std::uint32_t a, std::uint32_t b) const {
     if (settledOnly_ && !(settled(a) && settled(b))) return length_;  // a cut's smoothed triangles: ungraded
     return std::min(sizeAt(a), sizeAt(b));
   }
-  bool settled(std::uint32_t v) const { return v < settled_.size() && settled_[v]; }
   bool collapse(std::uint32_t u, std::uint32_t v);
   bool flip(std::uint32_t a, std::uint32_t b);
   bool relax(std::uint32_t v);
@@ -499,7 +501,7 @@ void Remesher::fitAll() {
 
 void Remesher::round(bool graded, bool settledOnly) {
   settledOnly_ = settledOnly;
-  if (graded) gradeSizes(settledOnly);
+  if (graded) gradeSizes();
   std::vector<Edge> edges;
   liveEdges(edges);
   for (const auto& [a, b] : edges)
@@ -526,14 +528,14 @@ void Remesher::round(bool graded, bool settledOnly) {
 // next row. Around each, the target length drops to kFeatureGrade times the edge and grows
 // back to L by kGradeSlope per unit of distance along the mesh (a graded sizing field, as in
 // Botsch & Kobbelt's adaptive variant), so the triangles there get small rather than thin.
-void Remesher::gradeSizes(bool settledOnly) {
+void Remesher::gradeSizes() {
   const std::uint32_t n = net_.vertexCount();
   size_.assign(n, length_);
-  const auto graded = [&](std::uint32_t v) { return !settledOnly || (v < settled_.size() && settled_[v]); };
+  const auto graded = [&](std::uint32_t v) { return !settledOnly_ || settled(v); };
   std::vector<std::uint32_t> edgeTris;
   for (std::uint32_t v = 0; v < n; ++v) {
     // A rim vertex's edges to outside the submesh are missing: it would look like a junction.
-    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty() || (v < rim_.size() && rim_[v]) || !graded(v)) continue;
+    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty() || flagged(rim_, v) || !graded(v)) continue;
     net_.neighbours(v, scratch_);
     for (std::uint32_t w : scratch_) {
       net_.edgeTriangles(v, w, edgeTris);
@@ -685,8 +687,7 @@ void accumulate(RemeshReport& into, const RemeshReport& layer) {
   into.trianglesAfter += layer.trianglesAfter;
   into.maxDistance = std::max(into.maxDistance, layer.maxDistance);
   into.slabs += layer.slabs, into.bands += layer.bands;
-  into.splits += layer.splits, into.collapses += layer.collapses, into.flips += layer.flips;
-  into.moves += layer.moves, into.rejected += layer.rejected;
+  addCounts(into, layer);
 }
 
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
