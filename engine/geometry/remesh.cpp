@@ -704,7 +704,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   const bool whole = plan.phases[0].size() == 1 && plan.phases[0][0].whole();
   report.slabs = plan.phases[0].size(), report.bands = plan.phases[1].size();
   Network network(mesh, planes, sliceTolerance, report.edgeLength, /*broadPhase=*/whole);
-  const ReferenceSurface reference(network, report.edgeLength);
+  const ReferenceSurface reference(network, report.edgeLength, threads);
   const Context context{std::move(planes), sliceTolerance, report.edgeLength, std::min(grid.spacingX, grid.spacingY),
                         options.iterations, surfaces, reference};
   if (whole) {

@@ -5,8 +5,11 @@
 #include "geometry/remesh_reference.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
+
+#include "core/parallel.h"
 
 namespace scansurf::remesh {
 
@@ -53,25 +56,47 @@ Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   return a + (vb * denom) * ab + (vc * denom) * ac;
 }
 
-ReferenceSurface::ReferenceSurface(const Network& net, double cell) : cell_(cell) {
-  std::vector<std::uint32_t> nb, et;
-  for (std::uint32_t t = 0; t < net.tris.size(); ++t) {
-    if (!net.alive[t]) continue;
-    const Vec3 c[3] = {net.pos[net.tris[t][0]], net.pos[net.tris[t][1]], net.pos[net.tris[t][2]]};
-    add(sheetKey(net.pair[t]), c, 3);
-  }
-  for (std::uint32_t v = 0; v < net.vertexCount(); ++v) {
-    net.neighbours(v, nb);
-    for (std::uint32_t w : nb) {
-      if (w < v) continue;
-      net.edgeTriangles(v, w, et);
-      const Vec3 c[2] = {net.pos[v], net.pos[w]};
-      if (net.isJunctionEdge(et))
-        add(curveKey(net, et), c, 2);
-      else if (net.isInPlaneEdge(v, w))
-        add(planeKey(net.plane[v], net.pair[et[0]]), c, 2);
+ReferenceSurface::ReferenceSurface(const Network& net, double cell, int threads) : cell_(cell), points_(net.pos) {
+  addPrimitives(net, threads);
+  bucket(threads);
+}
+
+// The sheets' live triangles in order, then the junction and in-plane edges by their lower
+// vertex (each chunk of vertices makes its part, joined in order: the same ids for any
+// thread count).
+void ReferenceSurface::addPrimitives(const Network& net, int threads) {
+  const auto make = [](const FeatureKey& key, std::array<std::uint32_t, 3> corners, int count) {
+    return Primitive{key.value, corners, static_cast<std::uint8_t>(count), key.kind};
+  };
+  primitives_.reserve(net.tris.size());
+  for (std::uint32_t t = 0; t < net.tris.size(); ++t)
+    if (net.alive[t]) primitives_.push_back(make(sheetKey(net.pair[t]), net.tris[t], 3));
+  std::vector<std::vector<Primitive>> edges(static_cast<std::size_t>(chunkCount(net.vertexCount(), threads)));
+  parallelChunks(net.vertexCount(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::vector<Primitive>& part = edges[static_cast<std::size_t>(chunk)];
+    std::vector<std::uint32_t> nb, et;
+    for (auto v = static_cast<std::uint32_t>(begin); v < end; ++v) {
+      net.neighbours(v, nb);
+      for (std::uint32_t w : nb) {
+        if (w < v) continue;
+        net.edgeTriangles(v, w, et);
+        if (net.isJunctionEdge(et))
+          part.push_back(make(curveKey(net, et), {v, w, 0}, 2));
+        else if (net.isInPlaneEdge(v, w))
+          part.push_back(make(planeKey(net.plane[v], net.pair[et[0]]), {v, w, 0}, 2));
+      }
     }
-  }
+  });
+  for (const std::vector<Primitive>& part : edges) primitives_.insert(primitives_.end(), part.begin(), part.end());
+}
+
+void ReferenceSurface::boxOf(const Primitive& q, Vec3& lo, Vec3& hi) const {
+  lo = hi = points_[q.corners[0]];
+  for (int i = 1; i < q.count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double c = points_[q.corners[static_cast<std::size_t>(i)]][k];
+      lo[k] = std::min(lo[k], c), hi[k] = std::max(hi[k], c);
+    }
 }
 
 std::uint64_t ReferenceSurface::cellKey(std::int64_t x, std::int64_t y, std::int64_t z, const FeatureKey& key) const {
@@ -82,18 +107,63 @@ std::uint64_t ReferenceSurface::cellKey(std::int64_t x, std::int64_t y, std::int
   return h;
 }
 
-void ReferenceSurface::add(const FeatureKey& key, const Vec3* corners, int count) {
-  const auto id = static_cast<std::uint32_t>(primitives_.size());
-  Vec3 lo = corners[0], hi = corners[0];
-  for (int i = 0; i < count; ++i)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], corners[i][k]), hi[k] = std::max(hi[k], corners[i][k]);
-  primitives_.push_back({static_cast<std::uint32_t>(points_.size()), static_cast<std::uint8_t>(count), key, lo, hi});
-  points_.insert(points_.end(), corners, corners + count);
+template <typename F>
+void ReferenceSurface::forCells(const Vec3& lo, const Vec3& hi, const FeatureKey& key, F f) const {
   std::int64_t a[3], b[3];
   for (int k = 0; k < 3; ++k) a[k] = std::llround(std::floor(lo[k] / cell_)), b[k] = std::llround(std::floor(hi[k] / cell_));
   for (std::int64_t z = a[2]; z <= b[2]; ++z)
     for (std::int64_t y = a[1]; y <= b[1]; ++y)
-      for (std::int64_t x = a[0]; x <= b[0]; ++x) cells_[cellKey(x, y, z, key)].push_back(id);
+      for (std::int64_t x = a[0]; x <= b[0]; ++x) f(cellKey(x, y, z, key));
+}
+
+// Every (cell, primitive) pair, sorted by cell then primitive (chunks sorted at once, then
+// merged), becomes the runs; then each run's key goes into the table.
+void ReferenceSurface::bucket(int threads) {
+  using Entry = std::pair<std::uint64_t, std::uint32_t>;
+  const int chunks = chunkCount(primitives_.size(), threads);
+  std::vector<std::vector<Entry>> parts(static_cast<std::size_t>(chunks));
+  parallelChunks(primitives_.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::vector<Entry>& part = parts[static_cast<std::size_t>(chunk)];
+    Vec3 lo, hi;
+    for (std::size_t id = begin; id < end; ++id) {
+      const Primitive& q = primitives_[id];
+      boxOf(q, lo, hi);
+      forCells(lo, hi, {q.keyKind, q.keyValue}, [&](std::uint64_t key) { part.push_back({key, static_cast<std::uint32_t>(id)}); });
+    }
+    std::sort(part.begin(), part.end());
+  });
+  std::vector<Entry> entries;
+  for (const std::vector<Entry>& part : parts) {
+    const auto middle = static_cast<std::ptrdiff_t>(entries.size());
+    entries.insert(entries.end(), part.begin(), part.end());
+    std::inplace_merge(entries.begin(), entries.begin() + middle, entries.end());
+  }
+  parts.clear();
+  CellTable& table = cells_;
+  table.ids.resize(entries.size());
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (i == 0 || entries[i].first != entries[i - 1].first) table.starts.push_back(static_cast<std::uint32_t>(i));
+    table.ids[i] = entries[i].second;
+  }
+  const std::size_t runs = table.starts.size();
+  table.starts.push_back(static_cast<std::uint32_t>(entries.size()));
+  const std::size_t size = std::bit_ceil(std::max<std::size_t>(1024, 2 * runs));  // at most half full
+  table.keys.assign(size, CellTable::kEmpty);
+  table.runs.assign(size, 0);
+  table.shift = 64 - std::countr_zero(size);
+  for (std::size_t r = 0; r < runs; ++r) {
+    const std::uint64_t key = entries[table.starts[r]].first;
+    std::size_t s = table.slotOf(key);
+    while (table.keys[s] != CellTable::kEmpty) s = (s + 1) & (size - 1);
+    table.keys[s] = key, table.runs[s] = static_cast<std::uint32_t>(r);
+  }
+}
+
+std::span<const std::uint32_t> ReferenceSurface::CellTable::find(std::uint64_t key) const {
+  for (std::size_t s = slotOf(key);; s = (s + 1) & (keys.size() - 1)) {
+    if (keys[s] == key) return {ids.data() + starts[runs[s]], ids.data() + starts[runs[s] + 1]};
+    if (keys[s] == kEmpty) return {};
+  }
 }
 
 namespace {
@@ -112,30 +182,38 @@ double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 
 template <typename F>
 void ReferenceSurface::visit(const Vec3& p, const FeatureKey& key, double radius, F f) const {
-  std::int64_t a[3], b[3];
-  for (int k = 0; k < 3; ++k)
-    a[k] = std::llround(std::floor((p[k] - radius) / cell_)), b[k] = std::llround(std::floor((p[k] + radius) / cell_));
-  for (std::int64_t z = a[2]; z <= b[2]; ++z)
-    for (std::int64_t y = a[1]; y <= b[1]; ++y)
-      for (std::int64_t x = a[0]; x <= b[0]; ++x) {
-        const auto it = cells_.find(cellKey(x, y, z, key));
-        if (it == cells_.end()) continue;
-        for (std::uint32_t id : it->second) {
-          const Primitive& q = primitives_[id];
-          if (q.key.kind != key.kind || q.key.value != key.value) continue;  // a hash collision
-          if (!f(q)) return;
-        }
+  const Vec3 r{radius, radius, radius};
+  bool going = true;
+  forCells(p - r, p + r, key, [&](std::uint64_t cell) {
+    if (!going) return;
+    for (std::uint32_t id : cells_.find(cell)) {
+      const Primitive& q = primitives_[id];
+      if (!q.is(key)) continue;  // a hash collision
+      if (!f(q)) {
+        going = false;
+        return;
       }
+    }
+  });
+}
+
+bool ReferenceSurface::nearestWithin(const Primitive& q, const Vec3& p, double limit2, Vec3& point, double& d2) const {
+  Vec3 lo, hi;
+  boxOf(q, lo, hi);
+  if (boxDistance2(p, lo, hi) > limit2) return false;
+  const Vec3 &a = points_[q.corners[0]], &b = points_[q.corners[1]];
+  point = q.count == 3 ? nearestOnTriangle(p, a, b, points_[q.corners[2]]) : nearestOnSegment(p, a, b);
+  d2 = dot(point - p, point - p);
+  return true;
 }
 
 Nearest ReferenceSurface::nearest(const Vec3& p, const FeatureKey& key, double radius) const {
   Nearest best;
   double best2 = radius * radius;
   visit(p, key, radius, [&](const Primitive& q) {
-    if (boxDistance2(p, q.lo, q.hi) > best2) return true;
-    const Vec3* c = &points_[q.first];
-    const Vec3 n = q.count == 3 ? nearestOnTriangle(p, c[0], c[1], c[2]) : nearestOnSegment(p, c[0], c[1]);
-    const double d2 = dot(n - p, n - p);
+    Vec3 n;
+    double d2 = 0;
+    if (!nearestWithin(q, p, best2, n, d2)) return true;
     // Ties go to the first primitive: deterministic, as the cell order is.
     if (d2 < best2 || (!best.found && d2 <= best2)) best = {true, n, 0}, best2 = d2;
     return true;
@@ -153,10 +231,9 @@ bool ReferenceSurface::within(const Vec3& p, const FeatureKey& key, double radiu
   bool found = false;
   const double r2 = radius * radius;
   visit(p, key, radius, [&](const Primitive& q) {
-    if (boxDistance2(p, q.lo, q.hi) > r2) return true;
-    const Vec3* c = &points_[q.first];
-    const Vec3 n = q.count == 3 ? nearestOnTriangle(p, c[0], c[1], c[2]) : nearestOnSegment(p, c[0], c[1]);
-    found = dot(n - p, n - p) <= r2;
+    Vec3 n;
+    double d2 = 0;
+    found = nearestWithin(q, p, r2, n, d2) && d2 <= r2;
     return !found;
   });
   return found;

@@ -3,8 +3,9 @@
 // contour-plane cross-sections (by plane and label pair).
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <unordered_map>
+#include <span>
 #include <vector>
 
 #include "geometry/remesh_network.h"
@@ -32,8 +33,8 @@ FeatureKey curveKey(const Network& net, const std::vector<std::uint32_t>& edgeTr
 class ReferenceSurface {
  public:
   // A copy of the network as it is now (sheets, junction edges, in-plane edges), bucketed in
-  // cells of the given size.
-  ReferenceSurface(const Network& net, double cell);
+  // cells of the given size; built on up to `threads` threads, the same for any count.
+  ReferenceSurface(const Network& net, double cell, int threads = 1);
   // Nearest point of the feature within `radius` of p.
   Nearest nearest(const Vec3& p, const FeatureKey& key, double radius) const;
   // The same, searching within a tenth of `radius` first (most queries are that close).
@@ -42,24 +43,45 @@ class ReferenceSurface {
   bool within(const Vec3& p, const FeatureKey& key, double radius) const;
 
  private:
+  // A triangle or segment of the network's vertices (points_), 24 bytes: millions of them.
   struct Primitive {
-    std::uint32_t first;  // into points_
-    std::uint8_t count;   // 3: triangle, 2: segment
-    FeatureKey key;       // cells are hashed with the key: this weeds out collisions
-    Vec3 lo, hi;          // bounding box
+    std::uint64_t keyValue;  // its feature (cells are hashed with it: this weeds out collisions)
+    std::array<std::uint32_t, 3> corners;
+    std::uint8_t count;  // 3: triangle, 2: segment
+    FeatureKey::Kind keyKind;
+    bool is(const FeatureKey& key) const { return keyKind == key.kind && keyValue == key.value; }
   };
   // Calls f(primitive) for the feature's primitives in the cells within radius of p until f
   // returns false.
   template <typename F>
   void visit(const Vec3& p, const FeatureKey& key, double radius, F f) const;
-  using Bucket = std::unordered_map<std::uint64_t, std::vector<std::uint32_t>>;  // cell -> primitives
-  void add(const FeatureKey& key, const Vec3* corners, int count);
+  // Read-only after construction: an open-addressing table from a (cell, feature) key to its
+  // run of primitive ids in one array, each run ascending (compressed rows).
+  struct CellTable {
+    static constexpr std::uint64_t kEmpty = ~0ull;
+    std::vector<std::uint64_t> keys;  // per slot, kEmpty when free
+    std::vector<std::uint32_t> runs;  // per slot, its run's index
+    std::vector<std::uint32_t> starts, ids;  // run r is ids[starts[r], starts[r + 1])
+    int shift = 64;
+    std::size_t slotOf(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> shift); }
+    std::span<const std::uint32_t> find(std::uint64_t key) const;
+  };
+  void addPrimitives(const Network& net, int threads);
+  void bucket(int threads);
   std::uint64_t cellKey(std::int64_t x, std::int64_t y, std::int64_t z, const FeatureKey& key) const;
+  // Calls f(cell key) for every cell that [lo, hi] touches, z-major.
+  template <typename F>
+  void forCells(const Vec3& lo, const Vec3& hi, const FeatureKey& key, F f) const;
+
+  void boxOf(const Primitive& q, Vec3& lo, Vec3& hi) const;
+  // The primitive's nearest point to p and its squared distance; false (and nothing
+  // computed) when its box lies farther than limit2.
+  bool nearestWithin(const Primitive& q, const Vec3& p, double limit2, Vec3& point, double& d2) const;
 
   double cell_;
-  std::vector<Vec3> points_;
+  std::vector<Vec3> points_;  // the network's vertex positions
   std::vector<Primitive> primitives_;
-  Bucket cells_;  // (cell, feature) -> primitives
+  CellTable cells_;
 };
 
 // The point of triangle abc nearest p (Ericson, "Real-Time Collision Detection", 5.1.5).
