@@ -56,6 +56,33 @@ Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   return a + (vb * denom) * ab + (vc * denom) * ac;
 }
 
+namespace {
+
+// Squared distance from p to the box [lo, hi] (Vec3 or float arrays). A box widened to floats
+// gives a distance no larger, rounding included (every step is monotonic), so it only ever
+// keeps what the exact box would keep.
+template <typename Box>
+double boxDistance2(const Vec3& p, const Box& lo, const Box& hi) {
+  double d = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double e = std::max({static_cast<double>(lo[k]) - p[k], 0.0, p[k] - static_cast<double>(hi[k])});
+    d += e * e;
+  }
+  return d;
+}
+
+float floatBelow(double x) {
+  const auto f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+float floatAbove(double x) {
+  const auto f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+}  // namespace
+
 ReferenceSurface::ReferenceSurface(const Network& net, double cell, int threads) : cell_(cell), points_(net.pos) {
   addPrimitives(net, threads);
   bucket(threads);
@@ -140,11 +167,18 @@ void ReferenceSurface::bucket(int threads) {
   }
   parts.clear();
   CellTable& table = cells_;
-  table.ids.resize(entries.size());
-  for (std::size_t i = 0; i < entries.size(); ++i) {
+  for (std::size_t i = 0; i < entries.size(); ++i)
     if (i == 0 || entries[i].first != entries[i - 1].first) table.starts.push_back(static_cast<std::uint32_t>(i));
-    table.ids[i] = entries[i].second;
-  }
+  table.entries.resize(entries.size());
+  parallelChunks(entries.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    Vec3 lo, hi;
+    for (std::size_t i = begin; i < end; ++i) {
+      boxOf(primitives_[entries[i].second], lo, hi);
+      CellEntry& e = table.entries[i];
+      for (int k = 0; k < 3; ++k) e.lo[k] = floatBelow(lo[k]), e.hi[k] = floatAbove(hi[k]);
+      e.primitive = entries[i].second;
+    }
+  });
   const std::size_t runs = table.starts.size();
   table.starts.push_back(static_cast<std::uint32_t>(entries.size()));
   const std::size_t size = std::bit_ceil(std::max<std::size_t>(1024, 2 * runs));  // at most half full
@@ -159,35 +193,22 @@ void ReferenceSurface::bucket(int threads) {
   }
 }
 
-std::span<const std::uint32_t> ReferenceSurface::CellTable::find(std::uint64_t key) const {
+std::span<const ReferenceSurface::CellEntry> ReferenceSurface::CellTable::find(std::uint64_t key) const {
   for (std::size_t s = slotOf(key);; s = (s + 1) & (keys.size() - 1)) {
-    if (keys[s] == key) return {ids.data() + starts[runs[s]], ids.data() + starts[runs[s] + 1]};
+    if (keys[s] == key) return {entries.data() + starts[runs[s]], entries.data() + starts[runs[s] + 1]};
     if (keys[s] == kEmpty) return {};
   }
 }
 
-namespace {
-
-// Squared distance from p to the box [lo, hi].
-double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  double d = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double e = std::max({lo[k] - p[k], 0.0, p[k] - hi[k]});
-    d += e * e;
-  }
-  return d;
-}
-
-}  // namespace
-
 template <typename F>
-void ReferenceSurface::visit(const Vec3& p, const FeatureKey& key, double radius, F f) const {
+void ReferenceSurface::visit(const Vec3& p, const FeatureKey& key, double radius, const double& limit2, F f) const {
   const Vec3 r{radius, radius, radius};
   bool going = true;
   forCells(p - r, p + r, key, [&](std::uint64_t cell) {
     if (!going) return;
-    for (std::uint32_t id : cells_.find(cell)) {
-      const Primitive& q = primitives_[id];
+    for (const CellEntry& e : cells_.find(cell)) {
+      if (boxDistance2(p, e.lo, e.hi) > limit2) continue;
+      const Primitive& q = primitives_[e.primitive];
       if (!q.is(key)) continue;  // a hash collision
       if (!f(q)) {
         going = false;
@@ -210,7 +231,7 @@ bool ReferenceSurface::nearestWithin(const Primitive& q, const Vec3& p, double l
 Nearest ReferenceSurface::nearest(const Vec3& p, const FeatureKey& key, double radius) const {
   Nearest best;
   double best2 = radius * radius;
-  visit(p, key, radius, [&](const Primitive& q) {
+  visit(p, key, radius, best2, [&](const Primitive& q) {
     Vec3 n;
     double d2 = 0;
     if (!nearestWithin(q, p, best2, n, d2)) return true;
@@ -230,7 +251,7 @@ Nearest ReferenceSurface::nearestNear(const Vec3& p, const FeatureKey& key, doub
 bool ReferenceSurface::within(const Vec3& p, const FeatureKey& key, double radius) const {
   bool found = false;
   const double r2 = radius * radius;
-  visit(p, key, radius, [&](const Primitive& q) {
+  visit(p, key, radius, r2, [&](const Primitive& q) {
     Vec3 n;
     double d2 = 0;
     found = nearestWithin(q, p, r2, n, d2) && d2 <= r2;

@@ -51,20 +51,27 @@ class ReferenceSurface {
     FeatureKey::Kind keyKind;
     bool is(const FeatureKey& key) const { return keyKind == key.kind && keyValue == key.value; }
   };
-  // Calls f(primitive) for the feature's primitives in the cells within radius of p until f
-  // returns false.
+  // Calls f(primitive) for the feature's primitives in the cells within radius of p whose
+  // box lies within sqrt(limit2) of p, until f returns false; f may lower limit2.
   template <typename F>
-  void visit(const Vec3& p, const FeatureKey& key, double radius, F f) const;
+  void visit(const Vec3& p, const FeatureKey& key, double radius, const double& limit2, F f) const;
+  // A primitive in a cell, with its box widened to floats: a cell's run is scanned in one
+  // stream, and only the primitives near enough are looked up.
+  struct CellEntry {
+    std::array<float, 3> lo, hi;
+    std::uint32_t primitive;
+  };
   // Read-only after construction: an open-addressing table from a (cell, feature) key to its
-  // run of primitive ids in one array, each run ascending (compressed rows).
+  // run of entries in one array, each run by ascending primitive (compressed rows).
   struct CellTable {
     static constexpr std::uint64_t kEmpty = ~0ull;
     std::vector<std::uint64_t> keys;  // per slot, kEmpty when free
     std::vector<std::uint32_t> runs;  // per slot, its run's index
-    std::vector<std::uint32_t> starts, ids;  // run r is ids[starts[r], starts[r + 1])
+    std::vector<std::uint32_t> starts;  // run r is entries[starts[r], starts[r + 1])
+    std::vector<CellEntry> entries;
     int shift = 64;
     std::size_t slotOf(std::uint64_t key) const { return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> shift); }
-    std::span<const std::uint32_t> find(std::uint64_t key) const;
+    std::span<const CellEntry> find(std::uint64_t key) const;
   };
   void addPrimitives(const Network& net, int threads);
   void bucket(int threads);
