@@ -11,11 +11,13 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <random>
 #include <set>
 #include <vector>
 
 #include "geometry/feature_surfaces.h"
 #include "geometry/remesh_network.h"
+#include "geometry/remesh_reference.h"
 #include "geometry/remesh_slabs.h"
 #include "geometry/smoothing.h"
 #include "support/intersections.h"
@@ -446,6 +448,77 @@ TEST(RemeshBroadPhase, DropsDeadTrianglesButKeepsThoseAnUndoMayRevive) {
   EXPECT_EQ(out, (std::vector<std::uint32_t>{2999}));
   grid.query({40, 40, 40}, {41, 41, 41}, alive, {}, out);
   EXPECT_TRUE(out.empty());
+}
+
+
+// ---------------------------------------------------------------- the smoothed reference
+
+// The reference's cell table (runs with float-widened boxes, built on any number of threads)
+// against a scan of every primitive of the feature: the same nearest distance to the last bit,
+// the same answer to "within", on sheets and on junction curves.
+TEST(RemeshReference, NearestAndWithinMatchAScanOfEveryPrimitive) {
+  Built b = buildCpu(abuttingContours(10, 6, 2.5), 0.5);
+  smooth(b);
+  std::vector<double> planes;
+  for (const Feature& f : b.set.features)
+    for (const FeatureSlice& slice : f.slices) planes.push_back(slice.z);
+  std::sort(planes.begin(), planes.end());
+  planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
+  using namespace remesh;
+  const Network net(b.mesh, planes, kDefaultSliceTolerance, 0.6, /*broadPhase=*/false);
+  const ReferenceSurface one(net, 0.6, 1), three(net, 0.6, 3);
+  // Every primitive by feature, as the reference builds them.
+  struct Shape {
+    FeatureKey key;
+    std::vector<Vec3> corners;
+  };
+  std::vector<Shape> shapes;
+  for (std::uint32_t t = 0; t < net.tris.size(); ++t)
+    shapes.push_back({sheetKey(net.pair[t]), {net.pos[net.tris[t][0]], net.pos[net.tris[t][1]], net.pos[net.tris[t][2]]}});
+  std::vector<std::uint32_t> nb, et;
+  std::vector<FeatureKey> curves;
+  for (std::uint32_t v = 0; v < net.vertexCount(); ++v) {
+    net.neighbours(v, nb);
+    for (std::uint32_t w : nb) {
+      net.edgeTriangles(v, w, et);
+      if (w > v && net.isJunctionEdge(et)) shapes.push_back({curveKey(net, et), {net.pos[v], net.pos[w]}}), curves.push_back(shapes.back().key);
+    }
+  }
+  ASSERT_FALSE(curves.empty());  // the halves meet the outside along a junction curve
+  const auto scan = [&](const Vec3& p, const FeatureKey& key, double radius) {
+    double best2 = radius * radius;
+    bool found = false;
+    for (const Shape& s : shapes) {
+      if (s.key.kind != key.kind || s.key.value != key.value) continue;
+      const Vec3 n = s.corners.size() == 3 ? nearestOnTriangle(p, s.corners[0], s.corners[1], s.corners[2])
+                                           : nearestOnSegment(p, s.corners[0], s.corners[1]);
+      const double d2 = dot(n - p, n - p);
+      if (d2 <= best2) best2 = d2, found = true;
+    }
+    return std::pair{found, best2};
+  };
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> offset(-0.8, 0.8);
+  int found = 0, queries = 0;
+  for (std::uint32_t t = 0; t < net.tris.size(); t += 23) {
+    const Vec3 p = net.pos[net.tris[t][0]] + Vec3{offset(random), offset(random), offset(random)};
+    for (const FeatureKey& key : {sheetKey(net.pair[t]), curves[t % curves.size()]})
+      for (double radius : {0.05, 0.3, 1.0}) {
+        const auto [expected, best2] = scan(p, key, radius);
+        const Nearest a = one.nearest(p, key, radius), c = three.nearest(p, key, radius);
+        ASSERT_EQ(a.found, expected);
+        EXPECT_EQ(one.within(p, key, radius), expected);
+        EXPECT_EQ(three.within(p, key, radius), expected);
+        ++queries;
+        if (!expected) continue;
+        ++found;
+        EXPECT_EQ(a.distance, std::sqrt(best2));
+        EXPECT_EQ(a.point, c.point);  // the same primitive wins on any thread count
+        EXPECT_EQ(a.distance, c.distance);
+      }
+  }
+  EXPECT_GT(found, queries / 4);
+  EXPECT_LT(found, queries);
 }
 
 }  // namespace
