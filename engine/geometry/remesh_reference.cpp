@@ -58,11 +58,10 @@ Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
 
 namespace {
 
-// Squared distance from p to the box [lo, hi] (Vec3 or float arrays). A box widened to floats
-// gives a distance no larger, rounding included (every step is monotonic), so it only ever
-// keeps what the exact box would keep.
-template <typename Box>
-double boxDistance2(const Vec3& p, const Box& lo, const Box& hi) {
+// Squared distance from p to the box [lo, hi]. The box is the primitive's widened to floats,
+// so the distance is no larger than to its exact box (rounding included: every step is
+// monotonic): a primitive it rejects lies farther than the limit.
+double boxDistance2(const Vec3& p, const std::array<float, 3>& lo, const std::array<float, 3>& hi) {
   double d = 0;
   for (int k = 0; k < 3; ++k) {
     const double e = std::max({static_cast<double>(lo[k]) - p[k], 0.0, p[k] - static_cast<double>(hi[k])});
@@ -218,23 +217,17 @@ void ReferenceSurface::visit(const Vec3& p, const FeatureKey& key, double radius
   });
 }
 
-bool ReferenceSurface::nearestWithin(const Primitive& q, const Vec3& p, double limit2, Vec3& point, double& d2) const {
-  Vec3 lo, hi;
-  boxOf(q, lo, hi);
-  if (boxDistance2(p, lo, hi) > limit2) return false;
+Vec3 ReferenceSurface::nearestOn(const Primitive& q, const Vec3& p) const {
   const Vec3 &a = points_[q.corners[0]], &b = points_[q.corners[1]];
-  point = q.count == 3 ? nearestOnTriangle(p, a, b, points_[q.corners[2]]) : nearestOnSegment(p, a, b);
-  d2 = dot(point - p, point - p);
-  return true;
+  return q.count == 3 ? nearestOnTriangle(p, a, b, points_[q.corners[2]]) : nearestOnSegment(p, a, b);
 }
 
 Nearest ReferenceSurface::nearest(const Vec3& p, const FeatureKey& key, double radius) const {
   Nearest best;
   double best2 = radius * radius;
   visit(p, key, radius, best2, [&](const Primitive& q) {
-    Vec3 n;
-    double d2 = 0;
-    if (!nearestWithin(q, p, best2, n, d2)) return true;
+    const Vec3 n = nearestOn(q, p);
+    const double d2 = dot(n - p, n - p);
     // Ties go to the first primitive: deterministic, as the cell order is.
     if (d2 < best2 || (!best.found && d2 <= best2)) best = {true, n, 0}, best2 = d2;
     return true;
@@ -252,9 +245,8 @@ bool ReferenceSurface::within(const Vec3& p, const FeatureKey& key, double radiu
   bool found = false;
   const double r2 = radius * radius;
   visit(p, key, radius, r2, [&](const Primitive& q) {
-    Vec3 n;
-    double d2 = 0;
-    found = nearestWithin(q, p, r2, n, d2) && d2 <= r2;
+    const Vec3 n = nearestOn(q, p);
+    found = dot(n - p, n - p) <= r2;
     return !found;
   });
   return found;

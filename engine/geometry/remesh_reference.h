@@ -81,9 +81,7 @@ class ReferenceSurface {
   void forCells(const Vec3& lo, const Vec3& hi, const FeatureKey& key, F f) const;
 
   void boxOf(const Primitive& q, Vec3& lo, Vec3& hi) const;
-  // The primitive's nearest point to p and its squared distance; false (and nothing
-  // computed) when its box lies farther than limit2.
-  bool nearestWithin(const Primitive& q, const Vec3& p, double limit2, Vec3& point, double& d2) const;
+  Vec3 nearestOn(const Primitive& q, const Vec3& p) const;  // the primitive's point nearest p
 
   double cell_;
   std::vector<Vec3> points_;  // the network's vertex positions

@@ -450,7 +450,6 @@ TEST(RemeshBroadPhase, DropsDeadTrianglesButKeepsThoseAnUndoMayRevive) {
   EXPECT_TRUE(out.empty());
 }
 
-
 // ---------------------------------------------------------------- the smoothed reference
 
 // The reference's cell table (runs with float-widened boxes, built on any number of threads)
