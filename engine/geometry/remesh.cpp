@@ -187,6 +187,15 @@ class Remesher {
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
   std::vector<double> size_;  // per vertex, the target edge length (empty: length_ everywhere)
   std::vector<std::uint32_t> scratch_, candidates_;
+  struct Box {
+    Vec3 lo, hi;
+    bool touches(const Box& o) const {
+      for (int k = 0; k < 3; ++k)
+        if (hi[k] < o.lo[k] || lo[k] > o.hi[k]) return false;
+      return true;
+    }
+  };
+  std::vector<std::pair<std::uint32_t, Box>> near_;  // crossesNothing's candidates near the change
 };
 
 void Remesher::liveEdges(std::vector<Edge>& out) const {
@@ -264,41 +273,43 @@ bool Remesher::nearSmoothed() const {
   return true;
 }
 
-// One broad-phase query for the whole change (its new triangles lie side by side), then each
-// new triangle against the candidates whose boxes touch its own, and against the other new ones.
+// One broad-phase query for the whole change (its new triangles lie side by side); the
+// candidates whose boxes touch the change's box are kept with their boxes, then each new
+// triangle is tested against those whose boxes touch its own, and against the other new ones.
 bool Remesher::crossesNothing() {
+  const auto end = static_cast<std::uint32_t>(net_.tris.size());
+  if (change_.firstAdded == end) return true;
   const auto corners = [&](std::uint32_t t) {
     const auto& c = net_.tris[t];
     return std::array<Point3, 3>{point(net_.pos[c[0]]), point(net_.pos[c[1]]), point(net_.pos[c[2]])};
   };
-  const auto end = static_cast<std::uint32_t>(net_.tris.size());
-  if (change_.firstAdded == end) return true;
-  const auto boxOf = [&](const std::array<Point3, 3>& a, Vec3& lo, Vec3& hi) {
-    lo = hi = Vec3{a[0][0], a[0][1], a[0][2]};
-    for (const Point3& p : a)
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  const auto boxOf = [&](std::uint32_t t) {
+    const auto& c = net_.tris[t];
+    Box b{net_.pos[c[0]], net_.pos[c[0]]};
+    for (int i = 1; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) b.lo[k] = std::min(b.lo[k], net_.pos[c[i]][k]), b.hi[k] = std::max(b.hi[k], net_.pos[c[i]][k]);
+    return b;
   };
-  Vec3 allLo, allHi, lo, hi;
-  boxOf(corners(change_.firstAdded), allLo, allHi);
+  Box all = boxOf(change_.firstAdded);
   for (std::uint32_t t = change_.firstAdded + 1; t < end; ++t) {
-    boxOf(corners(t), lo, hi);
-    for (int k = 0; k < 3; ++k) allLo[k] = std::min(allLo[k], lo[k]), allHi[k] = std::max(allHi[k], hi[k]);
+    const Box b = boxOf(t);
+    for (int k = 0; k < 3; ++k) all.lo[k] = std::min(all.lo[k], b.lo[k]), all.hi[k] = std::max(all.hi[k], b.hi[k]);
   }
-  net_.grid.query(allLo, allHi, net_.alive, change_.removed, candidates_);
+  net_.grid.query(all.lo, all.hi, net_.alive, change_.removed, candidates_);
+  near_.clear();
+  for (std::uint32_t u : candidates_) {
+    if (u >= change_.firstAdded) continue;
+    const Box b = boxOf(u);
+    if (b.touches(all)) near_.push_back({u, b});
+  }
   for (std::uint32_t t = change_.firstAdded; t < end; ++t) {
     if (!net_.alive[t]) continue;
     const auto a = corners(t);
-    boxOf(a, lo, hi);
-    const auto test = [&](std::uint32_t u) {
-      const auto b = corners(u);
-      for (int k = 0; k < 3; ++k)
-        if (std::max({b[0][k], b[1][k], b[2][k]}) < lo[k] || std::min({b[0][k], b[1][k], b[2][k]}) > hi[k]) return false;
-      return trianglesCross(net_.tris[t], a, net_.tris[u], b);
-    };
-    for (std::uint32_t u : candidates_)
-      if (u < change_.firstAdded && test(u)) return false;
+    const Box box = boxOf(t);
+    for (const auto& [u, b] : near_)
+      if (b.touches(box) && trianglesCross(net_.tris[t], a, net_.tris[u], corners(u))) return false;
     for (std::uint32_t u = t + 1; u < end; ++u)
-      if (net_.alive[u] && test(u)) return false;
+      if (net_.alive[u] && boxOf(u).touches(box) && trianglesCross(net_.tris[t], a, net_.tris[u], corners(u))) return false;
   }
   return true;
 }

@@ -112,6 +112,25 @@ int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d)
   return sign(sum);
 }
 
+PlaneSide::PlaneSide(const Point3& a, const Point3& b, const Point3& c) : a_(a), b_(b), c_(c) {
+  const double e1x = b[0] - a[0], e1y = b[1] - a[1], e1z = b[2] - a[2];
+  const double e2x = c[0] - a[0], e2y = c[1] - a[1], e2z = c[2] - a[2];
+  minor_ = {e1y * e2z - e1z * e2y, e1z * e2x - e1x * e2z, e1x * e2y - e1y * e2x};
+  magnitude_ = {std::abs(e1y * e2z) + std::abs(e1z * e2y), std::abs(e1z * e2x) + std::abs(e1x * e2z),
+                std::abs(e1x * e2y) + std::abs(e1y * e2x)};
+}
+
+// | a-d ; b-d ; c-d | = (a - d) . ((b - a) x (c - a)): the same cofactor expansion of rounded
+// differences as orient3d's, so the same filter bounds its rounding.
+int PlaneSide::side(const Point3& d) const {
+  const double fx = a_[0] - d[0], fy = a_[1] - d[1], fz = a_[2] - d[2];
+  const double det = fx * minor_[0] + fy * minor_[1] + fz * minor_[2];
+  const double permanent = std::abs(fx) * magnitude_[0] + std::abs(fy) * magnitude_[1] + std::abs(fz) * magnitude_[2];
+  if (std::abs(det) > kFilter * permanent) return signOf(det);
+  if (d == a_ || d == b_ || d == c_) return 0;  // common in meshes: exact
+  return orient3d(a_, b_, c_, d);
+}
+
 int orient2d(const Point3& a, const Point3& b, const Point3& c, int u, int v) {
   const double det = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
   const double permanent = std::abs((b[u] - a[u]) * (c[v] - a[v])) + std::abs((b[v] - a[v]) * (c[u] - a[u]));
@@ -154,9 +173,9 @@ bool pointInTriangle2d(const Point3& p, const std::array<Point3, 3>& t, int u, i
   return true;
 }
 
-// Closed segment pq meets closed triangle t (non-degenerate).
-bool segmentMeetsTriangle(const Point3& p, const Point3& q, const std::array<Point3, 3>& t) {
-  const int s1 = orient3d(t[0], t[1], t[2], p), s2 = orient3d(t[0], t[1], t[2], q);
+// Closed segment pq meets closed triangle t (non-degenerate); s1 and s2 are p's and q's sides
+// of t's plane (orient3d(t[0], t[1], t[2], p) and of q).
+bool segmentMeetsTriangle(const Point3& p, const Point3& q, const std::array<Point3, 3>& t, int s1, int s2) {
   if (s1 * s2 > 0) return false;
   if (s1 == 0 && s2 == 0) {
     int u = 0, v = 0;
@@ -170,9 +189,9 @@ bool segmentMeetsTriangle(const Point3& p, const Point3& q, const std::array<Poi
   return (a >= 0 && b >= 0 && c >= 0) || (a <= 0 && b <= 0 && c <= 0);
 }
 
-// x (coplanar with t, x != t[apex]) lies in t's closed angle at vertex `apex`.
-bool inCone(const Point3& x, const std::array<Point3, 3>& t, int apex) {
-  if (orient3d(t[0], t[1], t[2], x) != 0) return false;
+// x (x != t[apex]) lies in t's closed angle at vertex `apex`; side is x's side of t's plane.
+bool inCone(const Point3& x, int side, const std::array<Point3, 3>& t, int apex) {
+  if (side != 0) return false;
   int u = 0, v = 0;
   projectionOf(t, u, v);
   const Point3& o = t[apex];
@@ -182,24 +201,39 @@ bool inCone(const Point3& x, const std::array<Point3, 3>& t, int apex) {
   return orient2d(o, p, x, u, v) * s >= 0 && orient2d(o, x, q, u, v) * s >= 0;
 }
 
-// All of q's vertices other than those in `skip` (a bit per vertex) strictly on one side of
-// t's plane: then q meets t's plane at most in the skipped (shared) vertices.
-bool strictlyOneSide(const std::array<Point3, 3>& t, const std::array<Point3, 3>& q, int skip) {
+// q's vertices' sides of t's plane: orient3d(t[0], t[1], t[2], q[i]), the plane's minors shared;
+// 0 without a test for the vertex `shared` (-1: none) has with t.
+std::array<int, 3> sidesOf(const std::array<Point3, 3>& t, const std::array<Point3, 3>& q, int shared = -1) {
+  const PlaneSide plane(t[0], t[1], t[2]);
+  std::array<int, 3> sides{};
+  for (int i = 0; i < 3; ++i)
+    if (i != shared) sides[i] = plane.side(q[i]);
+  return sides;
+}
+
+// All the sides but those in `skip` (a bit per vertex) non-zero and equal: then the triangle
+// meets the plane at most in the skipped (shared) vertices.
+bool strictlyOneSide(const std::array<int, 3>& sides, int skip) {
   int side = 0;
   for (int i = 0; i < 3; ++i) {
     if (skip & (1 << i)) continue;
-    const int o = orient3d(t[0], t[1], t[2], q[i]);
-    if (o == 0 || (side != 0 && o != side)) return false;
-    side = o;
+    if (sides[i] == 0 || (side != 0 && sides[i] != side)) return false;
+    side = sides[i];
   }
   return true;
 }
 
 bool generalCross(const std::array<Point3, 3>& a, const std::array<Point3, 3>& b) {
   // The usual early exit (Möller 1997): one triangle wholly on one side of the other's plane.
-  if (strictlyOneSide(a, b, 0) || strictlyOneSide(b, a, 0)) return false;
-  for (int e = 0; e < 3; ++e)
-    if (segmentMeetsTriangle(a[e], a[(e + 1) % 3], b) || segmentMeetsTriangle(b[e], b[(e + 1) % 3], a)) return true;
+  const std::array<int, 3> sidesB = sidesOf(a, b);  // b's vertices against a's plane
+  if (strictlyOneSide(sidesB, 0)) return false;
+  const std::array<int, 3> sidesA = sidesOf(b, a);
+  if (strictlyOneSide(sidesA, 0)) return false;
+  for (int e = 0; e < 3; ++e) {
+    const int f = (e + 1) % 3;
+    if (segmentMeetsTriangle(a[e], a[f], b, sidesA[e], sidesA[f]) || segmentMeetsTriangle(b[e], b[f], a, sidesB[e], sidesB[f]))
+      return true;
+  }
   return false;
 }
 
@@ -238,12 +272,16 @@ bool trianglesCross(const std::array<std::uint32_t, 3>& ia, const std::array<Poi
   while (sharedA[va] < 0) ++va;
   const int vb = sharedA[va];
   // Only the common vertex on the other's plane: they meet there alone.
-  if (strictlyOneSide(a, b, 1 << vb) || strictlyOneSide(b, a, 1 << va)) return false;
-  if (segmentMeetsTriangle(a[(va + 1) % 3], a[(va + 2) % 3], b)) return true;
-  if (segmentMeetsTriangle(b[(vb + 1) % 3], b[(vb + 2) % 3], a)) return true;
+  const std::array<int, 3> sidesB = sidesOf(a, b, vb);
+  if (strictlyOneSide(sidesB, 1 << vb)) return false;
+  const std::array<int, 3> sidesA = sidesOf(b, a, va);
+  if (strictlyOneSide(sidesA, 1 << va)) return false;
+  const int a1 = (va + 1) % 3, a2 = (va + 2) % 3, b1 = (vb + 1) % 3, b2 = (vb + 2) % 3;
+  if (segmentMeetsTriangle(a[a1], a[a2], b, sidesA[a1], sidesA[a2])) return true;
+  if (segmentMeetsTriangle(b[b1], b[b2], a, sidesB[b1], sidesB[b2])) return true;
   for (int k = 1; k <= 2; ++k) {
-    if (inCone(a[(va + k) % 3], b, vb)) return true;
-    if (inCone(b[(vb + k) % 3], a, va)) return true;
+    if (inCone(a[(va + k) % 3], sidesA[(va + k) % 3], b, vb)) return true;
+    if (inCone(b[(vb + k) % 3], sidesB[(vb + k) % 3], a, va)) return true;
   }
   return false;
 }

@@ -16,6 +16,17 @@ using Point3 = std::array<double, 3>;
 // Sign (-1, 0, 1) of the determinant | a-d ; b-d ; c-d |: positive when d lies below the plane
 // of a, b, c seen counter-clockwise from above (Shewchuk's convention).
 int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+// orient3d(a, b, c, d) for many d against one plane: the plane's minors computed once, the same
+// exact signs.
+class PlaneSide {
+ public:
+  PlaneSide(const Point3& a, const Point3& b, const Point3& c);
+  int side(const Point3& d) const;
+
+ private:
+  Point3 a_, b_, c_;
+  std::array<double, 3> minor_, magnitude_;  // (b - a) x (c - a), and its terms' absolute sums
+};
 // Sign of (b-a) x (c-a) in the plane of axes (u, v).
 int orient2d(const Point3& a, const Point3& b, const Point3& c, int u, int v);
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -48,6 +49,53 @@ TEST(Intersections, OrientationIsExactOnNearlyCoplanarPoints) {
   EXPECT_EQ(orient3d({big, 0.1, 0.3}, {big, 0.7, 0.2}, {big, 0.3, 0.9}, {std::nextafter(big, 2 * big), 0.5, 0.5}), -1);
   EXPECT_EQ(orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1), orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1));
   EXPECT_EQ(orient2d({1, 1, 0}, {2, 2, 0}, {3, 3, 0}, 0, 1), 0);
+}
+
+// PlaneSide shares one plane's minors among many points; its signs must be orient3d's,
+// exactly, including on the plane and one ulp off it, near the origin and far from it.
+TEST(Intersections, PlaneSideGivesOrient3dsSigns) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int zero = 0, checked = 0;
+  for (const double offset : {0.0, 1e3, 1e8}) {
+    for (int plane = 0; plane < 200; ++plane) {
+      const auto at = [&](double s) { return Point3{offset + s * unit(random), offset + s * unit(random), offset + s * unit(random)}; };
+      // Integer-valued corners where the plane is exact: points on it can be built exactly.
+      const Point3 a = {offset + std::round(8 * unit(random)), offset + std::round(8 * unit(random)), offset};
+      const Point3 b = {a[0] + 4, a[1] + std::round(4 * unit(random)), a[2] + 2};
+      const Point3 c = {a[0] + std::round(4 * unit(random)), a[1] + 4, a[2] + 1};
+      const PlaneSide side(a, b, c);
+      std::vector<Point3> points = {a, b, c, at(10), at(1e-3)};
+      for (const double s : {0.5, 0.25, 2.0}) {  // on the plane: a + s (b - a) + t (c - a), exact here
+        const Point3 on = {a[0] + s * (b[0] - a[0]) + 0.5 * (c[0] - a[0]), a[1] + s * (b[1] - a[1]) + 0.5 * (c[1] - a[1]),
+                           a[2] + s * (b[2] - a[2]) + 0.5 * (c[2] - a[2])};
+        points.push_back(on);
+        for (int k = 0; k < 3; ++k) {
+          Point3 off = on;
+          off[k] = std::nextafter(on[k], on[k] + 1);
+          points.push_back(off);
+        }
+      }
+      for (const Point3& d : points) {
+        const int expected = orient3d(a, b, c, d);
+        ASSERT_EQ(side.side(d), expected) << "plane " << plane << " offset " << offset;
+        zero += expected == 0;
+        ++checked;
+      }
+      // A plane of random corners and points rounded onto it: the determinant is at rounding
+      // level, so the filter must hand over to the exact fallback.
+      const Point3 p = at(1), q = at(1), r = at(1);
+      const PlaneSide rounded(p, q, r);
+      for (int i = 0; i < 8; ++i) {
+        const double s = unit(random), t = unit(random);
+        const Point3 d = {p[0] + s * (q[0] - p[0]) + t * (r[0] - p[0]), p[1] + s * (q[1] - p[1]) + t * (r[1] - p[1]),
+                          p[2] + s * (q[2] - p[2]) + t * (r[2] - p[2])};
+        ASSERT_EQ(rounded.side(d), orient3d(p, q, r, d)) << "plane " << plane << " offset " << offset;
+      }
+    }
+  }
+  EXPECT_GE(zero, 600 * 6);  // at least the corners and the points built on the plane
+  EXPECT_GE(checked - zero, 600 * 2);  // at least the random points
 }
 
 TEST(Intersections, DisjointPiercingAndTouchingTriangles) {
