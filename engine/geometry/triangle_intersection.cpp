@@ -201,8 +201,8 @@ bool inCone(const Point3& x, int side, const std::array<Point3, 3>& t, int apex)
   return orient2d(o, p, x, u, v) * s >= 0 && orient2d(o, x, q, u, v) * s >= 0;
 }
 
-// q's vertices' sides of t's plane: orient3d(t[0], t[1], t[2], q[i]), the plane's minors shared;
-// 0 without a test for the vertex `shared` (-1: none) has with t.
+// q's vertices' sides of t's plane, orient3d(t[0], t[1], t[2], q[i]), the plane set up once;
+// q[shared], a vertex of t too (-1: none), is on the plane without a test.
 std::array<int, 3> sidesOf(const std::array<Point3, 3>& t, const std::array<Point3, 3>& q, int shared = -1) {
   const PlaneSide plane(t[0], t[1], t[2]);
   std::array<int, 3> sides{};
