@@ -173,7 +173,7 @@ class Remesher {
   // before_) around `touched` (none: the connectivity did not change); commits it or undoes it.
   bool settle(const std::vector<std::uint32_t>& touched);
   bool shapeHolds() const;
-  bool nearSmoothed() const;
+  bool nearSmoothed();
   bool crossesNothing();
 
   double length_, voxel_;
@@ -187,6 +187,10 @@ class Remesher {
   std::vector<Vec3> before_;  // per added triangle, the normal it must not turn away from
   std::vector<double> size_;  // per vertex, the target edge length (empty: length_ everywhere)
   std::vector<std::uint32_t> scratch_, candidates_;
+  // Per-operation lists, kept to reuse their memory: an operation costs some 40 us, and a
+  // handful of allocations each was a few per cent of it.
+  std::vector<std::uint32_t> edgeTris_, touched_, around_, along_;
+  std::vector<std::array<std::uint32_t, 3>> done_;  // nearSmoothed's edges looked up
   struct Box {
     Vec3 lo, hi;
     bool touches(const Box& o) const {
@@ -232,7 +236,7 @@ bool Remesher::shapeHolds() const {
 // puts a vertex on a new sheet (a collapse moves u's triangles to v only along an edge that
 // already joins v to u's sheets). Every centroid, the new and moved vertices and the other
 // edges' midpoints are looked up.
-bool Remesher::nearSmoothed() const {
+bool Remesher::nearSmoothed() {
   const double bound = kSurfaceBound * voxel_, planeBound = kPlaneBound * voxel_;
   const auto changed = [&](std::uint32_t v) {
     if (change_.addedVertex && v + 1 == net_.vertexCount()) return true;
@@ -247,7 +251,8 @@ bool Remesher::nearSmoothed() const {
     }
     return false;
   };
-  std::vector<std::array<std::uint32_t, 3>> done;  // (a, b, pair) of the edges looked up, a == b for vertices
+  std::vector<std::array<std::uint32_t, 3>>& done = done_;  // (a, b, pair) of the edges looked up, a == b for vertices
+  done.clear();
   const auto once = [&](std::uint32_t a, std::uint32_t b, std::uint32_t pairOf) {
     const std::array<std::uint32_t, 3> key = {std::min(a, b), std::max(a, b), pairOf};
     if (std::find(done.begin(), done.end(), key) != done.end()) return false;
@@ -328,7 +333,7 @@ bool Remesher::settle(const std::vector<std::uint32_t>& touched) {
 
 bool Remesher::split(std::uint32_t a, std::uint32_t b) {
   if (pinned(a) && pinned(b)) return false;  // its triangles may be another unit's
-  std::vector<std::uint32_t> edgeTris;
+  std::vector<std::uint32_t>& edgeTris = edgeTris_;
   net_.edgeTriangles(a, b, edgeTris);
   if (edgeTris.empty()) return false;
   const bool junction = net_.isJunctionEdge(edgeTris);
@@ -342,7 +347,8 @@ bool Remesher::split(std::uint32_t a, std::uint32_t b) {
   before_.clear();
   const Role role = junction ? Role::Curve : inPlane ? Role::Plane : Role::Sheet;
   const std::uint32_t mid = net_.addVertex(storable(m.point), role, inPlane ? net_.plane[a] : -1, change_);
-  std::vector<std::uint32_t> touched = {a, b, mid};
+  std::vector<std::uint32_t>& touched = touched_;
+  touched.assign({a, b, mid});
   for (std::uint32_t t : edgeTris) {
     const auto c = net_.tris[t];
     const Vec3 n = net_.normal(t);
@@ -368,7 +374,7 @@ int rank(Role r) { return r == Role::Sheet ? 0 : r == Role::Corner ? 2 : 1; }
 bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
   const Role ru = net_.role[u], rv = net_.role[v];
   if (ru == Role::Corner || rank(ru) > rank(rv)) return false;
-  std::vector<std::uint32_t> edgeTris;
+  std::vector<std::uint32_t>& edgeTris = edgeTris_;
   net_.edgeTriangles(u, v, edgeTris);
   const bool junction = net_.isJunctionEdge(edgeTris);
   if (ru == Role::Curve && !junction) return false;                  // only along its curve
@@ -378,8 +384,9 @@ bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
     if (w != v && length(v, w) > kHigh * target(v, w)) return false;
   net_.begin(change_);
   before_.clear();
-  std::vector<std::uint32_t> touched = scratch_;
-  const std::vector<std::uint32_t> around = net_.vtris[u];
+  touched_ = scratch_;
+  around_ = net_.vtris[u];
+  const std::vector<std::uint32_t>& around = around_;
   for (std::uint32_t t : around) {
     auto c = net_.tris[t];
     const Vec3 n = net_.normal(t);
@@ -390,12 +397,12 @@ bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
     net_.addTriangle(c[0], c[1], c[2], net_.pair[t], change_);
     before_.push_back(n);
   }
-  return settle(touched);
+  return settle(touched_);
 }
 
 bool Remesher::flip(std::uint32_t a, std::uint32_t b) {
   if (net_.isInPlaneEdge(a, b) || (pinned(a) && pinned(b))) return false;
-  std::vector<std::uint32_t> edgeTris;
+  std::vector<std::uint32_t>& edgeTris = edgeTris_;
   net_.edgeTriangles(a, b, edgeTris);
   if (net_.isJunctionEdge(edgeTris)) return false;
   // t1 = (a, b, c) and t2 = (b, a, d) in winding order, relabelling a and b if need be.
@@ -419,11 +426,13 @@ bool Remesher::flip(std::uint32_t a, std::uint32_t b) {
   net_.addTriangle(a, d, c, pairOf, change_);
   net_.addTriangle(d, b, c, pairOf, change_);
   before_.assign(2, n);
-  return settle({a, b, c, d});
+  touched_.assign({a, b, c, d});
+  return settle(touched_);
 }
 
 bool Remesher::relaxTo(std::uint32_t v, const Vec3& target) {
-  const std::vector<std::uint32_t> around = net_.vtris[v];
+  around_ = net_.vtris[v];
+  const std::vector<std::uint32_t>& around = around_;
   net_.begin(change_);
   before_.clear();
   for (std::uint32_t t : around) before_.push_back(net_.normal(t));
@@ -442,7 +451,8 @@ bool Remesher::relax(std::uint32_t v) {
   const Role r = net_.role[v];
   if (r == Role::Corner || net_.vtris[v].empty()) return false;
   net_.neighbours(v, scratch_);
-  std::vector<std::uint32_t> along, edgeTris;
+  std::vector<std::uint32_t>&along = along_, &edgeTris = edgeTris_;
+  along.clear();
   FeatureKey key = sheetKey(net_.pair[net_.vtris[v][0]]);
   for (std::uint32_t w : scratch_) {
     if (r == Role::Sheet) {

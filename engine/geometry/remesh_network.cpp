@@ -408,9 +408,11 @@ bool roleHolds(const Network& net, std::uint32_t v, std::vector<std::uint32_t>& 
 }  // namespace
 
 bool topologyHolds(const Network& net, const SurfaceTable& surfaces, const std::vector<std::uint32_t>& vertices) {
-  std::vector<std::uint32_t> nb, et;
-  std::vector<std::array<std::uint32_t, 3>> sorted;
-  std::vector<LinkEdge> link;
+  // Reused by every check on this thread (slabs run one remesher per thread): a check costs
+  // a few microseconds, and four allocations were a good part of it.
+  thread_local std::vector<std::uint32_t> nb, et;
+  thread_local std::vector<std::array<std::uint32_t, 3>> sorted;
+  thread_local std::vector<LinkEdge> link;
   for (std::uint32_t v : vertices) {
     if (net.vtris[v].empty()) continue;
     if (!roleHolds(net, v, nb, et)) return false;
