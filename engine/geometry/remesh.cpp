@@ -191,6 +191,7 @@ class Remesher {
   // handful of allocations each was a few per cent of it.
   std::vector<std::uint32_t> edgeTris_, touched_, around_, along_;
   std::vector<std::array<std::uint32_t, 3>> done_;  // nearSmoothed's edges looked up
+  std::vector<std::pair<Edge, Nearest>> fitted_;     // fit's edge midpoints looked up
   struct Box {
     Vec3 lo, hi;
     bool touches(const Box& o) const {
@@ -497,11 +498,27 @@ bool Remesher::fit(std::uint32_t v) {
   const FeatureKey key = sheetKey(net_.pair[net_.vtris[v][0]]);
   double gap = 0;
   int samples = 0;
+  // Each edge from v is a side of two triangles of the fan: its midpoint is looked up once.
+  fitted_.clear();
+  const auto nearestAt = [&](std::uint32_t a, std::uint32_t b, const Vec3& q) {
+    const Edge e{std::min(a, b), std::max(a, b)};
+    for (const auto& [edge, r] : fitted_)
+      if (edge == e) return r;
+    const Nearest r = reference_.nearestNear(q, key, length_);
+    fitted_.push_back({e, r});
+    return r;
+  };
   for (std::uint32_t t : net_.vtris[v]) {
     const auto& c = net_.tris[t];
     const Vec3 &p0 = net_.pos[c[0]], &p1 = net_.pos[c[1]], &p2 = net_.pos[c[2]];
-    for (const Vec3& q : {(1.0 / 3) * (p0 + p1 + p2), 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0)}) {
-      const Nearest r = reference_.nearestNear(q, key, length_);
+    const Vec3 centroid = (1.0 / 3) * (p0 + p1 + p2);
+    const std::array<std::pair<Vec3, Nearest>, 4> found = {{
+        {centroid, reference_.nearestNear(centroid, key, length_)},
+        {0.5 * (p0 + p1), nearestAt(c[0], c[1], 0.5 * (p0 + p1))},
+        {0.5 * (p1 + p2), nearestAt(c[1], c[2], 0.5 * (p1 + p2))},
+        {0.5 * (p2 + p0), nearestAt(c[2], c[0], 0.5 * (p2 + p0))},
+    }};
+    for (const auto& [q, r] : found) {
       if (!r.found) return false;
       gap += dot(r.point - q, n);
       ++samples;
