@@ -165,15 +165,25 @@ Network::Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, 
 
 namespace {
 
-// Junction and in-plane edges around v.
-void countFeatureEdges(const Network& net, std::uint32_t v, int& junction, int& inPlane, std::vector<std::uint32_t>& nb,
-                       std::vector<std::uint32_t>& et) {
+// (neighbour, label pair) for each triangle around v and each of its other two vertices.
+using Spokes = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+// Junction and in-plane edges around v, from one sorted pass over its fan: the edge to a
+// neighbour w has the triangles listing w, and is a junction edge unless they are two of one
+// label pair (Network::isJunctionEdge).
+void countFeatureEdges(const Network& net, std::uint32_t v, int& junction, int& inPlane, Spokes& spokes) {
   junction = inPlane = 0;
-  net.neighbours(v, nb);
-  for (std::uint32_t w : nb) {
-    net.edgeTriangles(v, w, et);
-    junction += net.isJunctionEdge(et);
-    inPlane += net.isInPlaneEdge(v, w);
+  spokes.clear();
+  for (std::uint32_t t : net.vtris[v])
+    for (std::uint32_t w : net.tris[t])
+      if (w != v) spokes.push_back({w, net.pair[t]});
+  std::sort(spokes.begin(), spokes.end());
+  for (std::size_t i = 0; i < spokes.size();) {
+    std::size_t end = i + 1;
+    while (end < spokes.size() && spokes[end].first == spokes[i].first) ++end;
+    junction += end - i != 2 || spokes[i].second != spokes[i + 1].second;
+    inPlane += net.isInPlaneEdge(v, spokes[i].first);
+    i = end;
   }
 }
 
@@ -184,11 +194,11 @@ void Network::assignRoles() {
   role.assign(n, Role::Corner);
   junctions.assign(n, 0);
   inPlane.assign(n, 0);
-  std::vector<std::uint32_t> nb, et;
+  Spokes spokes;
   for (std::uint32_t v = 0; v < n; ++v) {
     if (vtris[v].empty()) continue;
     int jc = 0, pc = 0;
-    countFeatureEdges(*this, v, jc, pc, nb, et);
+    countFeatureEdges(*this, v, jc, pc, spokes);
     junctions[v] = static_cast<std::uint8_t>(std::min(jc, 255));
     inPlane[v] = static_cast<std::uint8_t>(std::min(pc, 255));
     if (plane[v] >= 0)
@@ -199,9 +209,9 @@ void Network::assignRoles() {
 }
 
 void Network::pin(std::uint32_t v) {
-  std::vector<std::uint32_t> nb, et;
+  Spokes spokes;
   int jc = 0, pc = 0;
-  countFeatureEdges(*this, v, jc, pc, nb, et);
+  countFeatureEdges(*this, v, jc, pc, spokes);
   role[v] = Role::Corner;
   junctions[v] = static_cast<std::uint8_t>(std::min(jc, 255));
   inPlane[v] = static_cast<std::uint8_t>(std::min(pc, 255));
@@ -393,9 +403,9 @@ bool singleOrientedFans(std::vector<LinkEdge>& link) {
   return true;
 }
 
-bool roleHolds(const Network& net, std::uint32_t v, std::vector<std::uint32_t>& nb, std::vector<std::uint32_t>& et) {
+bool roleHolds(const Network& net, std::uint32_t v, Spokes& spokes) {
   int jc = 0, pc = 0;
-  countFeatureEdges(net, v, jc, pc, nb, et);
+  countFeatureEdges(net, v, jc, pc, spokes);
   switch (net.role[v]) {
     case Role::Sheet: return jc == 0 && pc == 0;
     case Role::Curve: return jc == 2 && pc == 0;
@@ -409,13 +419,13 @@ bool roleHolds(const Network& net, std::uint32_t v, std::vector<std::uint32_t>& 
 
 bool topologyHolds(const Network& net, const SurfaceTable& surfaces, const std::vector<std::uint32_t>& vertices) {
   // Reused by every check on this thread (slabs run one remesher per thread): a check costs
-  // a few microseconds, and four allocations were a good part of it.
-  thread_local std::vector<std::uint32_t> nb, et;
+  // a few microseconds, and its allocations were a good part of it.
+  thread_local Spokes spokes;
   thread_local std::vector<std::array<std::uint32_t, 3>> sorted;
   thread_local std::vector<LinkEdge> link;
   for (std::uint32_t v : vertices) {
     if (net.vtris[v].empty()) continue;
-    if (!roleHolds(net, v, nb, et)) return false;
+    if (!roleHolds(net, v, spokes)) return false;
     sorted.clear();
     link.clear();
     for (std::uint32_t t : net.vtris[v]) {
