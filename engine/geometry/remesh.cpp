@@ -191,7 +191,7 @@ class Remesher {
   // handful of allocations each was a few per cent of it.
   std::vector<std::uint32_t> edgeTris_, touched_, around_, along_;
   std::vector<std::array<std::uint32_t, 3>> done_;  // nearSmoothed's edges looked up
-  std::vector<std::pair<Edge, Nearest>> fitted_;     // fit's edge midpoints looked up
+  std::vector<std::pair<Edge, Nearest>> fitted_;    // fit's edge midpoints looked up
   struct Box {
     Vec3 lo, hi;
     bool touches(const Box& o) const {
@@ -452,7 +452,8 @@ bool Remesher::relax(std::uint32_t v) {
   const Role r = net_.role[v];
   if (r == Role::Corner || net_.vtris[v].empty()) return false;
   net_.neighbours(v, scratch_);
-  std::vector<std::uint32_t>&along = along_, &edgeTris = edgeTris_;
+  std::vector<std::uint32_t>& along = along_;
+  std::vector<std::uint32_t>& edgeTris = edgeTris_;
   along.clear();
   FeatureKey key = sheetKey(net_.pair[net_.vtris[v][0]]);
   for (std::uint32_t w : scratch_) {

@@ -59,7 +59,9 @@ TEST(Intersections, PlaneSideGivesOrient3dsSigns) {
   int zero = 0, checked = 0;
   for (const double offset : {0.0, 1e3, 1e8}) {
     for (int plane = 0; plane < 200; ++plane) {
-      const auto at = [&](double s) { return Point3{offset + s * unit(random), offset + s * unit(random), offset + s * unit(random)}; };
+      const auto at = [&](double s) {
+        return Point3{offset + s * unit(random), offset + s * unit(random), offset + s * unit(random)};
+      };
       // Integer-valued corners where the plane is exact: points on it can be built exactly.
       const Point3 a = {offset + std::round(8 * unit(random)), offset + std::round(8 * unit(random)), offset};
       const Point3 b = {a[0] + 4, a[1] + std::round(4 * unit(random)), a[2] + 2};
