@@ -499,6 +499,12 @@ bool Remesher::fit(std::uint32_t v) {
   const FeatureKey key = sheetKey(net_.pair[net_.vtris[v][0]]);
   double gap = 0;
   int samples = 0;
+  const auto sample = [&](const Vec3& q, const Nearest& r) {
+    if (!r.found) return false;
+    gap += dot(r.point - q, n);
+    ++samples;
+    return true;
+  };
   // Each edge from v is a side of two triangles of the fan: its midpoint is looked up once.
   fitted_.clear();
   const auto nearestAt = [&](std::uint32_t a, std::uint32_t b, const Vec3& q) {
@@ -511,18 +517,12 @@ bool Remesher::fit(std::uint32_t v) {
   };
   for (std::uint32_t t : net_.vtris[v]) {
     const auto& c = net_.tris[t];
-    const Vec3 &p0 = net_.pos[c[0]], &p1 = net_.pos[c[1]], &p2 = net_.pos[c[2]];
-    const Vec3 centroid = (1.0 / 3) * (p0 + p1 + p2);
-    const std::array<std::pair<Vec3, Nearest>, 4> found = {{
-        {centroid, reference_.nearestNear(centroid, key, length_)},
-        {0.5 * (p0 + p1), nearestAt(c[0], c[1], 0.5 * (p0 + p1))},
-        {0.5 * (p1 + p2), nearestAt(c[1], c[2], 0.5 * (p1 + p2))},
-        {0.5 * (p2 + p0), nearestAt(c[2], c[0], 0.5 * (p2 + p0))},
-    }};
-    for (const auto& [q, r] : found) {
-      if (!r.found) return false;
-      gap += dot(r.point - q, n);
-      ++samples;
+    const Vec3 centroid = (1.0 / 3) * (net_.pos[c[0]] + net_.pos[c[1]] + net_.pos[c[2]]);
+    if (!sample(centroid, reference_.nearestNear(centroid, key, length_))) return false;
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = c[e], b = c[(e + 1) % 3];
+      const Vec3 mid = 0.5 * (net_.pos[a] + net_.pos[b]);
+      if (!sample(mid, nearestAt(a, b, mid))) return false;
     }
   }
   // Over-relaxed: the corners on contour planes and junction curves stay on the smoothed
