@@ -64,7 +64,7 @@ struct Flags {
   std::string convention = "enclosing";
   std::string overlaps = "layers";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
-  bool remesh = false;
+  bool remesh = false, noCurvatureSizing = false;
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
@@ -154,6 +154,9 @@ void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--edge-length", o.build.remeshing.edgeLength,
                  "remeshing's target edge length, input units (default: 1.15 in-plane voxels or 0.33 slice gaps, the longer)")
       ->check(numberIn(0, 1e9, true, "a positive, finite number"));
+  app.add_flag("--no-curvature-sizing", f.noCurvatureSizing,
+               "remeshing: one target edge length wherever the surface curves (default: shorter edges where a chord of "
+               "--edge-length would stand more than 0.2 voxel inside the surface)");
 }
 
 void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
@@ -216,6 +219,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
   o.build.remeshing.enabled = f.remesh;
+  o.build.remeshing.curvatureSizing = !f.noCurvatureSizing;
   o.scene.draco = !f.noDraco;
   o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
@@ -269,6 +273,7 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
           {"smoothing", b.smoothing.enabled},
           {"remeshing", b.remeshing.enabled},
           {"edge_length", b.remeshing.edgeLength},  // 0: 1.15 in-plane voxels or 0.33 slice gaps
+          {"curvature_sizing", b.remeshing.curvatureSizing},
           {"draco", o.scene.draco},
           {"draco_bits", static_cast<double>(d.quantizationBits)},  // 0: from draco_max_error
           {"draco_max_error", d.quantizationBits ? 0.0 : defaultQuantizationError(grid)},

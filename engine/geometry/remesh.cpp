@@ -63,6 +63,10 @@ constexpr double kPlaneGapFraction = 0.33;
 // Graded sizes around short feature edges (gradeSizes): the target drops to kFeatureGrade
 // times such an edge and grows back by kGradeSlope per unit of distance.
 constexpr double kFeatureGrade = 1.5, kGradeSlope = 0.6;
+// Curvature sizing: chords may stand kCurvatureSagitta voxels inside the surface at their
+// middle, twice the distance bound, since centring (fit) splits that gap between inside and
+// outside; the target shrinks to no less than kLeastCurvatureSize L (a thin bar's sharp ends).
+constexpr double kCurvatureSagitta = 2 * kSurfaceBound, kLeastCurvatureSize = 0.3;
 constexpr double kHigh = 4.0 / 3.0, kLow = 4.0 / 5.0;  // Botsch & Kobbelt's split and collapse bounds
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
@@ -104,6 +108,7 @@ double angleAt(const Vec3& o, const Vec3& p, const Vec3& q) {
 struct Context {
   std::vector<double> planes;  // the contour planes' z, ascending
   double sliceTolerance, length, voxel;
+  double sagitta;  // curvature sizing's chord tolerance, input units (0: off)
   int iterations;
   const SurfaceTable& surfaces;
   const ReferenceSurface& reference;
@@ -115,6 +120,7 @@ class Remesher {
   Remesher(Network net, const Context& context, const WorkUnit& unit, const SubMesh* sub)
       : length_(context.length),
         voxel_(context.voxel),
+        sagitta_(context.sagitta),
         lo_(unit.lo),
         hi_(unit.hi),
         net_(std::move(net)),
@@ -158,6 +164,7 @@ class Remesher {
   }
   bool split(std::uint32_t a, std::uint32_t b);
   void gradeSizes();
+  double curvatureSize(std::uint32_t v);
   // The target edge length at v, and of the edge ab.
   double sizeAt(std::uint32_t v) const { return v < size_.size() ? size_[v] : length_; }
   double target(std::uint32_t a, std::uint32_t b) const {
@@ -177,6 +184,7 @@ class Remesher {
   bool crossesNothing();
 
   double length_, voxel_;
+  double sagitta_;  // Context::sagitta
   double lo_, hi_;  // new triangles strictly between, in z (WorkUnit)
   Network net_;
   const SurfaceTable& surfaces_;
@@ -567,6 +575,8 @@ void Remesher::round(bool graded, bool settledOnly) {
 // next row. Around each, the target length drops to kFeatureGrade times the edge and grows
 // back to L by kGradeSlope per unit of distance along the mesh (a graded sizing field, as in
 // Botsch & Kobbelt's adaptive variant), so the triangles there get small rather than thin.
+// Where the surface curves too tightly for L (curvatureSize), the target drops the same way:
+// otherwise the distance bound refuses the operations that would even the triangles out there.
 void Remesher::gradeSizes() {
   const std::uint32_t n = net_.vertexCount();
   size_.assign(n, length_);
@@ -581,6 +591,9 @@ void Remesher::gradeSizes() {
       if (net_.isFeatureEdge(v, w, edgeTris)) size_[v] = std::min(size_[v], std::max(kFeatureGrade * length(v, w), 0.05 * length_));
     }
   }
+  if (sagitta_ > 0)
+    for (std::uint32_t v = 0; v < n; ++v)
+      if (net_.role[v] == Role::Sheet && !net_.vtris[v].empty() && graded(v)) size_[v] = std::min(size_[v], curvatureSize(v));
   // Dijkstra from every shortened vertex: size(w) <= size(v) + slope |vw|.
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
@@ -597,6 +610,27 @@ void Remesher::gradeSizes() {
       if (g < size_[w] && graded(w)) size_[w] = g, queue.push({g, w});
     }
   }
+}
+
+// The longest chord that stays within the sagitta tolerance where the surface curves most at v:
+// a chord h of a circle of radius r lies h^2 / 8r inside it at its middle. The normal
+// curvature toward a neighbour w is that of the circle tangent at v through w,
+// 2 |n.(w - v)| / |w - v|^2; edges under 0.3 L are skipped, their few hundredths of a
+// millimetre of height being mostly the smoothed surface's noise.
+double Remesher::curvatureSize(std::uint32_t v) {
+  Vec3 n{0, 0, 0};
+  for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
+  const double nn = std::sqrt(dot(n, n));
+  if (nn == 0) return length_;
+  n = (1 / nn) * n;
+  net_.neighbours(v, scratch_);
+  double kappa = 0;
+  for (std::uint32_t w : scratch_) {
+    const Vec3 d = net_.pos[w] - net_.pos[v];
+    const double dd = dot(d, d);
+    if (dd > 0.09 * length_ * length_) kappa = std::max(kappa, 2 * std::abs(dot(n, d)) / dd);
+  }
+  return kappa > 0 ? std::max(std::sqrt(8 * sagitta_ / kappa), kLeastCurvatureSize * length_) : length_;
 }
 
 void Remesher::run(int iterations, bool remeshedBefore) {
@@ -744,8 +778,9 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   report.slabs = plan.phases[0].size(), report.bands = plan.phases[1].size();
   Network network(mesh, planes, sliceTolerance, report.edgeLength, /*broadPhase=*/whole);
   const ReferenceSurface reference(network, report.edgeLength, threads);
-  const Context context{std::move(planes), sliceTolerance, report.edgeLength, std::min(grid.spacingX, grid.spacingY),
-                        options.iterations, surfaces, reference};
+  const double voxel = std::min(grid.spacingX, grid.spacingY);
+  const double sagitta = options.curvatureSizing ? kCurvatureSagitta * voxel : 0;
+  const Context context{std::move(planes), sliceTolerance, report.edgeLength, voxel, sagitta, options.iterations, surfaces, reference};
   if (whole) {
     Remesher remesher(std::move(network), context, WorkUnit{}, nullptr);
     remesher.run(options.iterations);

@@ -48,6 +48,17 @@ file(SHA256 "${OUT}/unremeshed/BODY.ply" unremeshed_hash)
 if(remeshed_hash STREQUAL unremeshed_hash OR NOT smoothed_hash STREQUAL unremeshed_hash)
   message(FATAL_ERROR "--remesh wrote the same surface as --no-remesh, or the default remeshed")
 endif()
+# --no-curvature-sizing keeps one target length where the surface curves (the vessel's and the
+# vertebra's tight bends get shorter edges by default), and the report says which ran.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/uniform" --grid 96 64 --remesh --no-curvature-sizing -q
+             --report "${OUT}/uniform/report.json")
+file(SHA256 "${OUT}/uniform/vessel.ply" uniform_hash)
+file(SHA256 "${OUT}/remeshed/vessel.ply" sized_hash)
+file(READ "${OUT}/uniform/report.json" uniform_report)
+string(JSON uniform_sizing GET "${uniform_report}" parameters curvature_sizing)
+if(uniform_hash STREQUAL sized_hash OR uniform_sizing)
+  message(FATAL_ERROR "--no-curvature-sizing wrote the same vessel as the default, or its report says curvature_sizing ${uniform_sizing}")
+endif()
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/coarse" --grid 96 64 --remesh --edge-length 6 --report "${OUT}/coarse/report.json")
 expect_output("remeshing \\(edge length 6 mm\\): [0-9]+ -> [0-9]+ triangles")
 expect_output("time:.* remeshing [0-9.]+ s;")

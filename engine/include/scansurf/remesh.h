@@ -18,6 +18,12 @@ struct RemeshOptions {
   // feature-line edges that stay shorter (a contour's close points) the target shrinks
   // gradually, so the triangles there are small rather than thin.
   double edgeLength = 0;
+  // Curvature sizing: where the surface curves so tightly that a chord of the target length
+  // would stand more than 0.2 voxel inside it at its middle (radius under about 0.6 L^2 per
+  // voxel: a thin bar's sides and ends, a vessel's branch), the target shrinks to the longest
+  // chord that does not, down to 0.3 L, and grows back gradually around it. Off: one target
+  // everywhere but around short feature-line edges.
+  bool curvatureSizing = true;
   // Split / collapse / flip / relax rounds (Botsch & Kobbelt use 5 to 10; past 4 the angles
   // of the test shapes no longer improve, see tests/unit/remesh_test.cpp).
   int iterations = 4;
