@@ -66,7 +66,8 @@ constexpr double kFeatureGrade = 1.5, kGradeSlope = 0.6;
 // Curvature sizing: chords may stand kCurvatureSagitta voxels inside the surface at their
 // middle, twice the distance bound, since centring (fit) splits that gap between inside and
 // outside; the target shrinks to no less than kLeastCurvatureSize L (a thin bar's sharp ends).
-constexpr double kCurvatureSagitta = 2 * kSurfaceBound, kLeastCurvatureSize = 0.3;
+// Edges under kShortestCurvatureEdge L do not measure curvature (curvatureSize).
+constexpr double kCurvatureSagitta = 2 * kSurfaceBound, kLeastCurvatureSize = 0.3, kShortestCurvatureEdge = 0.3;
 constexpr double kHigh = 4.0 / 3.0, kLow = 4.0 / 5.0;  // Botsch & Kobbelt's split and collapse bounds
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
@@ -615,8 +616,8 @@ void Remesher::gradeSizes() {
 // The longest chord that stays within the sagitta tolerance where the surface curves most at v:
 // a chord h of a circle of radius r lies h^2 / 8r inside it at its middle. The normal
 // curvature toward a neighbour w is that of the circle tangent at v through w,
-// 2 |n.(w - v)| / |w - v|^2; edges under 0.3 L are skipped, their few hundredths of a
-// millimetre of height being mostly the smoothed surface's noise.
+// 2 |n.(w - v)| / |w - v|^2; short edges are skipped, their few hundredths of a millimetre of
+// height being mostly the smoothed surface's noise.
 double Remesher::curvatureSize(std::uint32_t v) {
   Vec3 n{0, 0, 0};
   for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
@@ -628,7 +629,8 @@ double Remesher::curvatureSize(std::uint32_t v) {
   for (std::uint32_t w : scratch_) {
     const Vec3 d = net_.pos[w] - net_.pos[v];
     const double dd = dot(d, d);
-    if (dd > 0.09 * length_ * length_) kappa = std::max(kappa, 2 * std::abs(dot(n, d)) / dd);
+    const double shortest = kShortestCurvatureEdge * length_;
+    if (dd > shortest * shortest) kappa = std::max(kappa, 2 * std::abs(dot(n, d)) / dd);
   }
   return kappa > 0 ? std::max(std::sqrt(8 * sagitta_ / kappa), kLeastCurvatureSize * length_) : length_;
 }
