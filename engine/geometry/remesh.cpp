@@ -159,6 +159,12 @@ class Remesher {
   bool pinned(std::uint32_t v) const { return flagged(pinned_, v); }
   bool settled(std::uint32_t v) const { return flagged(settled_, v); }
   void liveEdges(std::vector<Edge>& out) const;
+  // The area-weighted normal of v's fan (a sheet vertex's: one label pair), not normalised.
+  Vec3 fanNormal(std::uint32_t v) const {
+    Vec3 n{0, 0, 0};
+    for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
+    return n;
+  }
   double length(std::uint32_t a, std::uint32_t b) const {
     const Vec3 d = net_.pos[a] - net_.pos[b];
     return std::sqrt(dot(d, d));
@@ -480,8 +486,7 @@ bool Remesher::relax(std::uint32_t v) {
   const Vec3 p = net_.pos[v];
   Vec3 step = (1.0 / static_cast<double>(along.size())) * centroid - p;
   if (r == Role::Sheet) {
-    Vec3 n{0, 0, 0};
-    for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
+    const Vec3 n = fanNormal(v);
     const double nn = dot(n, n);
     if (nn > 0) step = step - (dot(step, n) / nn) * n;
   }
@@ -500,8 +505,7 @@ bool Remesher::relax(std::uint32_t v) {
 // centred on the smoothed one instead of inscribed.
 bool Remesher::fit(std::uint32_t v) {
   if (net_.role[v] != Role::Sheet || net_.vtris[v].empty()) return false;
-  Vec3 n{0, 0, 0};
-  for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
+  Vec3 n = fanNormal(v);
   const double nn = std::sqrt(dot(n, n));
   if (nn == 0) return false;
   n = (1 / nn) * n;
@@ -619,17 +623,16 @@ void Remesher::gradeSizes() {
 // 2 |n.(w - v)| / |w - v|^2; short edges are skipped, their few hundredths of a millimetre of
 // height being mostly the smoothed surface's noise.
 double Remesher::curvatureSize(std::uint32_t v) {
-  Vec3 n{0, 0, 0};
-  for (std::uint32_t t : net_.vtris[v]) n = n + net_.normal(t);
+  Vec3 n = fanNormal(v);
   const double nn = std::sqrt(dot(n, n));
   if (nn == 0) return length_;
   n = (1 / nn) * n;
   net_.neighbours(v, scratch_);
+  const double shortest = kShortestCurvatureEdge * length_;
   double kappa = 0;
   for (std::uint32_t w : scratch_) {
     const Vec3 d = net_.pos[w] - net_.pos[v];
     const double dd = dot(d, d);
-    const double shortest = kShortestCurvatureEdge * length_;
     if (dd > shortest * shortest) kappa = std::max(kappa, 2 * std::abs(dot(n, d)) / dd);
   }
   return kappa > 0 ? std::max(std::sqrt(8 * sagitta_ / kappa), kLeastCurvatureSize * length_) : length_;

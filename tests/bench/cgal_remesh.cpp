@@ -14,31 +14,29 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <algorithm>
 #include <chrono>
-#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
+
+#include "geometry/remesh.h"
 
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
 
-// Every triangle's smallest angle, degrees.
-void smallestAngles(const Mesh& mesh, std::vector<double>& out) {
-  for (const auto f : mesh.faces()) {
-    std::vector<Kernel::Point_3> p;
-    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) p.push_back(mesh.point(v));
-    double smallest = 180;
-    for (int i = 0; i < 3; ++i) {
-      const auto u = p[(i + 1) % 3] - p[i], w = p[(i + 2) % 3] - p[i];
-      const double c = (u * w) / std::sqrt(u.squared_length() * w.squared_length());
-      smallest = std::min(smallest, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / 3.141592653589793);
-    }
-    out.push_back(smallest);
+// Appends the mesh's vertices (xyz) and triangles (3 indices each) to the arrays.
+void append(const Mesh& mesh, std::vector<float>& positions, std::vector<std::uint32_t>& triangles) {
+  std::vector<std::uint32_t> index(mesh.num_vertices());  // Surface_mesh index -> array index
+  for (const auto v : mesh.vertices()) {
+    index[v.idx()] = static_cast<std::uint32_t>(positions.size() / 3);
+    const auto& p = mesh.point(v);
+    for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(p[k]));
   }
+  for (const auto f : mesh.faces())
+    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) triangles.push_back(index[v.idx()]);
 }
 
 }  // namespace
@@ -65,12 +63,12 @@ int main(int argc, char** argv) {
   for (Mesh& mesh : meshes)
     CGAL::Polygon_mesh_processing::isotropic_remeshing(faces(mesh), length, mesh, CGAL::parameters::number_of_iterations(iterations));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<double> angles;
-  std::size_t after = 0;
-  for (const Mesh& mesh : meshes) after += mesh.number_of_faces(), smallestAngles(mesh, angles);
-  std::sort(angles.begin(), angles.end());
-  const double p5 = angles.empty() ? 0 : angles[angles.size() / 20];
+  // The angles as scansurf's report measures them.
+  std::vector<float> positions;
+  std::vector<std::uint32_t> triangles;
+  for (Mesh& mesh : meshes) mesh.collect_garbage(), append(mesh, positions, triangles);
+  const scansurf::AngleFigures angles = scansurf::computeAngleFigures(positions, triangles);
   std::printf("{\"seconds\": %.3f, \"surfaces\": %zu, \"triangles_before\": %zu, \"triangles_after\": %zu, \"min_angle\": %.2f, \"p5_angle\": %.2f}\n",
-              seconds, meshes.size(), before, after, angles.empty() ? 0 : angles.front(), p5);
+              seconds, meshes.size(), before, triangles.size() / 3, angles.min, angles.p5);
   return 0;
 }
