@@ -121,7 +121,23 @@ Result<Built> buildSurfaces(const cli::CliOptions& o, const ContourSet& contours
   return Built{std::move(engine), std::move(built)};
 }
 
+// --list-overlaps: the overlap analysis of the run these options would make, without surfacing.
+int listOverlaps(const cli::CliOptions& o) {
+  auto contours = readContours(o.input, o.read);
+  if (!contours) return fail(contours.error());
+  for (const std::string& w : contours->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", cli::printable(w).c_str());
+  auto engine = Engine::create(o.engine);
+  if (!engine) return fail(engine.error());
+  auto report = engine->analyzeOverlaps(*contours, o.build);
+  if (!report) return fail(report.error());
+  auto grid = makeGrid(*contours, o.build.grid);
+  if (!grid) return fail(grid.error());
+  cli::printOverlapList(*contours, *report, incidentalDepthLimit(o.build.overlapTolerance, *grid));
+  return 0;
+}
+
 int run(const cli::CliOptions& o) {
+  if (o.listOverlaps) return listOverlaps(o);
   if (o.listRois) {
     auto listed = cli::printRoiList(o.input, o.read.roiPatterns);
     return listed ? 0 : fail(listed.error());
@@ -130,7 +146,7 @@ int run(const cli::CliOptions& o) {
     auto listed = cli::printObjectList(o.input, o.read.objectPatterns);
     return listed ? 0 : fail(listed.error());
   }
-  if (o.output.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois or --list-objects)"});
+  if (o.output.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois, --list-objects or --list-overlaps)"});
   // Every output is checked before the work, so a typo does not cost a whole run.
   auto plan = planOutputs(o);
   if (!plan) return fail(plan.error());

@@ -58,11 +58,33 @@ std::optional<std::uint64_t> parseMemorySize(const std::string& text) {
   return static_cast<std::uint64_t>(bytes);
 }
 
+// "auto", "off", "DEPTH" or "DEPTH,PERCENT" (DEPTH a positive length or "auto", PERCENT in [0, 100]).
+std::optional<OverlapTolerance> parseOverlapTolerance(const std::string& text) {
+  OverlapTolerance t;
+  if (text == "auto") return t;
+  if (text == "off") {
+    t.enabled = false;
+    return t;
+  }
+  const std::size_t comma = text.find(',');
+  const std::string depth = text.substr(0, comma);
+  const auto number = [](const std::string& s, double& out) {
+    if (s.empty()) return false;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    return ec == std::errc() && end == s.data() + s.size() && std::isfinite(out);
+  };
+  if (depth != "auto" && !(number(depth, t.depth) && t.depth > 0)) return std::nullopt;
+  if (comma != std::string::npos && !(number(text.substr(comma + 1), t.percent) && t.percent >= 0 && t.percent <= 100))
+    return std::nullopt;
+  return t;
+}
+
 // Local flags the struct does not hold directly.
 struct Flags {
   std::vector<int> grid;
   std::string convention = "enclosing";
   std::string overlaps = "layers";
+  std::string overlapTolerance = "auto";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
   bool remesh = false, noCurvatureSizing = false;
   std::string reference;
@@ -78,7 +100,7 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("-o,--output", o.output,
-                 "output directory (created if missing) or NAME.glb; required unless --list-rois or --list-objects");
+                 "output directory (created if missing) or NAME.glb; required unless --list-rois, --list-objects or --list-overlaps");
   auto* voxel = app.add_option("--voxel-size", o.build.grid.voxelSize,
                                "in-plane pixel size, input units (default: 256 pixels along the longer side)")
                     ->check(numberIn(0, 1e9, true, "a positive, finite number"));
@@ -96,6 +118,20 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                  "partition: one label per voxel, higher priority wins (reports what each feature lost)")
       ->check(CLI::IsMember({"layers", "partition"}))
       ->capture_default_str();
+  app.add_option("--overlap-tolerance", f.overlapTolerance,
+                 "which partial overlaps are incidental slivers between neighbours (one layer, shared voxels split "
+                 "down the middle) rather than by design (separate layers): DEPTH[,PERCENT] - every shared voxel "
+                 "within DEPTH (input units) of the nearer outline and the shared volume at most PERCENT of the "
+                 "smaller structure; auto = 2 pixels or half the slice spacing (the larger), 2 %; off = every "
+                 "shared voxel means layers")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            return parseOverlapTolerance(text) ? std::string() : "'" + text + "' is not auto, off or DEPTH[,PERCENT]";
+          },
+          "auto|off|DEPTH[,PERCENT]"))
+      ->capture_default_str();
+  app.add_flag("--list-overlaps", o.listOverlaps,
+               "list the pairs of structures that share voxels (shared volume, depth, verdict) without surfacing, and exit");
   app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
   app.add_option("--threads", o.build.threads, "CPU threads for assembly and smoothing (default and at most: the machine's cores)")
@@ -213,6 +249,7 @@ void apply(const Flags& f, CliOptions& o) {
   if (f.grid.size() == 2) o.build.grid.nx = f.grid[0], o.build.grid.ny = f.grid[1];
   o.build.convention = f.convention == "partition" ? SurfaceConvention::Partition : SurfaceConvention::Enclosing;
   o.build.overlaps = *parseOverlapMode(f.overlaps);
+  o.build.overlapTolerance = *parseOverlapTolerance(f.overlapTolerance);
   o.build.interpolation.factor = *parseInterpolation(f.interpolate);
   o.build.interpolation.caps = f.caps == "flat" ? CapShape::Flat : CapShape::Round;
   o.build.smoothing.enabled = !f.noSmooth;
@@ -262,6 +299,9 @@ std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> rep
   const DracoOptions& d = o.scene.dracoOptions;
   return {{"convention", b.convention == SurfaceConvention::Enclosing ? "enclosing" : "partition"},
           {"overlaps", overlapModeName(b.overlaps)},
+          {"overlap_tolerance", b.overlapTolerance.enabled},  // incidental overlaps split in one layer
+          {"overlap_depth", incidentalDepthLimit(b.overlapTolerance, grid)},  // input units, as used on the grid
+          {"overlap_percent", b.overlapTolerance.percent},
           {"voxel_size", b.grid.voxelSize},
           {"grid_nx", static_cast<double>(b.grid.nx)},
           {"grid_ny", static_cast<double>(b.grid.ny)},

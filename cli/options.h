@@ -19,6 +19,7 @@ struct CliOptions {
   std::string output;  // a directory, or NAME.glb
   bool listRois = false;
   bool listObjects = false;
+  bool listOverlaps = false;
   bool quiet = false;
   bool jsonProgress = false;
   EngineOptions engine;

@@ -2,6 +2,7 @@
 
 #include "safe_text.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -43,14 +44,47 @@ std::string slabsNote(const RemeshReport& r) {
   return note;
 }
 
+// The shared volume in percent of the smaller structure's own volume.
+double percentOfSmaller(const OverlapReport& report, const SharedVolume& s) {
+  const double smaller = std::min(report.features[static_cast<std::size_t>(s.a)].ownVolume,
+                                  report.features[static_cast<std::size_t>(s.b)].ownVolume);
+  return smaller > 0 ? 100.0 * s.volume / smaller : 0.0;
+}
+
+// "0.09 % of rectum": the shared volume against the smaller structure's own volume.
+std::string shareOfSmaller(const OverlapReport& report, const SharedVolume& s, const std::vector<std::string>& names) {
+  const bool aSmaller = report.features[static_cast<std::size_t>(s.a)].ownVolume <= report.features[static_cast<std::size_t>(s.b)].ownVolume;
+  char text[160];
+  std::snprintf(text, sizeof text, "%.2f %% of %s", percentOfSmaller(report, s), names[static_cast<std::size_t>(aSmaller ? s.a : s.b)].c_str());
+  return text;
+}
+
+// What the overlap rule made of a pair, and why.
+std::string verdictOf(const OverlapReport& report, const SharedVolume& s) {
+  if (s.nested) return "nested: one holds the other";
+  if (!report.tolerance.enabled) return "real: separate layers (tolerance off)";
+  if (s.incidental) return "incidental: one layer, shared voxels split";
+  if (percentOfSmaller(report, s) > report.tolerance.percent) return "real: separate layers (too large)";
+  return "real: separate layers (too deep)";
+}
+
 void printOverlaps(const ContourSet& set, const OverlapReport& report) {
   const std::vector<std::string> names = printableNames(set);
   const auto name = [&](int f) { return names[static_cast<std::size_t>(f)].c_str(); };
   const std::string unitText = printable(set.units);
   const char* units = unitText.c_str();
-  for (const SharedVolume& s : report.partialOverlaps())
-    std::printf("overlap: %s and %s share %s %s3 (%s)\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
-                report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
+  for (const SharedVolume& s : report.partialOverlaps()) {
+    const std::string share = shareOfSmaller(report, s, names);
+    if (s.incidental && report.mode == OverlapMode::Layers)
+      std::printf("overlap: %s and %s share %s %s3 (%s, at most %s %s deep): incidental, split between them (%s gave up %s "
+                  "%s3, %s %s %s3)\n",
+                  name(s.a), name(s.b), formatVolume(s.volume).c_str(), units, share.c_str(), formatVolume(s.depth).c_str(),
+                  units, name(s.a), formatVolume(s.givenUpByA).c_str(), units, name(s.b), formatVolume(s.givenUpByB).c_str(),
+                  units);
+    else
+      std::printf("overlap: %s and %s share %s %s3 (%s): %s\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
+                  share.c_str(), report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
+  }
   for (const VolumeLoss& l : report.losses) {
     if (l.nested) continue;  // a container's shell around what it holds: the convention, not a loss
     const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
@@ -61,6 +95,29 @@ void printOverlaps(const ContourSet& set, const OverlapReport& report) {
 }
 
 }  // namespace
+
+void printOverlapList(const ContourSet& set, const OverlapReport& report, double depthLimit) {
+  const std::vector<std::string> names = printableNames(set);
+  const std::string units = printable(set.units);
+  if (report.tolerance.enabled)
+    std::printf("%s: %zu features; a partial overlap is incidental when every shared voxel lies within %s %s of the nearer "
+                "outline and it is at most %s %% of the smaller feature\n",
+                printable(set.source).c_str(), set.features.size(), formatVolume(depthLimit).c_str(), units.c_str(),
+                formatVolume(report.tolerance.percent).c_str());
+  else
+    std::printf("%s: %zu features; overlap tolerance off: every partial overlap is real\n", printable(set.source).c_str(),
+                set.features.size());
+  std::printf("  %-20s %-20s %14s %24s %12s  %s\n", "feature", "with", ("shared " + units + "3").c_str(), "of the smaller",
+              ("depth " + units).c_str(), "verdict");
+  for (const SharedVolume& s : report.shared) {
+    const std::string depth = s.depthMeasured ? formatVolume(s.depth) : "-";
+    std::printf("  %-20s %-20s %14s %24s %12s  %s\n", names[static_cast<std::size_t>(s.a)].c_str(),
+                names[static_cast<std::size_t>(s.b)].c_str(), formatVolume(s.volume).c_str(),
+                shareOfSmaller(report, s, names).c_str(), depth.c_str(), verdictOf(report, s).c_str());
+  }
+  if (report.shared.empty()) std::printf("  no two features share a voxel\n");
+  std::printf("surface layers: %d\n", report.layers);
+}
 
 void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, const std::string& outDir) {
   const ContourSet& set = *facts.contours;

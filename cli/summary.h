@@ -22,6 +22,10 @@ struct RunFacts {
 
 const char* conventionName(SurfaceConvention c);
 
+// --list-overlaps: every pair sharing voxels, its shared volume, depth and verdict, and the
+// surface layers that gives. depthLimit: the tolerance's depth on the run's grid.
+void printOverlapList(const ContourSet& set, const OverlapReport& report, double depthLimit);
+
 // Prints the grid, nesting order, a line per feature and the stage times, then what was written.
 void printSummary(const RunFacts& facts, const std::vector<std::filesystem::path>& written, const std::string& outDir);
 

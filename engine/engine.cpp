@@ -15,6 +15,7 @@
 #include "geometry/feature_surfaces.h"
 #include "geometry/footprint.h"
 #include "geometry/interpolated_volume.h"
+#include "geometry/overlap_split.h"
 #include "geometry/overlaps.h"
 #include "geometry/remesh.h"
 #include "geometry/smoothing.h"
@@ -95,14 +96,15 @@ Result<void> checkNesting(const Nesting& nesting) {
 
 // Classification records to feature surfaces: assembly, smoothing, feature extraction.
 Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
-                           const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {}) {
+                           const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {},
+                           const MedialCrossings* medial = nullptr) {
   Surfaces surfaces;
   surfaces.convention = options.convention;
   surfaces.mesh = assembleMesh(grid, cells, options.threads);
   cells = {};
   clock.lap("assembly");
   if (options.smoothing.enabled) {
-    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance, clearance);
+    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance, clearance, medial);
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {
@@ -163,11 +165,11 @@ std::vector<int> factorsOf(const Grid& planes, const Grid& grid, const std::vect
 Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& planes,
                                       std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                       const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                      StageClock& clock) {
+                                      StageClock& clock, const MedialCrossings* medial) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
-      contours ? planeEdgeCrossings(planes, *contours, options.grid.sliceTolerance, options.threads)
+      contours ? planeEdgeCrossings(planes, *contours, options.grid.sliceTolerance, options.threads, medial)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer words, gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,
@@ -179,7 +181,7 @@ Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& pla
   device.reset();
   clock.lap("interpolation");
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, clock));
-  return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance);
+  return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance, medial);
 }
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked, else
@@ -187,12 +189,18 @@ Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& pla
 Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
                                   std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                   const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                  StageClock& clock) {
-  if (interpolates(factors)) return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock);
-  if (!device) return surfacesOfVolume(impl, planes, contours, nesting, options, clock);
+                                  StageClock& clock, const MedialCrossings* medial = nullptr) {
+  if (interpolates(factors))
+    return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock, medial);
+  if (!device) {
+    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(planes));
+    clock.lap("classification");
+    return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, medial);
+  }
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
                             classifyOwnBuffer(impl, std::move(device->buffer), device->grid, 16, false, clock));
-  return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock);
+  return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, medial);
 }
 
 // Scan conversion for the surfaces: the labels stay on the device for the next GPU pass, and
@@ -203,6 +211,22 @@ Result<passes::ScanConverter::DeviceLabels> scanPlanes(passes::ScanConverter& sc
                                                        bool interpolating, bool toHost, LabelVolume& planes) {
   planes.grid = grid;
   return scanner.runOnDevice(contours, grid, order, tolerance, toHost || interpolating ? &planes : nullptr);
+}
+
+// Scan conversion of one layer with the medial split of its incidental overlaps written in
+// (overlap_split.h): the labels come to the host for it, and the next GPU pass uploads them
+// from there instead of using the device's copy.
+Result<std::optional<passes::ScanConverter::DeviceLabels>> scanAndSplit(passes::ScanConverter& scanner, const ContourSet& contours,
+                                                                        const Grid& wholeGrid, const Grid& grid,
+                                                                        const std::vector<int>& order, double tolerance,
+                                                                        bool interpolating, bool toHost,
+                                                                        const std::vector<LabelOverride>& split,
+                                                                        LabelVolume& planes) {
+  SCANSURF_ASSIGN_OR_RETURN(auto device,
+                            scanPlanes(scanner, contours, grid, order, tolerance, interpolating, toHost || !split.empty(), planes));
+  if (split.empty()) return std::optional(std::move(device));
+  applyLabelOverrides(planes, wholeGrid, split);
+  return std::optional<passes::ScanConverter::DeviceLabels>{};
 }
 
 InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<int>& factors, CapShape caps) {
@@ -281,8 +305,8 @@ Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, cons
 
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
 Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
-                         const std::vector<FeatureRegion>& regions, const BuildOptions& options, BuildResult& out,
-                         StageClock& clock) {
+                         const std::vector<FeatureRegion>& regions, const std::vector<std::vector<LabelOverride>>& split,
+                         const MedialCrossings& medial, const BuildOptions& options, BuildResult& out, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
   out.surfaces.convention = options.convention;
   out.surfaces.features.resize(contours.features.size());
@@ -292,12 +316,12 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     const std::vector<int> subFactors = factorsOf(sub, grid, factors);
     LabelVolume volume;
-    SCANSURF_ASSIGN_OR_RETURN(auto device,
-                              scanPlanes(*scanner, subset, sub, out.nesting.order, options.grid.sliceTolerance,
-                                         interpolates(subFactors), layer == 0 && options.keepLabelVolume, volume));
+    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*scanner, subset, grid, sub, out.nesting.order, options.grid.sliceTolerance,
+                                                        interpolates(subFactors), layer == 0 && options.keepLabelVolume,
+                                                        split[static_cast<std::size_t>(layer)], volume));
     clock.lap("scan conversion");
     SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, std::move(device), &subset, out.nesting,
-                                                                  options, subFactors, clock));
+                                                                  options, subFactors, clock, &medial));
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -375,6 +399,35 @@ Result<Surfaces> extractFrom(const Grid& grid, const Nesting& nesting, const Bui
   });
 }
 
+const std::vector<LabelOverride> kNoSplit;
+
+Result<void> checkOverlapTolerance(const OverlapTolerance& t) {
+  if (!std::isfinite(t.depth) || t.depth < 0)
+    return makeError(Errc::InvalidArgument, "overlap tolerance: the depth must be a finite length, 0 (automatic) or more (got " +
+                                                std::to_string(t.depth) + ")");
+  if (!std::isfinite(t.percent) || t.percent < 0 || t.percent > 100)
+    return makeError(Errc::InvalidArgument, "overlap tolerance: the percentage must lie in [0, 100] (got " +
+                                                std::to_string(t.percent) + ")");
+  return {};
+}
+
+// The overlap analysis with its verdicts; in Layers mode also the medial split of the
+// incidental pairs (per surface layer) and what each side gave up. Partition mode keeps one layer.
+OverlapReport overlapAnalysis(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
+                              const std::vector<FeatureRegion>& regions, const BuildOptions& options,
+                              std::vector<std::vector<LabelOverride>>& split) {
+  const double tolerance = options.grid.sliceTolerance;
+  OverlapReport report = analyzeOverlaps(contours, grid, nesting, regions, tolerance, options.overlapTolerance);
+  report.mode = options.overlaps;
+  if (options.overlaps == OverlapMode::Partition) {
+    for (FeatureVolumes& f : report.features) f.layer = 0;
+    report.layers = 1;
+    return report;
+  }
+  split = splitIncidentalOverlaps(contours, grid, nesting, regions, tolerance, report);
+  return report;
+}
+
 }  // namespace
 
 Engine::Engine(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -433,6 +486,7 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
 
 Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions& options) {
   return guarded("building the surfaces of " + contours.source, [&]() -> Result<BuildResult> {
+    SCANSURF_TRY(checkOverlapTolerance(options.overlapTolerance));
     BuildResult out;
     StageClock clock(out.timings, options);
     const double tolerance = options.grid.sliceTolerance;
@@ -449,29 +503,42 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     out.subPixelBits = scanner->subPixelBits();
     out.sliceTolerance = tolerance;
     const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, tolerance, options.threads);
-    out.overlaps = analyzeOverlaps(contours, grid, out.nesting, regions, tolerance);
-    out.overlaps.mode = options.overlaps;
+    std::vector<std::vector<LabelOverride>> split;
+    out.overlaps = overlapAnalysis(contours, grid, out.nesting, regions, options, split);
+    const MedialCrossings medial(contours, grid, out.overlaps, tolerance);
     clock.lap("overlap analysis");
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
-      for (FeatureVolumes& f : out.overlaps.features) f.layer = 0;
-      out.overlaps.layers = 1;
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
-      SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, out.nesting.order, tolerance,
-                                                        interpolates(factors), toHost, out.volume));
+      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*scanner, contours, grid, grid, out.nesting.order, tolerance,
+                                                          interpolates(factors), toHost, split.empty() ? kNoSplit : split[0],
+                                                          out.volume));
       clock.lap("scan conversion");
       SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, std::move(device), &contours, out.nesting,
-                                                               options, factors, clock));
+                                                               options, factors, clock, &medial));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);
       }
     } else {
-      SCANSURF_TRY(buildLayers(*impl_, contours, grid, factors, regions, options, out, clock));
+      SCANSURF_TRY(buildLayers(*impl_, contours, grid, factors, regions, split, medial, options, out, clock));
     }
     mergeStageTimes(out.timings);
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);
     SCANSURF_TRY(checkFinite(out.surfaces.mesh));
     return out;
+  });
+}
+
+Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& contours, const BuildOptions& options) {
+  return guarded("analyzing the overlaps of " + contours.source, [&]() -> Result<OverlapReport> {
+    SCANSURF_TRY(checkOverlapTolerance(options.overlapTolerance));
+    SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
+    const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
+    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
+    const std::vector<FeatureRegion> regions =
+        rasterizeFeatures(contours, grid, scanner->subPixelBits(), options.grid.sliceTolerance, options.threads);
+    std::vector<std::vector<LabelOverride>> split;
+    return overlapAnalysis(contours, grid, nesting, regions, options, split);
   });
 }
 

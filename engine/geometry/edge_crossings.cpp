@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "geometry/overlap_split.h"
 
 namespace scansurf {
 namespace {
@@ -57,10 +58,29 @@ void crossLine(std::vector<Hit>& hits, int n, LabelAt label, Store store) {
   }
 }
 
+// Edges between an incidental pair's features cross at the pair's medial line.
+void medialEdges(const LabelVolume& volume, int k, const MedialCrossings& medial, std::vector<std::uint16_t>& out) {
+  const Grid& g = volume.grid;
+  const auto centre = [&](int i, int j) { return Point2{g.originX + i * g.spacingX, g.originY + j * g.spacingY}; };
+  const auto byte = [](double t) { return static_cast<std::uint16_t>(std::clamp(std::lround(t * 256), 0L, 255L)); };
+  const double z = g.layerZ[static_cast<std::size_t>(k)];
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const Label a = volume.at(i, j, k);
+      std::uint16_t& w = out[g.index(i, j, k)];
+      if (i + 1 < g.nx && volume.at(i + 1, j, k) != a)
+        if (const double t = medial.crossing(a, volume.at(i + 1, j, k), z, centre(i, j), centre(i + 1, j)); t >= 0)
+          w = static_cast<std::uint16_t>((w & 0xFF00u) | byte(t));
+      if (j + 1 < g.ny && volume.at(i, j + 1, k) != a)
+        if (const double t = medial.crossing(a, volume.at(i, j + 1, k), z, centre(i, j), centre(i, j + 1)); t >= 0)
+          w = static_cast<std::uint16_t>((w & 0x00FFu) | (byte(t) << 8));
+    }
+}
+
 }  // namespace
 
 std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours, double sliceTolerance,
-                                              int threads) {
+                                              int threads, const MedialCrossings* medial) {
   const Grid& g = volume.grid;
   std::vector<std::uint16_t> out(volume.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   std::vector<std::vector<const FeatureSlice*>> slices(static_cast<std::size_t>(g.nz));
@@ -90,6 +110,7 @@ std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const C
           std::uint16_t& w = out[g.index(i, j, layer)];
           w = static_cast<std::uint16_t>((w & 0x00FFu) | (t << 8));
         });
+      if (medial && !medial->empty()) medialEdges(volume, layer, *medial, out);
     }
   });
   return out;

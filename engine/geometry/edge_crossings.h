@@ -16,8 +16,11 @@ namespace scansurf {
 // the edge to the +x neighbour, high byte, to the +y neighbour, in 1/256 of the edge from this
 // voxel, for edges whose two labels differ; kMidEdge where no contour of a feature of either
 // label (or else of any feature) crosses. Deterministic for any thread count.
+// With `medial`, an edge between the two features of an incidental pair crosses at their
+// medial line (geometry/overlap_split.h), as contour fitting places it.
 inline constexpr std::uint8_t kMidEdge = 128;
+class MedialCrossings;
 std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours, double sliceTolerance,
-                                              int threads);
+                                              int threads, const MedialCrossings* medial = nullptr);
 
 }  // namespace scansurf

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/parallel.h"
+#include "geometry/overlap_split.h"
 #include "geometry/polygon.h"
 
 namespace scansurf {
@@ -262,13 +263,14 @@ struct NestingIntervals {
 };
 
 OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
-                              const std::vector<FeatureRegion>& regions, double sliceTolerance) {
+                              const std::vector<FeatureRegion>& regions, double sliceTolerance,
+                              const OverlapTolerance& tolerance) {
   const NestingIntervals intervals(nesting);
   OverlapReport report;
   const int n = static_cast<int>(contours.features.size());
   for (int f = 0; f < n; ++f)
     report.features.push_back(volumesOf(contours.features[static_cast<std::size_t>(f)], regions[static_cast<std::size_t>(f)], grid, sliceTolerance));
-  std::vector<std::pair<int, int>> partial, anyShared, affinity;
+  std::vector<std::pair<int, int>> anyShared, affinity;
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b) {
       const FeatureRegion &ra = regions[static_cast<std::size_t>(a)], &rb = regions[static_cast<std::size_t>(b)];
@@ -278,14 +280,20 @@ OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, cons
       if (voxels > 0) {
         report.shared.push_back({a, b, voxels, volume, nested});
         anyShared.emplace_back(a, b);
-        if (nested) affinity.emplace_back(a, b);
-        else partial.emplace_back(a, b);
       } else if (regionsTouch(ra, rb)) {
         report.touching.emplace_back(a, b);
         affinity.emplace_back(a, b);
       }
     }
-  const std::vector<int> layers = assignLayers(n, partial, affinity);
+  // Real partial overlaps keep their features apart; nested and incidental pairs and abutting
+  // ones would rather share a layer.
+  judgeOverlaps(contours, grid, regions, tolerance, sliceTolerance, report);
+  std::vector<std::pair<int, int>> real;
+  for (const SharedVolume& s : report.shared) {
+    if (s.nested || s.incidental) affinity.emplace_back(s.a, s.b);
+    else real.emplace_back(s.a, s.b);
+  }
+  const std::vector<int> layers = assignLayers(n, real, affinity);
   const std::vector<int> maskLayers = assignLayers(n, anyShared, report.touching);
   for (int f = 0; f < n; ++f) {
     report.features[static_cast<std::size_t>(f)].layer = layers[static_cast<std::size_t>(f)];

@@ -1,7 +1,8 @@
-// scansurf: overlap analysis and layer assignment (issue 9). Each feature's own region is
-// rasterized exactly as the GPU would draw it alone (pixel_runs.h); pairs whose regions share
-// voxels are nested or partly overlapping; features are then coloured into the fewest layers
-// that keep overlapping features apart, abutting ones together where possible.
+// scansurf: overlap analysis and layer assignment. Each feature's own region is rasterized
+// exactly as the GPU would draw it alone (pixel_runs.h); pairs whose regions share voxels are
+// nested, incidentally overlapping (a sliver between neighbours) or really overlapping;
+// features are then coloured into the fewest layers that keep real overlaps apart, abutting
+// ones together where possible.
 #pragma once
 
 #include <utility>
@@ -30,9 +31,12 @@ std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const G
 // Volume of one voxel of layer k (1 .. nz-2): pixel area times the layer's slab.
 double voxelVolume(const Grid& grid, int k);
 
-// Volumes three ways, shared and touching pairs, and both layer assignments.
+// Volumes three ways, shared and touching pairs, each partial overlap's verdict (incidental or
+// real, by `tolerance`: geometry/overlap_split.h), and both layer assignments: real overlaps
+// apart in the surface layers, any shared voxel apart in the mask layers.
 OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
-                              const std::vector<FeatureRegion>& regions, double sliceTolerance);
+                              const std::vector<FeatureRegion>& regions, double sliceTolerance,
+                              const OverlapTolerance& tolerance);
 
 // Colours n features so that no conflicting pair shares a colour, with the fewest colours this
 // finds (exact for components of up to 24 features, else DSatur's greedy bound), preferring the

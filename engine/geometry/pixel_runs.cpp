@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <iterator>
+#include <utility>
 
 #include "geometry/raster_rules.h"
 
@@ -80,6 +82,31 @@ std::size_t sharedPixels(const std::vector<PixelRun>& a, const std::vector<Pixel
     (a[i].end < b[j].end ? i : j)++;
   }
   return shared;
+}
+
+std::vector<PixelRun> intersectPixelRuns(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b) {
+  std::vector<PixelRun> out;
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (a[i].row != b[j].row) {
+      (a[i].row < b[j].row ? i : j)++;
+      continue;
+    }
+    const int lo = std::max(a[i].begin, b[j].begin), hi = std::min(a[i].end, b[j].end);
+    if (hi > lo) out.push_back({a[i].row, lo, hi});
+    (a[i].end < b[j].end ? i : j)++;
+  }
+  return out;
+}
+
+bool coversPixel(const std::vector<PixelRun>& runs, int column, int row) {
+  // The first run past (row, column); the one before it holds the pixel if any does.
+  const auto after = std::upper_bound(runs.begin(), runs.end(), std::pair{row, column}, [](const std::pair<int, int>& p, const PixelRun& r) {
+    return p.first != r.row ? p.first < r.row : p.second < r.begin;
+  });
+  if (after == runs.begin()) return false;
+  const PixelRun& r = *std::prev(after);
+  return r.row == row && column >= r.begin && column < r.end;
 }
 
 bool touchInPlane(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b) {

@@ -32,6 +32,12 @@ std::vector<PixelRun> rasterizeSlice(const std::vector<Contour>& contours, const
 // Pixels in both run lists (each sorted as rasterizeSlice returns them).
 std::size_t sharedPixels(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b);
 
+// The pixels in both run lists, as runs sorted as rasterizeSlice returns them.
+std::vector<PixelRun> intersectPixelRuns(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b);
+
+// Whether the pixel (column, row) is in the runs (sorted as rasterizeSlice returns them).
+bool coversPixel(const std::vector<PixelRun>& runs, int column, int row);
+
 // Whether a pixel of `a` and one of `b` share an edge in the plane (same row and adjacent, or
 // adjacent rows and overlapping columns), or overlap.
 bool touchInPlane(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b);

@@ -63,6 +63,7 @@
 #include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
 #include "geometry/huge_pages.h"
+#include "geometry/overlap_split.h"
 
 namespace scansurf {
 namespace {
@@ -301,10 +302,27 @@ double clearanceCrossing(const Grid& grid, std::span<const std::uint16_t> cleara
 // interpolated labels change along their edge, and stay: the surface between the contour
 // planes is then the interpolated shape itself, which relaxation inside each vertex's simplex
 // could only roughen on the finer grid (an orange-peel texture in the previews).
+// An incidental pair's interface vertex on a contour plane goes to the pair's medial line
+// instead of onto either drawn outline (geometry/overlap_split.h).
+void placeOnMedialLines(const MultiLabelMesh& mesh, const Grid& grid, const Adjacency& adj, const MedialCrossings& medial,
+                        std::vector<double>& t) {
+  for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+    const Carrier c = carrierOfKey(mesh.keys[v]);
+    if (c.count != 2 || c.corners[0][2] != c.corners[1][2]) continue;
+    const auto point = [&](const int* corner) {
+      return Point2{grid.originX + corner[0] * grid.spacingX, grid.originY + corner[1] * grid.spacingY};
+    };
+    const double m = medial.crossing(adj.labels[2 * v], adj.labels[2 * v + 1], grid.layerZ[static_cast<std::size_t>(c.corners[0][2])],
+                                     point(c.corners[0]), point(c.corners[1]));
+    if (m >= 0) t[v] = m;
+  }
+}
+
 void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, std::span<const std::uint16_t> clearance,
-                         Adjacency& adj, double sliceTolerance, int threads) {
+                         Adjacency& adj, double sliceTolerance, int threads, const MedialCrossings* medial) {
   std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, sliceTolerance, threads)
                                    : std::vector<double>(mesh.vertexCount(), -1.0);
+  if (medial && !medial->empty()) placeOnMedialLines(mesh, grid, adj, *medial, t);
   if (clearance.size() == grid.voxelCount())
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
       if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]);
@@ -608,12 +626,12 @@ std::vector<Stage> scheduleOf(int iterations, double strength) {
 
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
                            const SmoothingOptions& options, int threads, double sliceTolerance,
-                           std::span<const std::uint16_t> clearance) {
+                           std::span<const std::uint16_t> clearance, const MedialCrossings* medial) {
   const std::size_t vertexCount = mesh.vertexCount();
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
   if (options.contourFit && (contours || !clearance.empty()))
-    placeFittedVertices(mesh, grid, contours, clearance, adj, sliceTolerance, threads);
+    placeFittedVertices(mesh, grid, contours, clearance, adj, sliceTolerance, threads, medial);
   std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
   SmoothingReport report = settleRoles(mesh.keys, adj.kind);
   Relaxation relaxation(mesh, grid, adj, options.strength, threads);

@@ -29,8 +29,12 @@ struct SmoothingReport {
 // of the grid (interpolated volumes, geometry/interpolated_volume.h), every vertex on a grid
 // edge that no contour fixes goes where the interpolated labels change along that edge and
 // stays there, like a contour-fitted one (needs options.contourFit); the others relax.
+// With `medial`, the interface vertices of incidental pairs on contour planes go to the pair's
+// medial line instead (geometry/overlap_split.h).
+class MedialCrossings;
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
                            const SmoothingOptions& options, int threads = 0,
-                           double sliceTolerance = kDefaultSliceTolerance, std::span<const std::uint16_t> clearance = {});
+                           double sliceTolerance = kDefaultSliceTolerance, std::span<const std::uint16_t> clearance = {},
+                           const MedialCrossings* medial = nullptr);
 
 }  // namespace scansurf

@@ -57,6 +57,10 @@ struct BuildOptions {
   // Layers (default): partly overlapping features are surfaced in separate layers, each
   // feature enclosing its own contours' region. Partition: one label per voxel, as the seed.
   OverlapMode overlaps = OverlapMode::Layers;
+  // Layers mode: which partial overlaps are incidental slivers between neighbours (one layer,
+  // the shared voxels split between them) rather than overlaps by design. build() refuses a
+  // negative or non-finite depth and a percentage outside [0, 100] (Errc::InvalidArgument).
+  OverlapTolerance overlapTolerance;
   int threads = 0;  // CPU threads for assembly and smoothing; 0 = all (or SCANSURF_THREADS)
   // Host memory build() may use, in bytes; 0 = what the machine has available when the build
   // starts (MemAvailable, lowered by a cgroup limit and rlimits). Before anything large is
@@ -91,9 +95,9 @@ struct InterpolationSummary {
 
 struct BuildResult {
   Nesting nesting;
-  // The label volume of the contour planes as scan conversion made it: the single partition,
-  // or with several layers the volume of layer 0 (OverlapReport::features[f].layer says which
-  // features it holds). With interpolation the surfaces come from a volume with more layers
+  // The label volume of the contour planes as scan conversion made it, incidental overlaps
+  // split (OverlapTolerance): the single partition, or with several layers the volume of
+  // layer 0 (OverlapReport::features[f].layer says which features it holds). With interpolation the surfaces come from a volume with more layers
   // (interpolation says how many), which is not kept. Without BuildOptions::keepLabelVolume,
   // only its grid (labels empty, unless interpolation or the partition mode needed them).
   LabelVolume volume;
@@ -138,9 +142,14 @@ class Engine {
   // options.smoothing.enabled) and the feature surfaces. `contours` must be validated
   // (readContours does it). Coordinates and volumes in the contours' units.
   Result<BuildResult> build(const ContourSet& contours, const BuildOptions& options);
+  // build()'s overlap analysis alone (grid, nesting, each feature's region as this device
+  // rasterizes it, shared and touching pairs, verdicts and layers), without surfacing: what
+  // build() would do with each pair. The incidental pairs' given-up volumes are computed too.
+  Result<OverlapReport> analyzeOverlaps(const ContourSet& contours, const BuildOptions& options);
 
   // The stage calls surface one label volume: the whole set when nothing partly overlaps (or
   // in Partition mode), else one layer at a time (a ContourSet holding that layer's features).
+  // They do not split incidental overlaps: scan conversion gives shared voxels by priority.
   // Stage 1 on the device: scan converts every slice of a validated contour set into a label
   // volume on `grid` (makeGrid(contours, options.grid)), inner features first by
   // nesting.order. Label of feature i = i + 1; padding layers stay background.

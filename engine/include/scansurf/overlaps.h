@@ -10,9 +10,11 @@
 
 namespace scansurf {
 
+struct Grid;  // scansurf/grid.h
+
 enum class OverlapMode {
   // Default: features are assigned to the fewest layers such that no two features of a layer
-  // partly overlap, and each layer is surfaced on its own; every feature's surface encloses its
+  // partly overlap (incidental overlaps aside: OverlapTolerance), and each layer is surfaced on its own; every feature's surface encloses its
   // own contours' region. Abutting features of one layer share their interface; surfaces of
   // different layers may intersect exactly as their contours do.
   Layers,
@@ -20,6 +22,28 @@ enum class OverlapMode {
   // partly overlap, the one of higher priority (nesting order) takes the shared voxels.
   Partition,
 };
+
+// When a partial overlap is incidental rather than by design. Hand-drawn neighbours always
+// overlap by a sliver along their interface (two outlines are never drawn on the same line);
+// such a sliver is thin (every shared voxel lies near one of the two outlines) and small
+// (a small part of both features). An incidental pair stays in one layer, sharing its
+// interface, and the shared voxels are divided between the two: each goes to the feature whose
+// own outline is farther from it (a medial split), so the shared surface runs between the two
+// drawn outlines. Any other partial overlap is real: the pair goes to separate layers.
+struct OverlapTolerance {
+  // false: every shared voxel between features not nested in one another means layers.
+  bool enabled = true;
+  // The deepest shared voxel's in-plane distance to the nearer of the two outlines, at most
+  // this (input units). 0 = automatic: the larger of two pixels (the grid's larger pixel side)
+  // and half the median spacing of the contour planes, so the verdict does not hinge on a fine
+  // in-plane grid (a drawn outline is no more precise in-plane than about that).
+  double depth = 0;
+  // The shared volume, at most this percentage of the smaller feature's own volume.
+  double percent = 2.0;
+};
+
+// The depth limit `tolerance` sets on a grid (input units).
+double incidentalDepthLimit(const OverlapTolerance& tolerance, const Grid& grid);
 
 // "layers" or "partition"; nullopt otherwise.
 std::optional<OverlapMode> parseOverlapMode(std::string_view name);
@@ -44,6 +68,16 @@ struct SharedVolume {
   std::size_t voxels = 0;
   double volume = 0;
   bool nested = false;  // one contains the other (Nesting): not an overlap in the enclosing convention
+  // Partial overlaps, with the rule on: the deepest shared voxel's distance to the nearer of the
+  // two outlines (input units); measured only for pairs small enough to be incidental, and
+  // then only up to the depth limit (depthMeasured false: not measured, or deeper than that).
+  double depth = 0;
+  bool depthMeasured = false;
+  bool incidental = false;  // thin and small (OverlapTolerance): one layer, the voxels split
+  // Incidental pairs in Layers mode: the shared volume whose surface went to the other
+  // feature (what a gave up to b, and b to a).
+  double givenUpByA = 0;
+  double givenUpByB = 0;
 };
 
 // Partition mode: voxels of `feature`'s own region labelled with the higher-priority `to`.
@@ -63,12 +97,20 @@ struct OverlapReport {
   int layers = 1;                              // surface layers
   int maskLayers = 1;                          // label volume layers (nested features apart too)
   std::vector<VolumeLoss> losses;              // Partition mode only
+  OverlapTolerance tolerance;                  // the rule the verdicts used
 
-  // Partly overlapping pairs (shared and not nested).
+  // Partly overlapping pairs (shared and not nested), incidental ones included.
   std::vector<SharedVolume> partialOverlaps() const {
     std::vector<SharedVolume> out;
     for (const SharedVolume& s : shared)
       if (!s.nested) out.push_back(s);
+    return out;
+  }
+  // Overlaps by design: partial and not incidental (separate layers in Layers mode).
+  std::vector<SharedVolume> realOverlaps() const {
+    std::vector<SharedVolume> out;
+    for (const SharedVolume& s : shared)
+      if (!s.nested && !s.incidental) out.push_back(s);
     return out;
   }
 };
