@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <set>
 
 #include "io/atomic_file.h"
@@ -30,10 +31,20 @@ std::vector<std::vector<std::string>> surfaceNeighbours(const ContourSet& contou
   return out;
 }
 
-void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapReport& overlaps) {
+void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapReport& overlaps, const Grid& grid) {
   r.overlapMode = overlapModeName(overlaps.mode);
   r.layers = overlaps.layers;
   r.maskLayers = overlaps.maskLayers;
+  r.overlapTolerance = overlaps.tolerance;
+  r.overlapDepthLimit = incidentalDepthLimit(overlaps.tolerance, grid);
+  const auto percent = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
+  for (const SharedVolume& s : overlaps.partialOverlaps()) {
+    const FeatureVolumes &a = overlaps.features[static_cast<std::size_t>(s.a)], &b = overlaps.features[static_cast<std::size_t>(s.b)];
+    r.partialOverlaps.push_back({contours.features[static_cast<std::size_t>(s.a)].name, contours.features[static_cast<std::size_t>(s.b)].name,
+                                 s.volume, percent(s.volume, std::min(a.ownVolume, b.ownVolume)), s.depth, s.depthMeasured,
+                                 s.incidental, s.givenUpByA, s.givenUpByB, percent(s.givenUpByA, a.contour),
+                                 percent(s.givenUpByB, b.contour)});
+  }
   for (const VolumeLoss& l : overlaps.losses) {
     const double contour = overlaps.features[static_cast<std::size_t>(l.feature)].contour;
     r.losses.push_back({contours.features[static_cast<std::size_t>(l.feature)].name,
@@ -73,7 +84,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
         rf.overlaps.emplace_back(contours.features[static_cast<std::size_t>(s.a == static_cast<int>(f) ? s.b : s.a)].name, s.volume);
     r.features.push_back(std::move(rf));
   }
-  addOverlapFacts(r, contours, built.overlaps);
+  addOverlapFacts(r, contours, built.overlaps, built.volume.grid);
   r.estimatedMemory = built.estimatedMemory;
   r.memoryLimit = built.memoryLimit;
   r.interpolation = built.interpolation;
@@ -172,6 +183,20 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
     losses.push_back({{"feature", l.feature}, {"to", l.to}, {"volume", l.volume}, {"percent_of_contour_volume", l.percentOfContour},
                       {"nested", l.nested}});
   j["overlaps"]["losses"] = losses;
+  const OverlapTolerance& t = report.overlapTolerance;
+  j["overlaps"]["tolerance"] = {{"enabled", t.enabled}, {"depth", report.overlapDepthLimit}, {"depth_automatic", t.depth <= 0},
+                                {"percent_of_smaller", t.percent}};
+  ordered_json pairs = ordered_json::array();
+  for (const RunReport::Overlap& o : report.partialOverlaps)
+    pairs.push_back({{"a", o.a},
+                     {"b", o.b},
+                     {"shared_volume", o.volume},
+                     {"percent_of_smaller", o.percentOfSmaller},
+                     {"depth", o.depthMeasured ? ordered_json(o.depth) : ordered_json(nullptr)},
+                     {"verdict", o.incidental ? "incidental" : "real"},
+                     {"given_up", {{"a", o.givenUpByA}, {"b", o.givenUpByB}}},
+                     {"given_up_percent_of_contour_volume", {{"a", o.givenUpPercentA}, {"b", o.givenUpPercentB}}}});
+  j["overlaps"]["partial"] = pairs;
   if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
   ordered_json timings = ordered_json::array();
   double total = 0;

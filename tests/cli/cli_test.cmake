@@ -145,7 +145,7 @@ endif()
 # reports the loss (with a warning above 1 %); an unknown mode is a usage error.
 run_scansurf(0 "${DATA}/overlapping.json" -o "${OUT}/overlap" --voxel-size 0.5 --report "${OUT}/overlap/r.json")
 expect_output("overlaps as layers: 2 layers")
-expect_output("overlap: organ and PTV share [0-9.]+ mm3 \\(surfaced in separate layers\\)")
+expect_output("overlap: organ and PTV share [0-9.]+ mm3 \\([0-9.]+ % of [A-Za-z]+\\): surfaced in separate layers")
 file(READ "${OUT}/overlap/r.json" overlap_report)
 string(JSON ptv_layer GET "${overlap_report}" features 1 layer)
 string(JSON ptv_contour GET "${overlap_report}" features 1 contour_volume)

@@ -51,6 +51,18 @@ struct RunReport {
     bool nested = false;
   };
   std::vector<Loss> losses;  // --overlaps partition
+  OverlapTolerance overlapTolerance;
+  double overlapDepthLimit = 0;  // the tolerance's depth on the grid (input units)
+  // Every partial overlap: its verdict and, when incidental, what each side gave up.
+  struct Overlap {
+    std::string a, b;
+    double volume = 0, percentOfSmaller = 0;
+    double depth = 0;  // valid when depthMeasured
+    bool depthMeasured = false, incidental = false;
+    double givenUpByA = 0, givenUpByB = 0;
+    double givenUpPercentA = 0, givenUpPercentB = 0;  // of each one's contour volume
+  };
+  std::vector<Overlap> partialOverlaps;
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
   RemeshReport remeshing;  // BuildResult::surfaces.remeshing
   std::vector<std::string> warnings;
