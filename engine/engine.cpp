@@ -20,6 +20,7 @@
 #include "geometry/remesh.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
+#include "gpu/commands.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "passes/classification.h"
@@ -213,20 +214,40 @@ Result<passes::ScanConverter::DeviceLabels> scanPlanes(passes::ScanConverter& sc
   return scanner.runOnDevice(contours, grid, order, tolerance, toHost || interpolating ? &planes : nullptr);
 }
 
+// Writes the medial split's labels into the device's labels in place: one 2-byte copy region
+// per voxel from a small upload buffer (vkCmdCopyBuffer asks no alignment), so the labels need
+// not come to the host and go back.
+Result<void> patchDeviceLabels(const gpu::Context& ctx, const gpu::Buffer& labels,
+                               const std::vector<std::pair<std::size_t, Label>>& patch) {
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer values, gpu::Buffer::create(ctx, patch.size() * sizeof(Label),
+                                                                    VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryDomain::Upload));
+  std::vector<VkBufferCopy> regions;
+  regions.reserve(patch.size());
+  auto* out = static_cast<Label*>(values.mapped());
+  for (std::size_t p = 0; p < patch.size(); ++p) {
+    out[p] = patch[p].second;
+    regions.push_back({p * sizeof(Label), patch[p].first * sizeof(Label), sizeof(Label)});
+  }
+  SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
+  vkCmdCopyBuffer(commands.cmd(), values.handle(), labels.handle(), static_cast<std::uint32_t>(regions.size()), regions.data());
+  return commands.submitAndWait();
+}
+
 // Scan conversion of one layer with the medial split of its incidental overlaps written in
-// (overlap_split.h): the labels come to the host for it, and the next GPU pass uploads them
-// from there instead of using the device's copy.
-Result<std::optional<passes::ScanConverter::DeviceLabels>> scanAndSplit(passes::ScanConverter& scanner, const ContourSet& contours,
-                                                                        const Grid& wholeGrid, const Grid& grid,
-                                                                        const std::vector<int>& order, double tolerance,
-                                                                        bool interpolating, bool toHost,
-                                                                        const std::vector<LabelOverride>& split,
-                                                                        LabelVolume& planes) {
-  SCANSURF_ASSIGN_OR_RETURN(auto device,
-                            scanPlanes(scanner, contours, grid, order, tolerance, interpolating, toHost || !split.empty(), planes));
-  if (split.empty()) return std::optional(std::move(device));
-  applyLabelOverrides(planes, wholeGrid, split);
-  return std::optional<passes::ScanConverter::DeviceLabels>{};
+// (overlap_split.h), on the device and in the host copy when there is one.
+Result<passes::ScanConverter::DeviceLabels> scanAndSplit(Engine::Impl& impl, const ContourSet& contours, const Grid& wholeGrid,
+                                                         const Grid& grid, const std::vector<int>& order, double tolerance,
+                                                         bool interpolating, bool toHost, const std::vector<LabelOverride>& split,
+                                                         LabelVolume& planes) {
+  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
+  SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, order, tolerance, interpolating, toHost, planes));
+  if (split.empty()) return device;
+  const std::vector<std::pair<std::size_t, Label>> patch = overridesOnGrid(grid, wholeGrid, split);
+  if (patch.empty()) return device;
+  SCANSURF_TRY(patchDeviceLabels(*impl.context, device.buffer, patch));
+  if (!planes.labels.empty())
+    for (const auto& [index, label] : patch) planes.labels[index] = label;
+  return device;
 }
 
 InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<int>& factors, CapShape caps) {
@@ -307,7 +328,6 @@ Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, cons
 Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
                          const std::vector<FeatureRegion>& regions, const std::vector<std::vector<LabelOverride>>& split,
                          const MedialCrossings& medial, const BuildOptions& options, BuildResult& out, StageClock& clock) {
-  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
   out.surfaces.convention = options.convention;
   out.surfaces.features.resize(contours.features.size());
   for (std::size_t f = 0; f < contours.features.size(); ++f) out.surfaces.features[f].feature = static_cast<int>(f);
@@ -316,7 +336,7 @@ Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const G
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     const std::vector<int> subFactors = factorsOf(sub, grid, factors);
     LabelVolume volume;
-    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*scanner, subset, grid, sub, out.nesting.order, options.grid.sliceTolerance,
+    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(impl, subset, grid, sub, out.nesting.order, options.grid.sliceTolerance,
                                                         interpolates(subFactors), layer == 0 && options.keepLabelVolume,
                                                         split[static_cast<std::size_t>(layer)], volume));
     clock.lap("scan conversion");
@@ -509,7 +529,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     clock.lap("overlap analysis");
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
-      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*scanner, contours, grid, grid, out.nesting.order, tolerance,
+      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order, tolerance,
                                                           interpolates(factors), toHost, split.empty() ? kNoSplit : split[0],
                                                           out.volume));
       clock.lap("scan conversion");

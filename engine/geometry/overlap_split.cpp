@@ -291,16 +291,17 @@ std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet
   return overrides;
 }
 
-void applyLabelOverrides(LabelVolume& volume, const Grid& grid, const std::vector<LabelOverride>& overrides) {
-  const Grid& sub = volume.grid;
+std::vector<std::pair<std::size_t, Label>> overridesOnGrid(const Grid& sub, const Grid& grid,
+                                                           const std::vector<LabelOverride>& overrides) {
   const int i0 = static_cast<int>(std::lround((sub.originX - grid.originX) / grid.spacingX));
   const int j0 = static_cast<int>(std::lround((sub.originY - grid.originY) / grid.spacingY));
   const int k0 = static_cast<int>(std::find(grid.layerZ.begin(), grid.layerZ.end(), sub.layerZ.front()) - grid.layerZ.begin());
+  std::vector<std::pair<std::size_t, Label>> out;
   for (const LabelOverride& o : overrides) {
     const int i = o.i - i0, j = o.j - j0, k = o.k - k0;
-    if (i < 0 || j < 0 || k < 0 || i >= sub.nx || j >= sub.ny || k >= sub.nz) continue;
-    volume.labels[sub.index(i, j, k)] = o.label;
+    if (i >= 0 && j >= 0 && k >= 0 && i < sub.nx && j < sub.ny && k < sub.nz) out.emplace_back(sub.index(i, j, k), o.label);
   }
+  return out;
 }
 
 }  // namespace scansurf

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "geometry/overlaps.h"
@@ -59,8 +60,9 @@ class MedialCrossings {
   std::unique_ptr<State> state_;
 };
 
-// Writes the overrides into a layer's scan-converted volume, whose grid is `grid` or a box of
-// it on the same lattice (the engine's layer grids).
-void applyLabelOverrides(LabelVolume& volume, const Grid& grid, const std::vector<LabelOverride>& overrides);
+// The overrides as (voxel index, label) on a layer's grid, `grid` itself or a box of it on the
+// same lattice (the engine's layer grids); those outside the box are left out.
+std::vector<std::pair<std::size_t, Label>> overridesOnGrid(const Grid& layerGrid, const Grid& grid,
+                                                           const std::vector<LabelOverride>& overrides);
 
 }  // namespace scansurf

@@ -2,6 +2,7 @@
 // slivers along their interface and must still share one surface; overlaps by design (a PTV,
 // a deep poke) stay layers.
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <set>
@@ -117,6 +118,21 @@ TEST_F(IncidentalOverlapsTest, IndependentlyDrawnNeighboursShareOneSurface) {
       const double given = f == s->a ? s->givenUpByA : s->givenUpByB;
       EXPECT_GE(stats(b, f).volume, stats(layered, f).volume - given - 0.002 * b.overlaps.features[static_cast<std::size_t>(f)].contour);
     }
+    // The figures docs/overlaps.md quotes: crossings between the two organs with the rule off
+    // (their layers' meshes together) against none with it; each surface's volume error.
+    std::vector<std::uint32_t> both = layerTriangles(layered, 0);
+    const std::vector<std::uint32_t> second = layerTriangles(layered, 1);
+    both.insert(both.end(), second.begin(), second.end());
+    const std::size_t before = findCrossings(layered.surfaces.mesh.positions, both).crossings;
+    EXPECT_GT(before, 0u) << "drawn independently, layered surfaces cross";
+    const auto error = [&](const BuildResult& r, int f) {
+      const double c = r.overlaps.features[static_cast<std::size_t>(f)].contour;
+      return 100 * (stats(r, f).volume - c) / c;
+    };
+    std::printf("pelvis at %s: pixels %.3g mm, shared %.1f mm3 (depth %.2f mm); crossings %zu -> 0; volume error prostate "
+                "%+.2f -> %+.2f %%, rectum %+.2f -> %+.2f %%\n",
+                voxel == 0 ? "the default grid" : (std::to_string(voxel).substr(0, 3) + " mm").c_str(), b.volume.grid.spacingX,
+                s->volume, s->depth, before, error(layered, prostate), error(b, prostate), error(layered, rectum), error(b, rectum));
   }
 }
 
@@ -267,6 +283,34 @@ TEST_F(IncidentalOverlapsTest, AnalysisAloneMatchesTheBuild) {
     EXPECT_EQ(analysis->shared[s].givenUpByA, b.overlaps.shared[s].givenUpByA);
   }
   EXPECT_EQ(analysis->layers, b.overlaps.layers);
+}
+
+}  // namespace
+}  // namespace scansurf::test
+
+namespace scansurf::test {
+namespace {
+
+// The split is written into the device's labels in place: the surfaces equal those of the host
+// round trip, with and without interpolation, in one layer and beside a PTV's layer.
+TEST_F(IncidentalOverlapsTest, SplitOnTheDeviceEqualsTheHostRoundTrip) {
+  DrawnPelvisOptions drawn;
+  for (bool ptv : {false, true}) {
+    drawn.planningVolume = ptv;
+    const ContourSet set = drawnPelvisContours(drawn);
+    for (int factor : {1, InterpolationOptions::kAuto}) {
+      SCOPED_TRACE(std::string(ptv ? "with PTV, " : "") + (factor == 1 ? "interpolation off" : "interpolation auto"));
+      BuildOptions o = options(1.0);
+      o.interpolation.factor = factor;
+      const BuildResult host = build(set, o);
+      o.keepLabelVolume = false;
+      const BuildResult device = build(set, o);
+      EXPECT_EQ(device.surfaces.mesh.positions, host.surfaces.mesh.positions);
+      EXPECT_EQ(device.surfaces.mesh.triangles, host.surfaces.mesh.triangles);
+      EXPECT_EQ(device.surfaces.mesh.labels, host.surfaces.mesh.labels);
+      EXPECT_GT(interfaceTriangles(host, featureNamed(set, "prostate"), featureNamed(set, "rectum")), 100u);
+    }
+  }
 }
 
 }  // namespace
