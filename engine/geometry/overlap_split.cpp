@@ -73,7 +73,8 @@ class OutlineIndex {
     Point2 a, b;
   };
   int rowOf(double y) const {
-    return std::clamp(static_cast<int>(std::floor((y - originY_) / spacingY_ + 0.5)), 0, rows_ - 1);
+    // Clamped as a double first: a far point's row must not overflow an int.
+    return static_cast<int>(std::clamp(std::floor((y - originY_) / spacingY_ + 0.5), 0.0, rows_ - 1.0));
   }
   static double pointSegment(Point2 p, const Segment& s) {
     const double dx = s.b.x - s.a.x, dy = s.b.y - s.a.y;
