@@ -24,9 +24,9 @@ struct Axis {
 };
 
 // The grid of two in-plane axes over the slice planes (sorted, non-empty), with one
-// background layer below and above at the neighbouring spacing (a single plane: the larger
-// pixel spacing).
-Grid gridFromAxes(const Axis& ax, const Axis& ay, const std::vector<double>& planes) {
+// background layer below and above at the neighbouring spacing (a single plane: singleGap, by
+// default the larger pixel spacing).
+Grid gridFromAxes(const Axis& ax, const Axis& ay, const std::vector<double>& planes, double singleGap = 0) {
   Grid grid;
   grid.nx = ax.n;
   grid.ny = ay.n;
@@ -35,8 +35,9 @@ Grid gridFromAxes(const Axis& ax, const Axis& ay, const std::vector<double>& pla
   grid.spacingX = ax.spacing;
   grid.spacingY = ay.spacing;
   const std::size_t m = planes.size();
-  const double below = m > 1 ? planes[1] - planes[0] : std::max(ax.spacing, ay.spacing);
-  const double above = m > 1 ? planes[m - 1] - planes[m - 2] : std::max(ax.spacing, ay.spacing);
+  if (!(singleGap > 0)) singleGap = std::max(ax.spacing, ay.spacing);
+  const double below = m > 1 ? planes[1] - planes[0] : singleGap;
+  const double above = m > 1 ? planes[m - 1] - planes[m - 2] : singleGap;
   grid.layerZ.reserve(m + 2);
   grid.layerZ.push_back(planes.front() - below);
   grid.layerZ.insert(grid.layerZ.end(), planes.begin(), planes.end());
@@ -77,9 +78,35 @@ Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
   return axis;
 }
 
+// The reference slices that hold contours, at the reference's own z. Slices between contour
+// planes are not layers: they lie between two planes, and what lies there is the between-slice
+// model's (the slab rule, or interpolated layers), never background (a 1 mm CT under contours
+// drawn every 2 mm). A single plane keeps the reference's spacing next to it for its slab.
+std::vector<double> contourPlanesOn(const ContourSet& contours, const GridReference& ref, double tol) {
+  Grid probe;
+  probe.layerZ = ref.sliceZ;
+  std::vector<char> used(ref.sliceZ.size(), 0);
+  for (const Feature& f : contours.features)
+    for (const FeatureSlice& s : f.slices) used[static_cast<std::size_t>(layerOfZ(probe, s.z, tol))] = 1;
+  std::vector<double> planes;
+  for (std::size_t k = 0; k < used.size(); ++k)
+    if (used[k]) planes.push_back(ref.sliceZ[k]);
+  return planes;
+}
+
+// The smallest spacing between the reference slice at z and its neighbours (0: a single slice).
+double referenceGapAt(const GridReference& ref, double z) {
+  const auto& zs = ref.sliceZ;
+  const auto k = static_cast<std::size_t>(std::lower_bound(zs.begin(), zs.end(), z) - zs.begin());
+  double gap = 0;
+  if (k > 0 && k < zs.size()) gap = zs[k] - zs[k - 1];
+  if (k + 1 < zs.size()) gap = gap > 0 ? std::min(gap, zs[k + 1] - zs[k]) : zs[k + 1] - zs[k];
+  return gap;
+}
+
 // The reference lattice extended by whole pixels so that one background pixel lies beyond
-// both the reference and the contours on each side; layers are the reference slices plus one
-// below and above at the neighbouring spacing.
+// both the reference and the contours on each side; layers are the reference slices that hold
+// contours plus one below and above at the neighbouring spacing.
 Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& ref, double tol) {
   if (!(ref.spacingX > 0) || !(ref.spacingY > 0) || !std::isfinite(ref.spacingX) || !std::isfinite(ref.spacingY) ||
       !std::isfinite(ref.originX) || !std::isfinite(ref.originY))
@@ -113,7 +140,8 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
   };
   SCANSURF_ASSIGN_OR_RETURN(const Axis ax, extend(box.minX, box.maxX, ref.originX, ref.spacingX, ref.nx, "x"));
   SCANSURF_ASSIGN_OR_RETURN(const Axis ay, extend(box.minY, box.maxY, ref.originY, ref.spacingY, ref.ny, "y"));
-  return gridFromAxes(ax, ay, ref.sliceZ);
+  const std::vector<double> planes = contourPlanesOn(contours, ref, tol);
+  return gridFromAxes(ax, ay, planes, planes.size() == 1 ? referenceGapAt(ref, planes.front()) : 0);
 }
 
 }  // namespace
@@ -165,6 +193,15 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
   }
 
   return gridFromAxes(ax, ay, planes);
+}
+
+int nearestLayer(const Grid& grid, double z) {
+  const auto& layers = grid.layerZ;
+  if (layers.empty()) return -1;
+  const auto it = std::lower_bound(layers.begin(), layers.end(), z);
+  if (it == layers.begin()) return 0;
+  if (it == layers.end()) return static_cast<int>(layers.size()) - 1;
+  return static_cast<int>(it - layers.begin()) - (z - *(it - 1) <= *it - z ? 1 : 0);
 }
 
 int layerOfZ(const Grid& grid, double z, double tolerance) {

@@ -48,8 +48,7 @@ LabelVolume partitionVolume(const std::vector<FeatureRegion>& regions, const Gri
   return volume;
 }
 
-Result<ReferenceCut> cutToReference(const LabelVolume& volume, const GridReference& reference, double sliceTolerance,
-                                    std::size_t featureCount) {
+Result<ReferenceCut> cutToReference(const LabelVolume& volume, const GridReference& reference, std::size_t featureCount) {
   const Grid& g = volume.grid;
   if (std::abs(g.spacingX - reference.spacingX) > 1e-9 * reference.spacingX ||
       std::abs(g.spacingY - reference.spacingY) > 1e-9 * reference.spacingY)
@@ -65,20 +64,24 @@ Result<ReferenceCut> cutToReference(const LabelVolume& volume, const GridReferen
   out.spacingX = g.spacingX, out.spacingY = g.spacingY;
   out.layerZ = reference.sliceZ;
   cut.volume.labels.assign(out.voxelCount(), kBackground);
-  std::vector<std::size_t> total(featureCount + 1, 0), kept(featureCount + 1, 0);
-  for (Label l : volume.labels) ++total[std::min<std::size_t>(l, featureCount)];
+  // Each reference slice takes the layer whose slab holds it (slices between contour planes
+  // take the nearer plane); a feature's voxels are dropped when they lie outside the reference
+  // in-plane, or on a layer no reference slice takes.
+  std::vector<char> taken(static_cast<std::size_t>(g.nz), 0);
   for (int k = 0; k < out.nz; ++k) {
-    const int gk = layerOfZ(g, reference.sliceZ[static_cast<std::size_t>(k)], sliceTolerance);
-    if (gk < 0) return makeError(Errc::InvalidArgument, "a reference slice is not a layer of the grid");
+    const int gk = nearestLayer(g, reference.sliceZ[static_cast<std::size_t>(k)]);
+    taken[static_cast<std::size_t>(gk)] = 1;
     for (int j = 0; j < out.ny; ++j)
-      for (int i = 0; i < out.nx; ++i) {
-        const Label l = volume.at(i + ox, j + oy, gk);
-        cut.volume.labels[out.index(i, j, k)] = l;
-        ++kept[std::min<std::size_t>(l, featureCount)];
-      }
+      for (int i = 0; i < out.nx; ++i) cut.volume.labels[out.index(i, j, k)] = volume.at(i + ox, j + oy, gk);
   }
   cut.dropped.assign(featureCount, 0);
-  for (std::size_t f = 0; f < featureCount; ++f) cut.dropped[f] = total[f + 1] - kept[f + 1];
+  for (int gk = 0; gk < g.nz; ++gk)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const Label l = volume.at(i, j, gk);
+        const bool inside = taken[static_cast<std::size_t>(gk)] && i >= ox && j >= oy && i < ox + out.nx && j < oy + out.ny;
+        if (l != kBackground && !inside && l <= featureCount) ++cut.dropped[l - 1];
+      }
   return cut;
 }
 

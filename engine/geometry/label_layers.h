@@ -23,14 +23,14 @@ std::vector<LabelVolume> maskLayerVolumes(const std::vector<FeatureRegion>& regi
 LabelVolume partitionVolume(const std::vector<FeatureRegion>& regions, const Grid& grid, const std::vector<int>& order);
 
 // A volume on the grid cut to the reference lattice it was built on (makeGrid's reference
-// grid holds it with a border): same size, origin, spacing and slices as the reference.
+// grid holds it with a border): same size, origin, spacing and slices as the reference; each
+// reference slice takes the grid layer whose slab holds it (nearestLayer).
 // `dropped[f]` counts feature f's labelled voxels outside it. Errors: Errc::InvalidArgument
 // when the grid does not lie on the reference lattice (other spacing, or an origin off it).
 struct ReferenceCut {
   LabelVolume volume;
   std::vector<std::size_t> dropped;  // per feature
 };
-Result<ReferenceCut> cutToReference(const LabelVolume& volume, const GridReference& reference, double sliceTolerance,
-                                    std::size_t featureCount);
+Result<ReferenceCut> cutToReference(const LabelVolume& volume, const GridReference& reference, std::size_t featureCount);
 
 }  // namespace scansurf

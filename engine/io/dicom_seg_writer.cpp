@@ -86,11 +86,9 @@ Result<CtInGrid> locateCt(const Grid& g, const CtSeries& ct) {
   if (std::abs(fx - at.offsetX) > kLatticeTolerance || std::abs(fy - at.offsetY) > kLatticeTolerance || at.offsetX < 0 ||
       at.offsetY < 0 || at.offsetX + ct.columns > g.nx || at.offsetY + ct.rows > g.ny)
     return notOnLattice("its pixels do not cover the CT's");
-  for (double z : ct.sliceZ) {
-    const int k = layerOfZ(g, z, kLatticeTolerance);
-    if (k < 0) return notOnLattice("no layer at the CT slice z=" + formatNumber(z));
-    at.layer.push_back(k);
-  }
+  // Each CT slice takes the layer whose slab holds it: CT slices between contour planes take
+  // the nearer plane's masks (the slab rule), those beyond the planes the background padding.
+  for (double z : ct.sliceZ) at.layer.push_back(nearestLayer(g, z));
   return at;
 }
 

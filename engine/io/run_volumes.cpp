@@ -9,9 +9,9 @@ namespace scansurf {
 namespace {
 
 // Cuts a volume to the reference lattice; per feature, the voxels dropped.
-Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridReference& reference, double tolerance,
-                                       std::size_t features, std::vector<std::size_t>* dropped) {
-  SCANSURF_ASSIGN_OR_RETURN(ReferenceCut cut, cutToReference(volume, reference, tolerance, features));
+Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridReference& reference, std::size_t features,
+                                       std::vector<std::size_t>* dropped) {
+  SCANSURF_ASSIGN_OR_RETURN(ReferenceCut cut, cutToReference(volume, reference, features));
   if (dropped)
     for (std::size_t f = 0; f < features; ++f) (*dropped)[f] += cut.dropped[f];
   return regularize(cut.volume);
@@ -43,11 +43,11 @@ Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& bui
   }
   std::vector<std::size_t> dropped(n, 0);
   for (const LabelVolume& m : out.masksOnGrid) {
-    SCANSURF_ASSIGN_OR_RETURN(RegularLabelVolume cut, onReference(m, *contours.reference, built.sliceTolerance, n, &dropped));
+    SCANSURF_ASSIGN_OR_RETURN(RegularLabelVolume cut, onReference(m, *contours.reference, n, &dropped));
     out.masks.push_back(std::move(cut));
   }
   if (withPartition) {
-    SCANSURF_ASSIGN_OR_RETURN(out.partition, onReference(partition, *contours.reference, built.sliceTolerance, n, nullptr));
+    SCANSURF_ASSIGN_OR_RETURN(out.partition, onReference(partition, *contours.reference, n, nullptr));
   }
   for (std::size_t f = 0; f < n; ++f)
     if (dropped[f] > 0)

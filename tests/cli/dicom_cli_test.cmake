@@ -21,9 +21,10 @@ run_scansurf(0 "${SAMPLES}/pydicom-rtstruct.dcm" -o "${OUT}/pydicom" --voxel-siz
 expect_output("ROI \"Isocenter 1\" \\(#2\\): skipped 1 POINT contour\\(s\\)")
 expect_output("patient +1 +0 +[0-9]+ +[0-9.]+ +[0-9.]+ +1 +0 yes")
 
-# The MIM phantom on its own CT: the grid is the CT's 512 x 512 x 5 plus the border.
+# The MIM phantom on its own CT: the CT's 512 x 512 pixels plus the border, over the 3 CT slices
+# that hold contours (of 5) and a background layer each side.
 run_scansurf(0 "${MIM}/rt.dcm" --reference "${MIM}" -o "${OUT}/mim" --roi "ROI-*")
-expect_output("grid: 514 x 514 x 7 voxels \\(0.488281 x 0.488281 mm pixels, 5 slices")
+expect_output("grid: 514 x 514 x 5 voxels \\(0.488281 x 0.488281 mm pixels, 3 slices")
 foreach(n 1 2 3 4)
   expect_output("ROI-${n} +${n} +0 +[0-9]+ +[0-9.]+ +[0-9.]+ +1 +[01] yes")
   if(NOT EXISTS "${OUT}/mim/ROI-${n}.ply")

@@ -14,6 +14,7 @@
 #include "geometry/assembly.h"
 #include "geometry/cell_cases.h"
 #include "geometry/feature_surfaces.h"
+#include "geometry/label_layers.h"
 #include "io/ct_series.h"
 #include "io/rtstruct_reader.h"
 #include "support/scratch_dir_test.h"
@@ -572,13 +573,14 @@ TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
   o.reference = gridReferenceOf(*series);
   const Built b = buildCpu(r->contours, o);
   const Grid& g = b.volume.grid;
-  // One background pixel and layer around the CT: CT voxel (i, j, k) is grid voxel (i+1, j+1, k+1).
+  // One background pixel around the CT: CT pixel (i, j) is grid pixel (i+1, j+1); the layers
+  // are the CT slices that hold contours, one background layer below and above.
   EXPECT_EQ(g.nx, 42);
   EXPECT_EQ(g.ny, 32);
-  EXPECT_EQ(g.nz, 8);
+  EXPECT_EQ(g.nz, 6);
   EXPECT_DOUBLE_EQ(g.originX, -15.2 - 0.8);
   EXPECT_DOUBLE_EQ(g.originY, -12.6 - 0.9);
-  EXPECT_EQ(g.layerZ, (std::vector<double>{-7.5, -5, -2.5, 0, 2.5, 5, 7.5, 10}));
+  EXPECT_EQ(g.layerZ, (std::vector<double>{-5, -2.5, 0, 2.5, 5, 7.5}));
   expectClosed(b, r->contours);
   // Labels on CT pixel centres: inside the square, outside it, and on CT slices without contours.
   EXPECT_EQ(labelAt(b.volume, -15.2 + 0.8 * 20, -12.6 + 0.9 * 15, 0), labelOfFeature(0));
@@ -607,6 +609,60 @@ TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
       << placed.error().message;
   EXPECT_NE(placed.error().message.find("nearest z=0"), std::string::npos);
   EXPECT_FALSE(makeGrid(between->contours, o));
+}
+
+// A CT twice as fine as the contours (1 mm slices, contours every 2 mm): the CT slices between
+// contour planes are the between-slice model's (the slab rule here), never background. Each
+// structure is one piece, and its mask on the CT grid has no empty slice and the slab rule's
+// volume.
+TEST_F(Dicom, CtFinerThanTheContourPlanes) {
+  test::TestCt ct;
+  ct.columns = 50;
+  ct.rows = 50;
+  ct.originX = -25;
+  ct.originY = -25;
+  for (int k = 0; k <= 24; ++k) ct.sliceZ.push_back(k);
+  test::writeTestCtSeries(ct, dir_ / "ct");
+  TestRtStruct rtFile;
+  TestRoi body{1, "BODY", "EXTERNAL", std::nullopt, {}}, organ{2, "organ", "ORGAN", std::nullopt, {}};
+  for (int z = 2; z <= 20; z += 2) body.contours.push_back(closedContour(square(-20.5, -20.5, 20.5, 20.5), z));
+  for (int z = 8; z <= 14; z += 2) organ.contours.push_back(closedContour(square(-5.5, -5.5, 5.5, 5.5), z));
+  rtFile.rois = {body, organ};
+  write(rtFile, "rt.dcm");
+  auto series = readCtSeries(dir_ / "ct");
+  auto r = readRtStruct(dir_ / "rt.dcm");
+  ASSERT_TRUE(series && r);
+  ASSERT_TRUE(placeOnCtSlices(r->contours, *series, 0.01));
+  GridOptions o;
+  o.reference = gridReferenceOf(*series);
+  const Built b = buildCpu(r->contours, o);
+  EXPECT_EQ(b.volume.grid.layerZ, (std::vector<double>{0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22}));
+  expectClosed(b, r->contours);
+  for (int f = 0; f < 2; ++f) EXPECT_EQ(b.stats(f).components, 1) << r->contours.features[static_cast<std::size_t>(f)].name;
+
+  auto cut = cutToReference(b.volume, *o.reference, 2);
+  ASSERT_TRUE(cut) << cut.error().message;
+  EXPECT_EQ(cut->dropped, (std::vector<std::size_t>{0, 0}));
+  const LabelVolume& v = cut->volume;
+  ASSERT_EQ(v.grid.nz, 25);
+  for (int f = 0; f < 2; ++f) {
+    const bool isBody = r->contours.features[static_cast<std::size_t>(f)].name == "BODY";
+    std::vector<std::size_t> perSlice(25, 0);
+    for (int k = 0; k < 25; ++k)
+      for (int j = 0; j < 50; ++j)
+        for (int i = 0; i < 50; ++i) {
+          const Label l = v.at(i, j, k);  // the partition: the organ's voxels are BODY's too
+          perSlice[static_cast<std::size_t>(k)] += l == labelOfFeature(f) || (isBody && l != kBackground);
+        }
+    // Contours on planes first .. last, 2 mm apart: slabs from first - 1 to last + 1 mm; a CT slice
+    // on a slab boundary goes to the lower layer's side.
+    const int first = isBody ? 2 : 8, last = isBody ? 20 : 14;
+    const std::size_t area = isBody ? 41 * 41 : 11 * 11;
+    for (int k = 0; k < 25; ++k) {
+      const bool inside = k >= first && k <= last + 1;
+      EXPECT_EQ(perSlice[static_cast<std::size_t>(k)], inside ? area : 0u) << (isBody ? "BODY" : "organ") << ", CT slice " << k;
+    }
+  }
 }
 
 TEST_F(Dicom, ReferenceSeriesErrors) {

@@ -272,7 +272,9 @@ class DicomSeg : public test::ScratchDirTest {
 
 // The label volume voxel of CT pixel (i, j) on CT slice k: the grid has one background voxel
 // around the CT lattice (and here grows only to the right).
-Label ctVoxel(const LabelVolume& v, int i, int j, std::size_t k) { return v.at(i + 1, j + 1, static_cast<int>(k) + 1); }
+// CT voxel (i, j) of the slice at z: the grid's pixel (i + 1, j + 1) on the layer whose slab
+// holds z (the grid's layers are the contour planes; CT slices between them take the nearer).
+Label ctVoxel(const LabelVolume& v, int i, int j, double z) { return v.at(i + 1, j + 1, nearestLayer(v.grid, z)); }
 
 TEST_F(DicomSeg, SegmentsFramesAndReferencesReadBackWithDcmseg) {
   const Case c = build(structureSet());
@@ -290,7 +292,7 @@ TEST_F(DicomSeg, SegmentsFramesAndReferencesReadBackWithDcmseg) {
     for (std::size_t k = 0; k < ct_.sliceZ.size(); ++k)
       for (int j = 0; j < ct_.rows; ++j)
         for (int i = 0; i < ct_.columns; ++i)
-          if (ctVoxel(c.volume, i, j, k) == labelOfFeature(f)) any = expectedFrames[{f, k}] = true;
+          if (ctVoxel(c.volume, i, j, ct_.sliceZ[k]) == labelOfFeature(f)) any = expectedFrames[{f, k}] = true;
     if (any) featureOf.push_back(f);
   }
   // organ, core and wide; the speck has no voxel.
@@ -367,7 +369,7 @@ TEST_F(DicomSeg, SegmentsFramesAndReferencesReadBackWithDcmseg) {
     int differences = 0;
     for (int j = 0; j < ct_.rows; ++j)
       for (int i = 0; i < ct_.columns; ++i)
-        differences += (pixels->pixData[j * ct_.columns + i] != 0) != (ctVoxel(c.volume, i, j, k) == labelOfFeature(f));
+        differences += (pixels->pixData[j * ct_.columns + i] != 0) != (ctVoxel(c.volume, i, j, ct_.sliceZ[k]) == labelOfFeature(f));
     EXPECT_EQ(differences, 0) << "frame " << frame << ", feature " << f << ", slice " << k;
   }
   EXPECT_EQ(seen.size(), expectedFrames.size());

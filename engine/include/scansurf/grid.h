@@ -24,9 +24,10 @@ struct GridOptions {
   // Slice z values closer than this (input units) are one plane.
   double sliceTolerance = kDefaultSliceTolerance;
   // When set (and voxelSize, nx, ny are not), the grid is the reference lattice extended by
-  // whole pixels and layers at its own spacing: one background pixel beyond the reference and
-  // the contours on each side in x and y, one layer below and above its slices. Every
-  // contour slice must lie on a reference slice (within sliceTolerance).
+  // whole pixels: one background pixel beyond the reference and the contours on each side in
+  // x and y; its layers are the reference slices that hold contours, one layer below and above
+  // them. Every contour slice must lie on a reference slice (within sliceTolerance); reference
+  // slices between contour planes belong to the nearer plane (nearestLayer).
   std::optional<GridReference> reference;
 };
 
@@ -62,5 +63,10 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options);
 
 // The layer whose plane is within tolerance of z, or -1.
 int layerOfZ(const Grid& grid, double z, double tolerance);
+
+// The layer whose slab holds z: the nearest layer (ties: the lower one), so that a slice of a
+// finer image lattice between two contour planes takes the nearer plane's labels (the slab
+// rule). The padding layers hold everything beyond the planes' slabs.
+int nearestLayer(const Grid& grid, double z);
 
 }  // namespace scansurf
