@@ -32,9 +32,9 @@ int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
     wins = 2 * fromPlane <= n;
     return max(n * d, kFlatLidSlope * (2 * fromPlane - n));
   }
-  const int erosion = capTable.erosion[n * 17 + fromPlane];
+  const int erosion = capTable.erosion[e.capTable + fromPlane];  // a dome as high as the gap
   if (erosion < 0) return kFarAway;
-  return n * (d + ((fieldRadii.radii[field] * erosion) >> 12));
+  return n * (d + erosion);
 }
 
 // Deep inside one label on both planes (see interpolation_plan.h): that label, no competition.
@@ -72,7 +72,7 @@ void main() {
     store(pair, m, x, y, slot, planeLabel(pair.planeA, x, y), 0xFFFFu);
     return;
   }
-  int best = kFarAway, second = kFarAway, united = kFarAway, winner = 0, extruded = 0, extrudedLabel = 0;
+  int best = kFarAway, second = kFarAway, united = kFarAway, winner = 0, extruded = 0, extrudedLabel = 0, capMargin = kFarAway;
   for (int i = first; i < first + count; ++i) {
     const PairEntry e = entryTable.entries[tileEntries.entries[i]];
     if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
@@ -81,17 +81,18 @@ void main() {
     if (e.label == 0) united = v;
     else if (wins && v < best) second = best, best = v, winner = e.label;
     else if (v < second) second = v;
-    const bool flatCapped = (e.fieldA < 0 || e.fieldB < 0) && (push.roundCaps == 0u || e.flatCap != 0);
-    if (wins && v < 0 && flatCapped) extruded = v, extrudedLabel = e.label;
+    const bool capped = e.label != 0 && (e.fieldA < 0 || e.fieldB < 0);
+    if (wins && v < 0 && capped && (extrudedLabel == 0 || v < extruded)) extruded = v, extrudedLabel = e.label;
+    if (wins && v >= 0 && capped) capMargin = min(capMargin, v);  // how far a cap is from taking the voxel
   }
-  if (extrudedLabel != 0) {  // a flat cap keeps its plane's region up to its lid
+  if (extrudedLabel != 0) {  // a cap keeps its region (a flat cap up to its lid, a dome as it narrows)
     const uint c = uint(min((-extruded + pair.factor / 2) / pair.factor, 65535));
     store(pair, m, x, y, slot, uint(extrudedLabel), c);
     return;
   }
   const int level = min(best, united);
   const bool labelled = winner != 0 && level < 0;
-  const int clearance = labelled ? min(second - best, -level) : level;
+  const int clearance = min(labelled ? min(second - best, -level) : level, capMargin);
   const uint c = uint(min((clearance + pair.factor / 2) / pair.factor, 65535));
   const uint label = labelled ? uint(winner) : 0u;
   store(pair, m, x, y, slot, label, c);

@@ -3,6 +3,7 @@
 #include "geometry/interpolation_plan.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <string>
 
@@ -183,6 +184,7 @@ class SlabPlanner {
     const std::size_t firstEntry = slab_.entries.size();
     addEntries(p, k);
     markTouchingCaps(k, firstEntry);
+    addCapTables(firstEntry, factor);
     addTiles(firstEntry);
     slab_.pairs.push_back(pair);
   }
@@ -208,7 +210,7 @@ class SlabPlanner {
     labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
     std::vector<bool> overlap;
     for (Label label : labels) {
-      shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1, 0};
+      shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1, 0, -1};
       for (int f : {e.fieldA, e.fieldB}) {
         if (f < 0) continue;
         const shared::DistanceField& d = slab_.fields[static_cast<std::size_t>(f)];
@@ -228,8 +230,21 @@ class SlabPlanner {
     }
   }
 
+  // Each entry on one plane only gets its place for factor + 1 dome erosions.
+  void addCapTables(std::size_t first, int factor) {
+    for (std::size_t i = first; i < slab_.entries.size(); ++i) {
+      shared::PairEntry& e = slab_.entries[i];
+      if ((e.fieldA >= 0) == (e.fieldB >= 0)) continue;
+      e.capTable = static_cast<std::int32_t>(slab_.capInts);
+      slab_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, slab_.capInts});
+      slab_.capInts += static_cast<std::size_t>(factor) + 1;
+    }
+  }
+
   // Labels that end at this pair (present on one plane only) and touch another such label on
-  // their plane get flat caps.
+  // their plane get flat caps; so do a label that ends on plane A and one that begins on plane
+  // B over it, whose domes (each as high as the whole gap) would overlap: flat caps meet at
+  // half the gap, each keeping its own half slab.
   void markTouchingCaps(int k, std::size_t first) {
     std::vector<char> endsA(65536, 0), endsB(65536, 0);
     bool any = false;
@@ -243,6 +258,11 @@ class SlabPlanner {
     std::vector<char> touching(65536, 0);
     markTouching(k, endsA, touching);
     markTouching(k + 1, endsB, touching);
+    for (int y = 0; y < g_.ny; ++y)
+      for (int x = 0; x < g_.nx; ++x) {
+        const Label a = volume_.at(x, y, k), b = volume_.at(x, y, k + 1);
+        if (endsA[a] && endsB[b]) touching[a] = touching[b] = 1;
+      }
     for (std::size_t i = first; i < slab_.entries.size(); ++i)
       if (touching[static_cast<std::size_t>(slab_.entries[i].label)]) slab_.entries[i].flatCap = 1;
   }
@@ -320,10 +340,19 @@ InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCe
   return slab;
 }
 
-std::int32_t roundCapErosion(int factor, int m) {
-  if (2 * m >= factor) return -1;
-  const double t = 2.0 * m / factor;
-  return static_cast<std::int32_t>(std::lround(4096.0 * (1.0 - std::sqrt(1.0 - t * t))));
+void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out) {
+  std::vector<std::int32_t> depths;  // inside, deepest first
+  for (std::size_t i = 0; i < count; ++i)
+    if (values[i] < 0) depths.push_back(-values[i]);
+  std::sort(depths.begin(), depths.end(), std::greater<>());
+  const std::size_t area = depths.size();
+  out[0] = 0;
+  for (int m = 1; m < factor; ++m) {
+    // Keep the `keep` deepest pixels: erode to the depth of the next one (ties erode more).
+    const auto keep = static_cast<std::size_t>(std::llround(static_cast<double>(area) * (factor - m) / factor));
+    out[m] = keep >= area ? 0 : depths[keep];
+  }
+  out[factor] = -1;
 }
 
 }  // namespace scansurf

@@ -90,6 +90,15 @@ struct InterpolationSlab {
   std::vector<std::int32_t> tileEntries;
   std::size_t fieldValues = 0;  // ints of the field buffer
   std::size_t scratchInts = 0;  // ints of the scratch buffer
+  // Entries on one plane only (round caps), with their dome erosions' place in the cap table:
+  // filled from the fields once they are computed (capErosionTable).
+  struct CappedEntry {
+    int field = 0;
+    int factor = 1;
+    std::size_t table = 0;
+  };
+  std::vector<CappedEntry> cappedEntries;
+  std::size_t capInts = 0;
   std::size_t deviceBytes(const Grid& grid) const;
 };
 
@@ -108,9 +117,26 @@ std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& cen
 InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
                                         const std::vector<int>& factors);
 
-// Round caps: the erosion at layer m of n counted from the plane where the label is, in
-// 1/4096 of its largest depth; -1 when the cap has closed (t >= 1/2).
-std::int32_t roundCapErosion(int factor, int m);
+// Round caps: a dome as high as the whole gap, whose cross-section at layer m of n counted
+// from the label's plane keeps (1 - m/n) of the label's area there, so the cap holds what a
+// flat half slab holds (a paraboloid over a disc) whatever the outline's shape. Its region at
+// layer m is {d < -erosion(m)}, d the label's field on its plane, the erosions read off the
+// field's own depths: out gets factor + 1 erosions (1/16 pixel), the last -1 (closed).
+// values: the field's window values (negative inside).
+void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out);
+
+// Every round-capped entry's erosions (PairEntry::capTable) in one table of slab.capInts,
+// from each field's values (valuesOf(field): its window, as DistanceField::offset addresses).
+template <typename ValuesOf>
+std::vector<std::int32_t> capErosionTable(const InterpolationSlab& slab, ValuesOf valuesOf) {
+  std::vector<std::int32_t> table(slab.capInts, -1);
+  for (const InterpolationSlab::CappedEntry& ref : slab.cappedEntries) {
+    const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(ref.field)];
+    domeErosions(valuesOf(ref.field), static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h), ref.factor,
+                 table.data() + ref.table);
+  }
+  return table;
+}
 // Flat caps: whether the label may still win at layer m of n counted from its plane, and its
 // value there: its plane's distance, but at least a ramp through zero at half the gap, so that
 // the lid's clearance puts it at half the gap, whatever the depth below it.

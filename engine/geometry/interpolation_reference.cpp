@@ -148,15 +148,13 @@ struct Sampler {
       wins = flatCapOpen(n, fromPlane);
       return flatCapValue(d, n, fromPlane);
     }
-    const std::int32_t erosion = roundCapErosion(n, fromPlane);
+    const std::int32_t erosion = fields.capErosions[static_cast<std::size_t>(e.capTable + fromPlane)];  // a dome
     if (erosion < 0) return kFarAway;
-    return n * (d + ((fields.radii[static_cast<std::size_t>(field)] * erosion) >> 12));
+    return n * (d + erosion);
   }
 
-  // A label that ends here with a flat cap (present on one plane only).
-  bool flatCapped(const shared::PairEntry& e) const {
-    return (e.fieldA < 0 || e.fieldB < 0) && (caps == CapShape::Flat || e.flatCap != 0);
-  }
+  // A label that ends here (present on one plane only): its cap keeps its region.
+  static bool capped(const shared::PairEntry& e) { return e.label != kBackground && (e.fieldA < 0 || e.fieldB < 0); }
 
   // Whether the voxel lies deep inside one label on both planes (see interpolation_plan.h).
   bool deepInside(const shared::PairPlan& pair, int x, int y, std::int32_t first, std::int32_t count) const {
@@ -179,7 +177,7 @@ struct Sampler {
     const std::int32_t count = flagged & ~kMovingTile;
     if (!(flagged & kMovingTile) && deepInside(pair, x, y, first, count))
       return volume.at(x, y, slab.firstPlane + pair.planeA) | 0xFFFF0000u;
-    std::int32_t best = kFarAway, second = kFarAway, united = kFarAway, extruded = 0;
+    std::int32_t best = kFarAway, second = kFarAway, united = kFarAway, extruded = 0, capMargin = kFarAway;
     Label winner = kBackground, extrudedLabel = kBackground;
     for (std::int32_t i = first; i < first + count; ++i) {
       const shared::PairEntry& e = slab.entries[static_cast<std::size_t>(slab.tileEntries[static_cast<std::size_t>(i)])];
@@ -189,15 +187,17 @@ struct Sampler {
       if (e.label == kBackground) united = v;
       else if (wins && v < best) second = best, best = v, winner = static_cast<Label>(e.label);
       else if (v < second) second = v;
-      if (wins && v < 0 && flatCapped(e)) extruded = v, extrudedLabel = static_cast<Label>(e.label);
+      if (wins && v < 0 && capped(e) && (extrudedLabel == kBackground || v < extruded))
+        extruded = v, extrudedLabel = static_cast<Label>(e.label);
+      if (wins && v >= 0 && capped(e)) capMargin = std::min(capMargin, v);  // how far a cap is from taking the voxel
     }
-    if (extrudedLabel != kBackground) {  // a flat cap keeps its plane's region up to its lid
+    if (extrudedLabel != kBackground) {  // a cap keeps its region (a flat cap up to its lid, a dome as it narrows)
       const auto c = static_cast<std::uint32_t>(std::min((-extruded + pair.factor / 2) / pair.factor, 65535));
       return extrudedLabel | (c << 16);
     }
     const std::int32_t level = std::min(best, united);
     const bool labelled = winner != kBackground && level < 0;
-    const std::int32_t clearance = labelled ? std::min(second - best, -level) : level;
+    const std::int32_t clearance = std::min(labelled ? std::min(second - best, -level) : level, capMargin);
     const auto c = static_cast<std::uint32_t>(std::min((clearance + pair.factor / 2) / pair.factor, 65535));
     return (labelled ? winner : 0u) | (c << 16);
   }
@@ -247,6 +247,9 @@ SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<
     const shared::DistanceField& f = slab.fields[i];
     fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset, out.radii[i]);
   }
+  out.capErosions = capErosionTable(slab, [&](int field) {
+    return out.values.data() + slab.fields[static_cast<std::size_t>(field)].offset;
+  });
   return out;
 }
 

@@ -13,6 +13,7 @@ namespace scansurf {
 struct SlabFields {
   std::vector<std::int32_t> values;  // InterpolationSlab::fieldValues
   std::vector<std::int32_t> radii;   // per field: its largest depth inside (1/16 units)
+  std::vector<std::int32_t> capErosions;  // the slab's cap table (capErosionTable)
 };
 
 // Exact squared distance (weights w) from each of n samples to the nearest sample whose

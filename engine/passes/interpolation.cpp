@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
 
 #include "geometry/interpolated_volume.h"
@@ -36,7 +38,7 @@ struct SlabBuffers {
   static VkBufferUsageFlags usageOf(std::uint32_t binding) {
     VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     if (domainOf(binding) == gpu::MemoryDomain::Device || binding == kPlanes) usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    if (binding == kOutput) usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    if (binding == kOutput || binding == kValues) usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     return usage;
   }
   // Whether the binding now has a new buffer (the descriptor set needs rewriting).
@@ -69,6 +71,7 @@ struct Interpolator::State {
   gpu::Owned<VkDescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
   SlabBuffers buffers;
+  gpu::Buffer cappedFields;  // the round caps' fields, read back for their dome erosions
   std::size_t slabBudget = std::size_t{64} << 20;
   int lastSlabs = 0;
 };
@@ -102,13 +105,6 @@ Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
   return {};
 }
 
-std::vector<std::int32_t> capTable() {
-  std::vector<std::int32_t> table(17 * 17, -1);
-  for (int n = 1; n <= InterpolationOptions::kMaxFactor; ++n)
-    for (int m = 0; m <= n; ++m) table[static_cast<std::size_t>(n * 17 + m)] = roundCapErosion(n, m);
-  return table;
-}
-
 // Fills the buffers for `slab` (the planes only when they are not copied on the device from
 // devicePlanes); true when any buffer is new.
 Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
@@ -133,7 +129,7 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
   SCANSURF_TRY(track(b.upload(ctx, kTileRanges, slab.tileRanges)));
   SCANSURF_TRY(track(b.upload(ctx, kTileEntries, slab.tileEntries)));
   SCANSURF_TRY(track(b.reserve(ctx, kOutput, plane * static_cast<std::size_t>(slab.outputLayers) * 4)));
-  SCANSURF_TRY(track(b.upload(ctx, kCaps, capTable())));
+  SCANSURF_TRY(track(b.reserve(ctx, kCaps, slab.capInts * 4)));  // filled once the fields are made
   return fresh;
 }
 
@@ -188,6 +184,60 @@ void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::
   vkCmdCopyBuffer(cmd, output.handle(), words.handle(), 1, &region);
 }
 
+namespace {
+
+// The slab's distance fields: three passes over every field.
+void recordFields(VkCommandBuffer cmd, const Interpolator::State& s, const InterpolationSlab& slab, const shared::InterpolatePush& push) {
+  std::uint32_t longest = 0, widest = 0;
+  for (const shared::DistanceField& f : slab.fields)
+    longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}), widest = std::max(widest, static_cast<std::uint32_t>(f.w));
+  for (const auto& [pipeline, lines] : {std::pair{s.lines.get(), longest}, std::pair{s.envelopes.get(), longest},
+                                        std::pair{s.finish.get(), widest}}) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    dispatchFields(cmd, s.layout.get(), push, slab.fields.size(), lines);
+    computeBarrier(cmd);
+  }
+}
+
+// The round caps' dome erosions (capErosionTable) from their fields, read back once made, into
+// the cap table the interpolation pass reads.
+Result<void> fillCapTable(const gpu::Context& ctx, Interpolator::State& s, const InterpolationSlab& slab) {
+  std::vector<std::size_t> at(slab.fields.size(), SIZE_MAX);
+  std::vector<VkBufferCopy> regions;
+  std::size_t ints = 0;
+  for (const InterpolationSlab::CappedEntry& c : slab.cappedEntries) {
+    const auto field = static_cast<std::size_t>(c.field);
+    if (at[field] != SIZE_MAX) continue;
+    const shared::DistanceField& f = slab.fields[field];
+    const std::size_t n = static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h);
+    at[field] = ints;
+    regions.push_back({static_cast<VkDeviceSize>(f.offset) * 4, ints * 4, n * 4});
+    ints += n;
+  }
+  if (s.cappedFields.size() < std::max<std::size_t>(ints, 1) * 4) {
+    s.cappedFields = gpu::Buffer{};
+    SCANSURF_ASSIGN_OR_RETURN(s.cappedFields, gpu::Buffer::create(ctx, std::max<std::size_t>(ints, 1) * 4,
+                                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
+  }
+  SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
+  VkCommandBuffer cmd = commands.cmd();
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT);
+  vkCmdCopyBuffer(cmd, s.buffers.buffers[kValues].handle(), s.cappedFields.handle(), static_cast<std::uint32_t>(regions.size()),
+                  regions.data());
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                     VK_ACCESS_2_HOST_READ_BIT);
+  SCANSURF_TRY(commands.submitAndWait());
+  SCANSURF_TRY(s.cappedFields.invalidate());
+  const auto* values = static_cast<const std::int32_t*>(s.cappedFields.mapped());
+  const std::vector<std::int32_t> table =
+      capErosionTable(slab, [&](int field) { return values + at[static_cast<std::size_t>(field)]; });
+  std::memcpy(s.buffers.buffers[kCaps].mapped(), table.data(), table.size() * 4);
+  return {};
+}
+
+}  // namespace
+
 Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
                                    const DistanceWeights& weights, CapShape caps, const SlabWords& store,
                                    const InterpolationDeviceIo& device) {
@@ -196,9 +246,16 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   SlabBuffers& buffers = state_->buffers;
   SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareSlab(ctx, buffers, volume, crossings, slab, device.planes != nullptr));
   if (fresh) bindSlab(ctx, state_->set, buffers);
+  const VkDeviceSize plane = static_cast<VkDeviceSize>(g.nx) * static_cast<VkDeviceSize>(g.ny);
+  shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx), static_cast<std::uint32_t>(g.ny),
+                               static_cast<std::uint32_t>(slab.fields.size()), 0, weights.x, weights.y, weights.fixedScale,
+                               caps == CapShape::Round ? 1u : 0u, static_cast<std::uint32_t>(kTileSize),
+                               static_cast<std::uint32_t>(slab.tilesX), weights.unit, farDistance(g, weights),
+                               deepDistance(g)};
+  // The fields first; with round caps their domes need the fields' depths before interpolation.
+  const bool domes = caps == CapShape::Round && slab.capInts > 0;
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
-  const VkDeviceSize plane = static_cast<VkDeviceSize>(g.nx) * static_cast<VkDeviceSize>(g.ny);
   if (device.planes)
     recordPlanesCopy(cmd, *device.planes, buffers.buffers[kPlanes], plane * static_cast<VkDeviceSize>(slab.firstPlane) * sizeof(Label),
                      plane * static_cast<VkDeviceSize>(slab.planes) * sizeof(Label));
@@ -206,19 +263,16 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
-  shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx), static_cast<std::uint32_t>(g.ny),
-                               static_cast<std::uint32_t>(slab.fields.size()), 0, weights.x, weights.y, weights.fixedScale,
-                               caps == CapShape::Round ? 1u : 0u, static_cast<std::uint32_t>(kTileSize),
-                               static_cast<std::uint32_t>(slab.tilesX), weights.unit, farDistance(g, weights),
-                               deepDistance(g)};
-  std::uint32_t longest = 0, widest = 0;
-  for (const shared::DistanceField& f : slab.fields)
-    longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}), widest = std::max(widest, static_cast<std::uint32_t>(f.w));
-  for (const auto& [pipeline, lines] : {std::pair{state_->lines.get(), longest}, std::pair{state_->envelopes.get(), longest},
-                                        std::pair{state_->finish.get(), widest}}) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    dispatchFields(cmd, state_->layout.get(), push, slab.fields.size(), lines);
-    computeBarrier(cmd);
+  recordFields(cmd, *state_, slab, push);
+  std::optional<gpu::OneShotCommands> second;
+  if (domes) {
+    SCANSURF_TRY(commands.submitAndWait());
+    SCANSURF_TRY(fillCapTable(ctx, *state_, slab));
+    SCANSURF_ASSIGN_OR_RETURN(second, gpu::OneShotCommands::begin(ctx));
+    cmd = second->cmd();
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->interpolate.get());
   for (std::size_t p = 0; p < slab.pairs.size(); ++p) {
@@ -231,7 +285,7 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   if (device.words) recordWordsCopy(cmd, output, *device.words, device.wordsOffset, plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                      VK_ACCESS_2_HOST_READ_BIT);
-  SCANSURF_TRY(commands.submitAndWait());
+  SCANSURF_TRY(second ? second->submitAndWait() : commands.submitAndWait());
   SCANSURF_TRY(output.invalidate());
   store(static_cast<const std::uint32_t*>(output.mapped()));
   return {};

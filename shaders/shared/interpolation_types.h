@@ -36,6 +36,7 @@ SCANSURF_STRUCT(PairEntry) {
   int_t shiftX, shiftY;
   int_t x0, y0, x1, y1;  // where the label may win (inclusive pixel box)
   int_t flatCap;         // 1: the label ends here touching another that ends: a flat cap
+  int_t capTable;        // on one plane only: its first of factor + 1 dome erosions in the cap table
 };
 
 // Two consecutive planes of the slab, the interpolated layers between them and the entries
@@ -51,7 +52,7 @@ SCANSURF_STRUCT(PairPlan) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 40 && sizeof(PairPlan) == 20);
+static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 44 && sizeof(PairPlan) == 20);
 struct InterpolatePush {
   std::uint32_t nx, ny;
   std::uint32_t count;        // fields (EDT passes) or entries (unused by interpolate)
