@@ -12,11 +12,13 @@
 //  - value(L) = (1-t) dA(x) + t dB(x). When L's regions on A and B share no pixel (a vessel
 //    that moved further than its width) both fields are sampled along L's centroid shift
 //    (x - t*shift on A, x + (1-t)*shift on B), so L moves instead of vanishing midway;
-//  - where L is on one plane only, it closes with a cap (CapShape): flat keeps its region
-//    on that plane up to half the gap, taking those voxels from any label that goes on (an
+//  - where L is on one plane only, it closes with a cap (CapShape) that takes its voxels from
+//    any label that goes on: flat keeps its region on that plane up to half the gap (an
 //    extrusion and a lid, as planning systems count volume; beyond the lid L only counts as
-//    runner-up, for the lid's clearance); round erodes it by R (1 - sqrt(1 - (2t)^2)) for t < 1/2, R being L's largest
-//    depth on that plane, so the region shrinks to nothing at half the gap;
+//    runner-up, for the lid's clearance); round erodes it layer by layer so that (1 - t) of its
+//    area on that plane remains (domeErosions), a dome as high as the gap holding the flat
+//    half slab's volume. A voxel outside a cap keeps the cap's value as its clearance when
+//    that is smaller, so the surface between them lies where the cap's level crosses zero;
 //  - the union of all features gets a value of its own the same way;
 //  - a voxel with one label on both planes, at least deepDistance from that label's boundary
 //    on both and in no tile of a shifting label, keeps that label without the competition

@@ -8,11 +8,14 @@
 
 namespace scansurf {
 
-// How a feature closes beyond its first and last contour plane. Both close at half the gap
-// to the next layer of the grid (where the surface closed before interpolation existed).
+// How a feature closes beyond its first and last contour plane (with interpolation). Both hold
+// the volume the slab rule gives the end plane beyond it: its contour's area times half the gap.
 enum class CapShape {
   Flat,   // the end contour extruded half a gap, then a flat lid
-  Round,  // a dome half a gap high over the end contour (a quarter ellipse in profile)
+  // A dome as high as the whole gap, its cross-section shrinking linearly in area to nothing at
+  // the next plane (a paraboloid over a disc), so it holds a flat half slab's volume; where
+  // another feature begins over the end contour on the next plane, flat.
+  Round,
 };
 
 struct InterpolationOptions {
@@ -28,10 +31,7 @@ struct InterpolationOptions {
   static constexpr int kMaxFactor = 16;
   static constexpr int kAutoMinimum = 3;
   std::uint64_t autoVoxelLimit = std::uint64_t{96} << 20;
-  // Round by default: closer to round shapes at their poles (a 40 mm sphere in 2 mm slices:
-  // 0.041 mm mean distance against 0.059 mm flat). Flat keeps the volume planning systems give
-  // a structure (its contours' areas times the slice spacing); round encloses a little less
-  // (the phantom's 7-slice target: 5 % less).
+  // Round by default: rounder at the poles than a flat lid; both keep the slab rule's volume.
   CapShape caps = CapShape::Round;
 };
 
