@@ -205,8 +205,23 @@ constexpr const char* kLockName = ".scansurf.lock";
 void unlinkOwnLock(const fs::path& dir, int fd) {
   const fs::path file = dir / kLockName;
   struct stat held {}, named {};
-  if (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino && held.st_dev == named.st_dev)
+  if (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino && held.st_dev == named.st_dev)
     ::unlink(file.c_str());
+}
+
+// Opens (or creates) the lock file itself, never what a link of that name points to: a link
+// planted there must not let a run empty, overwrite or create a file elsewhere.
+Result<int> openLockFile(const fs::path& file) {
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd < 0 && errno == ELOOP)
+    return makeError(Errc::Io, "the run lock '" + file.string() + "' is a symbolic link; scansurf never follows one there (remove it)");
+  if (fd < 0) return makeError(Errc::Io, "cannot open the run lock '" + file.string() + "': " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return makeError(Errc::Io, "the run lock '" + file.string() + "' is not a regular file (remove it)");
+  }
+  return fd;
 }
 
 OutputStaging::~OutputStaging() {
@@ -222,11 +237,10 @@ Result<void> OutputStaging::lock(const fs::path& directory) {
   int fd = -1;
   bool busy = false;
   for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
-    fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) return makeError(Errc::Io, "cannot open the run lock '" + file.string() + "': " + std::strerror(errno));
+    SCANSURF_ASSIGN_OR_RETURN(fd, openLockFile(file));
     busy = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
     struct stat held {}, named {};
-    if (busy || (::fstat(fd, &held) == 0 && ::stat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+    if (busy || (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
                  held.st_dev == named.st_dev))
       break;  // held by another run, or locked and still the file of that name
     ::close(fd);  // its last holder unlinked it meanwhile: lock the new one

@@ -200,6 +200,24 @@ else()
   message(FATAL_ERROR "a finished run left its lock file in ${OUT}/names")
 endif()
 
+# A link planted where the lock goes is never followed: the file it points to keeps its
+# content, a dangling link creates nothing, and the run says why it stopped.
+file(MAKE_DIRECTORY "${OUT}/linked")
+file(WRITE "${OUT}/victim.txt" "keep me\n")
+file(CREATE_LINK "${OUT}/victim.txt" "${OUT}/linked/.scansurf.lock" SYMBOLIC)
+run_scansurf(4 "${EXAMPLES}/phantom.json" -o "${OUT}/linked" --grid 64 48 -q)
+expect_output("the run lock '.*linked/.scansurf.lock' is a symbolic link; scansurf never follows one there")
+file(READ "${OUT}/victim.txt" victim)
+if(NOT victim STREQUAL "keep me\n" OR NOT IS_SYMLINK "${OUT}/linked/.scansurf.lock")
+  message(FATAL_ERROR "the run followed the lock link: victim now '${victim}'")
+endif()
+file(REMOVE "${OUT}/linked/.scansurf.lock")
+file(CREATE_LINK "${OUT}/nowhere.txt" "${OUT}/linked/.scansurf.lock" SYMBOLIC)
+run_scansurf(4 "${EXAMPLES}/phantom.json" -o "${OUT}/linked" --grid 64 48 -q)
+if(EXISTS "${OUT}/nowhere.txt")
+  message(FATAL_ERROR "a dangling lock link made a file outside the output folder")
+endif()
+
 # SIGTERM at any stage (here after 3 s of a ~10 s run, whichever stage that is) leaves
 # nothing behind: no staging folder, no partial file, the old output untouched.
 find_program(TIMEOUT timeout)
