@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 
 #include "core/utf8.h"
 #include "io/atomic_file.h"
@@ -65,8 +66,13 @@ std::unique_ptr<draco::Mesh> sceneMesh(const GltfFeature& f, const GlbOptions& o
   return mesh;
 }
 
+// Draco's glTF encoder writes names into its JSON unescaped (a quote, backslash or control
+// character in a name made it unreadable), so it gets a placeholder per feature, and the JSON
+// library writes the real names afterwards (realNames).
+std::string placeholderName(int material) { return "scansurf-feature-" + std::to_string(material); }
+
 void addFeature(draco::Scene& scene, const GltfFeature& f, const GlbOptions& options, int material) {
-  const std::string name = validUtf8(f.name);  // glTF's JSON is UTF-8; ROI names may be Latin-1
+  const std::string name = placeholderName(material);
   const draco::MeshIndex meshIndex = scene.AddMesh(sceneMesh(f, options));
   scene.GetMesh(meshIndex).SetName(name);
   draco::Material* m = scene.GetMaterialLibrary().MutableMaterial(material);
@@ -83,6 +89,22 @@ void addFeature(draco::Scene& scene, const GltfFeature& f, const GlbOptions& opt
   scene.GetNode(node)->SetName(name);
   scene.GetNode(node)->SetMeshGroupIndex(group);
   scene.AddRootNodeIndex(node);
+}
+
+// Every node, mesh and material name that is a placeholder becomes its feature's name, valid
+// UTF-8 (glTF's JSON is UTF-8; ROI names may be Latin-1), escaped by the JSON library.
+void realNames(nlohmann::json& gltf, const std::vector<std::string>& names) {
+  for (const char* kind : {"nodes", "meshes", "materials"}) {
+    if (!gltf.contains(kind)) continue;
+    for (nlohmann::json& item : gltf[kind]) {
+      if (!item.contains("name") || !item["name"].is_string()) continue;
+      const std::string placeholder = item["name"].get<std::string>();
+      const std::string prefix = placeholderName(0).substr(0, placeholderName(0).size() - 1);
+      if (placeholder.rfind(prefix, 0) != 0) continue;
+      const std::size_t i = std::strtoul(placeholder.c_str() + prefix.size(), nullptr, 10);
+      if (i < names.size() && placeholder == placeholderName(static_cast<int>(i))) item["name"] = validUtf8(names[i]);
+    }
+  }
 }
 
 // Patient LPS in `units` to glTF's y-up metres, column-major: x -> x, z (superior) -> y,
@@ -130,9 +152,12 @@ double metresPerUnit(const std::string& units) {
 
 Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFeature> features, const GlbOptions& options) {
   draco::Scene scene;
-  int materials = 0;
+  std::vector<std::string> names;  // by material (one per feature with a surface)
   for (const GltfFeature& f : features)
-    if (f.mesh != nullptr && f.mesh->triangleCount() > 0) addFeature(scene, f, options, materials++);
+    if (f.mesh != nullptr && f.mesh->triangleCount() > 0) {
+      addFeature(scene, f, options, static_cast<int>(names.size()));
+      names.push_back(f.name);
+    }
 
   draco::GltfEncoder encoder;
   draco::EncoderBuffer buffer;
@@ -141,6 +166,7 @@ Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFea
   SCANSURF_ASSIGN_OR_RETURN(GlbContainer glb, parseGlb(reinterpret_cast<const std::uint8_t*>(buffer.data()), buffer.size()));
   nlohmann::json gltf = nlohmann::json::parse(glb.json, nullptr, false);
   if (gltf.is_discarded()) return makeError(Errc::Internal, "cannot encode '" + path.string() + "': unreadable glTF JSON from Draco");
+  realNames(gltf, names);
   adjustScene(gltf, options);
   glb.json = gltf.dump();
   const std::vector<std::uint8_t> bytes = serializeGlb(glb);

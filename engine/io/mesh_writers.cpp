@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/text_fields.h"
 #include "io/atomic_file.h"
 #include "io/draco_writer.h"
 #include "scansurf/version.h"
@@ -23,7 +24,8 @@ Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh
   draco::EncoderBuffer buffer;
   if (!encoder.EncodeToBuffer(*dm, &buffer))
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco's OBJ encoder failed");
-  const std::string comment = std::string("# scansurf ") + version() + ": surface of \"" + name + "\", input units\n";
+  const std::string comment =
+      std::string("# scansurf ") + version() + ": surface of \"" + oneLineText(name, "\"") + "\", input units\n";
   return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
     SCANSURF_TRY(file.write(comment.data(), comment.size()));
     return file.write(buffer.data(), buffer.size());

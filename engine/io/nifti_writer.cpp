@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 
+#include "core/text_fields.h"
 #include "io/atomic_file.h"
 #include "scansurf/version.h"
 
@@ -145,9 +146,8 @@ Result<void> writeItkSnapLabels(const std::filesystem::path& path, const std::ve
   t << line << "\"Clear Label\"\n";
   for (const LabelEntry& e : table) {
     std::string name = e.name;
-    std::replace(name.begin(), name.end(), '"', '\'');
-    std::replace(name.begin(), name.end(), '\n', ' ');
-    std::replace(name.begin(), name.end(), '\r', ' ');
+    std::replace(name.begin(), name.end(), '"', '\'');  // the field is quoted
+    name = oneLineText(name);
     std::snprintf(line, sizeof line, "%5d %5d %4d %4d %8d %2d %2d    ", int{e.label}, int{e.color[0]}, int{e.color[1]},
                   int{e.color[2]}, 1, 1, 1);
     t << line << '"' << name << "\"\n";

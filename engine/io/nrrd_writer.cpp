@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/text_fields.h"
 #include "io/atomic_file.h"
 
 namespace scansurf {
@@ -22,12 +23,8 @@ std::string vec(const std::array<double, 3>& v) {
   return buf;
 }
 
-// Segment names and values must stay on one header line.
-std::string oneLine(std::string s) {
-  std::replace(s.begin(), s.end(), '\n', ' ');
-  std::replace(s.begin(), s.end(), '\r', ' ');
-  return s;
-}
+// Segment names and values must stay on one header line (and start no key of their own).
+std::string oneLine(const std::string& s) { return oneLineText(s); }
 
 Result<std::vector<unsigned char>> gzip(const void* data, std::size_t size, const std::filesystem::path& path) {
   z_stream z{};

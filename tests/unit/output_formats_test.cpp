@@ -348,6 +348,26 @@ TEST_F(OutputFormatsTest, NamesThatAreNotUtf8StillWrite) {
 
 CompactMesh readObj(const fs::path& path);
 
+// Names with quotes, backslashes and control characters: the GLB keeps them exactly (Draco's
+// encoder once wrote them unescaped and the run failed), and in the OBJ a newline cannot start
+// a statement of its own (a name with "\nmtllib /etc/passwd\nv 0 0 0" added lines).
+TEST_F(OutputFormatsTest, NamesWithQuotesAndControlCharactersStayNames) {
+  Built b = nested();
+  const std::string hostile = "PTV \"boost\" \\ tab\tline\nmtllib /etc/passwd\nv 0 0 0\x1B[2J";
+  b.set.features[0].name = hostile;
+  ASSERT_TRUE(writeScene(dir_ / "names.glb", b.set, b.surfaces));
+  const Glb glb = parseGlb(readFile(dir_ / "names.glb"));
+  EXPECT_EQ(glb.json["meshes"][0]["name"], hostile);
+  EXPECT_EQ(glb.json["nodes"][0]["name"], hostile);
+  EXPECT_EQ(glb.json["materials"][0]["name"], hostile);
+  ASSERT_TRUE(writeObj(dir_ / "names.obj", b.meshes[0], hostile));
+  const std::string obj = readFile(dir_ / "names.obj");
+  EXPECT_EQ(obj.find("\nmtllib"), std::string::npos);
+  EXPECT_EQ(obj.find("\nv 0 0 0"), std::string::npos);
+  EXPECT_EQ(obj.find('\x1B'), std::string::npos);
+  EXPECT_EQ(readObj(dir_ / "names.obj").positions.size(), b.meshes[0].positions.size()) << "no vertex added";
+}
+
 // Every file records which scansurf made it.
 TEST_F(OutputFormatsTest, EveryFormatNamesItsGenerator) {
   const Built& b = nested();
