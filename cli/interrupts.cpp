@@ -39,6 +39,9 @@ sigset_t interruptSignals() {
 
 void installInterruptHandling() {
   ::signal(SIGXFSZ, SIG_IGN);
+  // A reader that closes our output (scansurf ... | head) must not kill the run mid-way: a
+  // write to it fails with EPIPE instead, which the summary's prints ignore.
+  ::signal(SIGPIPE, SIG_IGN);
   const sigset_t set = interruptSignals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);  // inherited by every thread created after this
   std::thread(watch).detach();

@@ -35,6 +35,20 @@ int fail(const Error& error) {
   return exitCode(error.code);
 }
 
+// No output may replace the input it is made from (a --report naming the input file would
+// overwrite the contours with the report).
+Result<void> refuseInputAsOutput(const OutputPlan& plan, const cli::CliOptions& o) {
+  std::error_code ec;
+  const std::pair<const char*, fs::path> targets[] = {{"-o", plan.glbFile},        {"-o", plan.dir},
+                                                      {"--report", plan.report},   {"--preview", plan.preview},
+                                                      {"--label-volume", plan.labelVolume}, {"--dicom-seg", plan.dicomSeg}};
+  for (const auto& [option, target] : targets)
+    if (!target.empty() && fs::exists(target, ec) && fs::equivalent(target, o.input, ec))
+      return makeError(Errc::InvalidArgument,
+                       std::string(option) + " '" + target.string() + "' is the input file " + o.input + "; choose another path");
+  return {};
+}
+
 // The outputs of the command line: `-o x.glb` writes one GLB scene; otherwise -o is a
 // directory for the per-feature files.
 Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
@@ -62,6 +76,7 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
   plan.report = o.report;
   plan.preview = o.preview;
   SCANSURF_TRY(checkOutputs(plan));
+  SCANSURF_TRY(refuseInputAsOutput(plan, o));
   return plan;
 }
 

@@ -218,6 +218,26 @@ if(EXISTS "${OUT}/nowhere.txt")
   message(FATAL_ERROR "a dangling lock link made a file outside the output folder")
 endif()
 
+# A reader that closes the output early (scansurf ... | head -c0) ends nothing badly: exit 0,
+# the files written, no staging folder or lock left.
+execute_process(COMMAND ${SCANSURF} "${EXAMPLES}/phantom.json" -o "${OUT}/piped" --grid 64 48 COMMAND head -c0
+                RESULTS_VARIABLE codes)
+list(GET codes 0 code)
+file(GLOB piped_left "${OUT}/piped/.scansurf*")
+if(NOT code EQUAL 0 OR piped_left OR NOT EXISTS "${OUT}/piped/BODY.ply")
+  message(FATAL_ERROR "output piped into head -c0: exit ${code}, left behind: ${piped_left}")
+endif()
+
+# No output replaces the input it is made from.
+file(COPY_FILE "${EXAMPLES}/phantom.json" "${OUT}/input.json")
+run_scansurf(2 "${OUT}/input.json" -o "${OUT}/self" --grid 64 48 --report "${OUT}/input.json")
+expect_output("--report '.*input.json' is the input file")
+file(SHA256 "${OUT}/input.json" input_hash)
+file(SHA256 "${EXAMPLES}/phantom.json" example_hash)
+if(NOT input_hash STREQUAL example_hash)
+  message(FATAL_ERROR "a run overwrote its input")
+endif()
+
 # SIGTERM at any stage (here after 3 s of a ~10 s run, whichever stage that is) leaves
 # nothing behind: no staging folder, no partial file, the old output untouched.
 find_program(TIMEOUT timeout)
