@@ -2,9 +2,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include "core/guard.h"
+#include "core/memory.h"
 #include "geometry/validate.h"
 #include "io/contours_json.h"
 #include "io/ct_series.h"
@@ -135,7 +137,27 @@ Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& 
   return {};
 }
 
+// An input is a regular file (a link to one is fine) that fits in memory: a link to
+// /dev/zero read gigabytes, and a FIFO with no writer hung the run. Reading a file takes a few
+// times its size while it is parsed, so one larger than a quarter of the memory available is
+// refused before it is read.
+Result<void> checkInputFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec) return makeError(Errc::Io, "cannot read " + path.string() + ": " + ec.message());
+  if (status.type() != std::filesystem::file_type::regular)
+    return makeError(Errc::InvalidInput, path.string() + ": not a regular file (a directory, device, FIFO or socket); "
+                                                         "scansurf reads contour files");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  const HostMemory memory = availableHostMemory();
+  if (!ec && memory.bytes > 0 && size > memory.bytes / 4)
+    return makeError(Errc::ResourceLimit, path.string() + ": " + formatBytes(size) + " to read, more than a quarter of the " +
+                                              formatBytes(memory.bytes) + " of memory available (" + memory.source + ")");
+  return {};
+}
+
 Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions& options) {
+  SCANSURF_TRY(checkInputFile(path));
   const InputFormat format = detectInputFormat(path);
   if (format == InputFormat::Unknown) return unrecognised(path);
   SCANSURF_TRY(checkOptionsApply(format, path, options));
@@ -187,6 +209,7 @@ Result<ContourSet> readContours(const std::filesystem::path& path, const ReadOpt
 }
 
 Result<ObjectListing> listObjects(const std::filesystem::path& path, const std::vector<std::string>& objectPatterns) {
+  SCANSURF_TRY(checkInputFile(path));
   const InputFormat format = detectInputFormat(path);
   if (format == InputFormat::Unknown) return unrecognised(path);
   if (format != InputFormat::ReconstructSeries && format != InputFormat::ImodModel)

@@ -228,6 +228,18 @@ if(NOT code EQUAL 0 OR piped_left OR NOT EXISTS "${OUT}/piped/BODY.ply")
   message(FATAL_ERROR "output piped into head -c0: exit ${code}, left behind: ${piped_left}")
 endif()
 
+# Inputs are regular files: a link to /dev/zero is not read for ever, a FIFO with no writer
+# does not hang the run.
+file(CREATE_LINK /dev/zero "${OUT}/zero.json" SYMBOLIC)
+run_scansurf(3 "${OUT}/zero.json" -o "${OUT}/zero")
+expect_output("zero.json: not a regular file")
+find_program(MKFIFO mkfifo)
+if(MKFIFO)
+  execute_process(COMMAND ${MKFIFO} "${OUT}/fifo.json")
+  run_scansurf(3 "${OUT}/fifo.json" -o "${OUT}/fifo")
+  expect_output("fifo.json: not a regular file")
+endif()
+
 # No output replaces the input it is made from.
 file(COPY_FILE "${EXAMPLES}/phantom.json" "${OUT}/input.json")
 run_scansurf(2 "${OUT}/input.json" -o "${OUT}/self" --grid 64 48 --report "${OUT}/input.json")
