@@ -45,6 +45,38 @@ std::size_t countDistinct(const Contour& contour) {
   return static_cast<std::size_t>(std::unique(pts.begin(), pts.end(), samePoint) - pts.begin());
 }
 
+// Whether b is a's closed polyline point for point, from any start and in either direction.
+bool sameLoop(const Contour& a, const Contour& b) {
+  const std::size_t n = a.points.size();
+  if (b.points.size() != n) return false;
+  for (std::size_t start = 0; start < n; ++start) {
+    if (!samePoint(a.points[0], b.points[start])) continue;
+    for (const bool forward : {true, false}) {
+      std::size_t i = 1;
+      while (i < n && samePoint(a.points[i], b.points[forward ? (start + i) % n : (start + n - i) % n])) ++i;
+      if (i == n) return true;
+    }
+  }
+  return false;
+}
+
+// A contour that repeats another of its slice point for point (an exporter's duplicate) is
+// dropped with a warning: by the even-odd rule the two copies would cancel and empty the region.
+void dropRepeatedContours(ContourSet& contours, int f, FeatureSlice& slice, int s) {
+  std::vector<Contour> kept;
+  for (int c = 0; c < static_cast<int>(slice.contours.size()); ++c) {
+    const Contour& contour = slice.contours[static_cast<std::size_t>(c)];
+    if (std::none_of(kept.begin(), kept.end(), [&](const Contour& k) { return sameLoop(k, contour); })) {
+      kept.push_back(contour);
+      continue;
+    }
+    contours.warnings.push_back(describeSlice(contours, f, s, slice.z) + ": contour " + std::to_string(c) +
+                                " repeats an earlier contour of the slice point for point; the copy is dropped "
+                                "(two copies would cancel by the even-odd rule)");
+  }
+  slice.contours = std::move(kept);
+}
+
 }  // namespace
 
 std::string describeFeature(const ContourSet& contours, int feature) {
@@ -115,6 +147,8 @@ Result<void> validateAndNormalize(ContourSet& contours) {
       }
     }
     feature.slices = std::move(merged);
+    for (int s = 0; s < static_cast<int>(feature.slices.size()); ++s)
+      dropRepeatedContours(contours, f, feature.slices[static_cast<std::size_t>(s)], s);
   }
 
   if (!contours.order.empty()) {

@@ -341,3 +341,27 @@ TEST(ContoursJson, DeepNestingIsRefusedNotFatal) {
 
 }  // namespace
 }  // namespace scansurf
+
+namespace scansurf {
+namespace {
+
+// A contour repeated point for point on its slice (an exporter's duplicate, from any start
+// point and in either direction) is dropped with a warning naming the place: the two copies
+// would cancel by the even-odd rule and empty the feature there. A different contour stays.
+TEST(Validation, RepeatedContoursOfASliceAreDroppedWithAWarning) {
+  const Contour square{{{0, 0}, {4, 0}, {4, 4}, {0, 4}}};
+  const Contour rotatedReversed{{{4, 4}, {4, 0}, {0, 0}, {0, 4}}};
+  const Contour hole{{{1, 1}, {3, 1}, {3, 3}, {1, 3}}};
+  ContourSet set;
+  set.source = "dup";
+  set.features.push_back(Feature{"organ", std::nullopt, {FeatureSlice{2, {square, hole, rotatedReversed}}, FeatureSlice{4, {square}}}});
+  ASSERT_TRUE(validateAndNormalize(set));
+  ASSERT_EQ(set.features[0].slices[0].contours.size(), 2u) << "the square and its hole";
+  ASSERT_EQ(set.warnings.size(), 1u);
+  EXPECT_EQ(set.warnings[0], "dup: feature \"organ\" (#0), slice z=2 (#0): contour 2 repeats an earlier contour of the slice point "
+                             "for point; the copy is dropped (two copies would cancel by the even-odd rule)");
+  EXPECT_EQ(set.features[0].slices[1].contours.size(), 1u);
+}
+
+}  // namespace
+}  // namespace scansurf
