@@ -4,6 +4,10 @@
 
 include("${CMAKE_CURRENT_LIST_DIR}/cli_helpers.cmake")
 
+if(NOT EXISTS "${SAMPLES}/pydicom-rtstruct.dcm")
+  message("SKIPPED: no public RTSTRUCT samples at ${SAMPLES} (../shared beside the clone)")
+  return()
+endif()
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 set(MIM "${SAMPLES}/rt-utils/mim_phantom")

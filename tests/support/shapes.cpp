@@ -146,7 +146,7 @@ ContourSet thinBarsContours(double width) {
   set.source = "thin bars";
   for (int f = 0; f < 2; ++f) {
     Feature feature;
-    feature.name = f == 0 ? "a" : "b";
+    feature.name.assign(1, f == 0 ? 'a' : 'b');  // (GCC 12 warns, wrongly, on the const char* assignment)
     for (int k = 0; k < 5; ++k)
       feature.slices.push_back({2.0 * k, {ellipseContour({0, f == 0 ? -1.6 : 1.6}, 10 - k, width / 2, 96)}});
     set.features.push_back(feature);

@@ -759,7 +759,7 @@ TEST_F(InputByContent, EachFormatIsRecognisedByItsContent) {
 
 TEST_F(InputByContent, AHeaderlessDicomDataSetIsReadAsDicom) {
   const fs::path sample = fs::path(SCANSURF_RTSTRUCT_SAMPLES) / "pydicom-rtstruct.dcm";
-  ASSERT_TRUE(fs::exists(sample)) << sample;
+  if (!fs::exists(sample)) GTEST_SKIP() << "no public RTSTRUCT sample at " << sample << " (../shared beside the clone)";
   EXPECT_EQ(detectInputFormat(sample), InputFormat::RtStruct);
   auto r = readContours(sample);
   ASSERT_TRUE(r) << r.error().message;
