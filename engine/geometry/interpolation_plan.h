@@ -123,7 +123,8 @@ InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCe
 // from the label's plane keeps (1 - m/n) of the label's area there, so the cap holds what a
 // flat half slab holds (a paraboloid over a disc) whatever the outline's shape. Its region at
 // layer m is {d < -erosion(m)}, d the label's field on its plane, the erosions read off the
-// field's own depths: out gets factor + 1 erosions (1/16 pixel), the last -1 (closed).
+// field's own depths (the areas scaled a little so that the frusta between the layers, not the
+// trapezoids, hold the half slab): out gets factor + 1 erosions (1/16 pixel), the last -1 (closed).
 // values: the field's window values (negative inside).
 void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out);
 
