@@ -72,7 +72,7 @@ void expectMasksOnCt(const fs::path& file, const ContourSet& contours, const Bui
     const LabelVolume expected = alone(contours, f, grid);
     std::size_t mismatches = 0, voxels = 0;
     for (std::size_t k = 0; k < ct.sliceZ.size(); ++k) {
-      const int gk = layerOfZ(grid, ct.sliceZ[k], 1e-3);
+      const int gk = nearestLayer(grid, ct.sliceZ[k]);  // CT slices between contour planes: the nearer plane
       for (int j = 0; j < ct.ny; ++j)
         for (int i = 0; i < ct.nx; ++i) {
           const std::size_t at = layers * (static_cast<std::size_t>(i) + ct.nx * (static_cast<std::size_t>(j) + ct.ny * k)) + layer;
