@@ -408,18 +408,11 @@ void mergeStageTimes(std::vector<StageTime>& timings) {
   timings = std::move(merged);
 }
 
-// Stage 2's frame for the stage calls: errors guarded, the nesting checked, the stages timed.
-template <typename Extract>
-Result<Surfaces> extractFrom(const Grid& grid, const Nesting& nesting, const BuildOptions& options, const Extract& extract) {
-  return guarded("surface extraction on " + describeGrid(grid), [&]() -> Result<Surfaces> {
-    SCANSURF_TRY(checkNesting(nesting));
-    std::vector<StageTime> timings;
-    StageClock clock(timings, options);
-    return extract(clock);
-  });
+Unexpected badOption(const std::string& option, const std::string& allowed, double value) {
+  char got[64];
+  std::snprintf(got, sizeof got, "%g", value);
+  return makeError(Errc::InvalidArgument, "option " + option + " must be " + allowed + " (got " + got + ")");
 }
-
-const std::vector<LabelOverride> kNoSplit;
 
 Result<void> checkOverlapTolerance(const OverlapTolerance& t) {
   if (!std::isfinite(t.depth) || t.depth < 0)
@@ -430,6 +423,38 @@ Result<void> checkOverlapTolerance(const OverlapTolerance& t) {
                                                 std::to_string(t.percent) + ")");
   return {};
 }
+
+// One policy for bad options: refused, naming the option and what it may be; never clamped or
+// replaced by a default behind the caller's back.
+Result<void> checkOptions(const BuildOptions& o) {
+  const SmoothingOptions& s = o.smoothing;
+  if (s.enabled && !(s.strength > 0 && s.strength <= 1)) return badOption("smoothing.strength", "in (0, 1]", s.strength);
+  if (s.enabled && s.iterations < 1) return badOption("smoothing.iterations", "at least 1", s.iterations);
+  const RemeshOptions& r = o.remeshing;
+  if (r.enabled && !(std::isfinite(r.edgeLength) && r.edgeLength >= 0))
+    return badOption("remeshing.edgeLength", "0 (automatic) or a positive length", r.edgeLength);
+  if (r.enabled && r.iterations < 1) return badOption("remeshing.iterations", "at least 1", r.iterations);
+  const int f = o.interpolation.factor;
+  if (f != InterpolationOptions::kAuto && (f < 1 || f > InterpolationOptions::kMaxFactor))
+    return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
+  if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);
+  return checkOverlapTolerance(o.overlapTolerance);
+}
+
+// Stage 2's frame for the stage calls: errors guarded, the nesting checked, the stages timed.
+template <typename Extract>
+Result<Surfaces> extractFrom(const Grid& grid, const Nesting& nesting, const BuildOptions& options, const Extract& extract) {
+  return guarded("surface extraction on " + describeGrid(grid), [&]() -> Result<Surfaces> {
+    SCANSURF_TRY(checkOptions(options));
+    SCANSURF_TRY(checkNesting(nesting));
+    std::vector<StageTime> timings;
+    StageClock clock(timings, options);
+    return extract(clock);
+  });
+}
+
+const std::vector<LabelOverride> kNoSplit;
+
 
 // The overlap analysis with its verdicts; in Layers mode also the medial split of the
 // incidental pairs (per surface layer) and what each side gave up. Partition mode keeps one layer.
@@ -506,7 +531,7 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
 
 Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions& options) {
   return guarded("building the surfaces of " + contours.source, [&]() -> Result<BuildResult> {
-    SCANSURF_TRY(checkOverlapTolerance(options.overlapTolerance));
+    SCANSURF_TRY(checkOptions(options));
     BuildResult out;
     StageClock clock(out.timings, options);
     const double tolerance = options.grid.sliceTolerance;
@@ -551,7 +576,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
 
 Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& contours, const BuildOptions& options) {
   return guarded("analyzing the overlaps of " + contours.source, [&]() -> Result<OverlapReport> {
-    SCANSURF_TRY(checkOverlapTolerance(options.overlapTolerance));
+    SCANSURF_TRY(checkOptions(options));
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
     const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());

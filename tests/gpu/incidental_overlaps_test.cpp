@@ -315,3 +315,50 @@ TEST_F(IncidentalOverlapsTest, SplitOnTheDeviceEqualsTheHostRoundTrip) {
 
 }  // namespace
 }  // namespace scansurf::test
+
+namespace scansurf::test {
+namespace {
+
+// One policy for bad options, at build() and the stage calls alike: refused with
+// Errc::InvalidArgument naming the option and its range, never clamped or replaced.
+class BuildOptionsTest : public EngineTest {};
+
+TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
+  const ContourSet set = thinOverlapContours(1.0);
+  const auto refused = [&](const BuildOptions& o, const std::string& option) {
+    auto built = engine_->build(set, o);
+    ASSERT_FALSE(built) << option;
+    EXPECT_EQ(built.error().code, Errc::InvalidArgument);
+    EXPECT_NE(built.error().message.find("option " + option + " must be"), std::string::npos) << built.error().message;
+  };
+  BuildOptions o;
+  o.grid.voxelSize = 2;
+  o.smoothing.enabled = true;
+  o.smoothing.strength = 1.5;
+  refused(o, "smoothing.strength");
+  o.smoothing.strength = 0.8;
+  o.smoothing.iterations = 0;
+  refused(o, "smoothing.iterations");
+  o.smoothing.iterations = 150;
+  o.remeshing.enabled = true;
+  o.remeshing.edgeLength = -1;
+  refused(o, "remeshing.edgeLength");
+  o.remeshing = {};
+  o.interpolation.factor = 17;
+  refused(o, "interpolation.factor");
+  o.interpolation.factor = 1;
+  o.threads = -2;
+  refused(o, "threads");
+  o.threads = 0;
+  EXPECT_TRUE(engine_->build(set, o));
+  // The stage calls check the same options.
+  auto volume = engine_->scanConvert(set, computeNesting(set), *makeGrid(set, o.grid), o);
+  ASSERT_TRUE(volume);
+  o.smoothing.strength = 0;
+  auto extracted = engine_->extract(*volume, computeNesting(set), o, &set);
+  ASSERT_FALSE(extracted);
+  EXPECT_NE(extracted.error().message.find("smoothing.strength"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace scansurf::test

@@ -47,7 +47,8 @@ struct StageTime {
   double seconds = 0;
 };
 
-// Everything that shapes a run, for build() and for each stage call alike.
+// Everything that shapes a run, for build() and for each stage call alike. An option out of
+// its range is refused (Errc::InvalidArgument, naming it), never clamped.
 struct BuildOptions {
   // The voxel grid (makeGrid); grid.sliceTolerance also decides which slices are one plane in
   // nesting, scan conversion and smoothing. When grid sets no voxel size, counts or reference,
