@@ -208,7 +208,7 @@ int run(const cli::CliOptions& o) {
     std::vector<fs::path> outputs = staging.targets();
     outputs.push_back(o.report);
     const RunReport report = makeReport(*contours, result, built->engine.device(),
-                                        {o.input, cli::reportParameters(o, result.volume.grid), laps.timings, files->files, outputs},
+                                        {o.input, cli::reportParameters(o, result), laps.timings, files->files, outputs},
                                         stats);
     if (auto ok = staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); }); !ok) return fail(ok.error());
   }

@@ -11,6 +11,7 @@
 #include "scansurf/input.h"
 #include "scansurf/outputs.h"
 #include "scansurf/preview.h"
+#include "scansurf/report.h"
 
 namespace scansurf::cli {
 
@@ -43,7 +44,6 @@ struct ParsedCommandLine {
 ParsedCommandLine parseCommandLine(int argc, char** argv);
 
 // The options that shaped the run, for the report.
-std::vector<std::pair<std::string, std::variant<bool, double, std::string>>> reportParameters(const CliOptions& options,
-                                                                                              const Grid& grid);
+std::vector<std::pair<std::string, ReportValue>> reportParameters(const CliOptions& options, const BuildResult& built);
 
 }  // namespace scansurf::cli

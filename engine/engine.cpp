@@ -9,6 +9,7 @@
 
 #include "core/guard.h"
 #include "core/memory.h"
+#include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/coverage.h"
 #include "geometry/edge_crossings.h"
@@ -547,6 +548,7 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     out.subPixelBits = scanner->subPixelBits();
     out.sliceTolerance = tolerance;
+    out.threads = options.threads > 0 ? options.threads : defaultThreadCount();
     const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, tolerance, options.threads);
     std::vector<std::vector<LabelOverride>> split;
     out.overlaps = overlapAnalysis(contours, grid, out.nesting, regions, options, split);

@@ -50,3 +50,12 @@ string(JSON depth GET "${report}" overlaps tolerance depth)
 if(NOT verdict STREQUAL "incidental" OR NOT a STREQUAL "prostate" OR NOT given GREATER 0 OR NOT depth EQUAL 2)
   message(FATAL_ERROR "report: first partial overlap ${a} ${verdict}, given up ${given}, depth limit ${depth}")
 endif()
+
+# The report records every parameter as the run used it: the grid's pixel size and counts
+# (integers as integers), the threads, the layers per gap.
+string(JSON voxel GET "${report}" parameters voxel_size)
+string(JSON threads GET "${report}" parameters threads)
+if(NOT voxel EQUAL 1 OR NOT threads GREATER 0 OR NOT report MATCHES "\"grid_nx\": *[0-9]+," OR
+   NOT report MATCHES "\"draco_level\": *7,")
+  message(FATAL_ERROR "report parameters: voxel_size ${voxel}, threads ${threads}")
+endif()

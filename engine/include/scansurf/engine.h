@@ -112,6 +112,7 @@ struct BuildResult {
   // rasterize each feature's own mask on the CPU exactly as the device did.
   int subPixelBits = 8;
   double sliceTolerance = kDefaultSliceTolerance;  // BuildOptions::grid.sliceTolerance of the run
+  int threads = 1;  // CPU threads the run used (BuildOptions::threads, 0 resolved)
   // The budget check: estimated peak host memory, and the limit it was held to (bytes).
   std::uint64_t estimatedMemory = 0;
   std::uint64_t memoryLimit = 0;

@@ -2,6 +2,7 @@
 // statistics, the run's parameters, device, grid, nesting order, stage timings and outputs.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -28,7 +29,7 @@ struct ReportFeature {
   std::vector<std::pair<std::string, double>> overlaps;        // partly overlapping features, shared volume
 };
 
-using ReportValue = std::variant<bool, double, std::string>;
+using ReportValue = std::variant<bool, std::int64_t, double, std::string>;
 
 struct RunReport {
   std::string generator;  // "scansurf <version>"
