@@ -17,6 +17,7 @@
 #include "geometry/footprint.h"
 #include "geometry/interpolated_volume.h"
 #include "geometry/overlap_split.h"
+#include "geometry/own_slabs.h"
 #include "geometry/overlaps.h"
 #include "geometry/remesh.h"
 #include "geometry/smoothing.h"
@@ -530,18 +531,21 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
   });
 }
 
-Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions& options) {
-  return guarded("building the surfaces of " + contours.source, [&]() -> Result<BuildResult> {
+Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& options) {
+  return guarded("building the surfaces of " + input.source, [&]() -> Result<BuildResult> {
     SCANSURF_TRY(checkOptions(options));
     BuildResult out;
     StageClock clock(out.timings, options);
     const double tolerance = options.grid.sliceTolerance;
     // The grid and the budget first: a run that cannot fit is refused before any real work.
-    SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
+    SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
     out.interpolation = summarizeInterpolation(grid, factors, options.interpolation.caps);
-    SCANSURF_TRY(checkMemoryBudget(contours, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
-    out.warnings = findUncoveredContours(contours, grid);
+    SCANSURF_TRY(checkMemoryBudget(input, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
+    out.warnings = findUncoveredContours(input, grid);
+    // Every feature holds its own slabs on the other features' planes (own_slabs.h).
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, tolerance);
+    const ContourSet& contours = filled ? *filled : input;
     clock.lap("grid");
     out.nesting = computeNesting(contours, tolerance);
     clock.lap("nesting");
@@ -576,10 +580,12 @@ Result<BuildResult> Engine::build(const ContourSet& contours, const BuildOptions
   });
 }
 
-Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& contours, const BuildOptions& options) {
-  return guarded("analyzing the overlaps of " + contours.source, [&]() -> Result<OverlapReport> {
+Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& input, const BuildOptions& options) {
+  return guarded("analyzing the overlaps of " + input.source, [&]() -> Result<OverlapReport> {
     SCANSURF_TRY(checkOptions(options));
-    SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(contours, options.grid));
+    SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.grid.sliceTolerance);
+    const ContourSet& contours = filled ? *filled : input;
     const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     const std::vector<FeatureRegion> regions =

@@ -2,6 +2,7 @@
 
 #include "geometry/label_layers.h"
 #include "geometry/overlaps.h"
+#include "geometry/own_slabs.h"
 
 #include <cmath>
 
@@ -19,8 +20,11 @@ Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridRefe
 
 }  // namespace
 
-Result<RunVolumes> runVolumes(const ContourSet& contours, const BuildResult& built, bool withPartition) {
+Result<RunVolumes> runVolumes(const ContourSet& input, const BuildResult& built, bool withPartition) {
   const Grid& grid = built.volume.grid;
+  // The masks hold each feature's own slabs on the other features' planes, as the surfaces do.
+  const std::optional<ContourSet> filled = withOwnSlabs(input, grid, built.sliceTolerance);
+  const ContourSet& contours = filled ? *filled : input;
   const std::size_t n = contours.features.size();
   if (built.overlaps.features.size() != n)
     return makeError(Errc::InvalidArgument, "label volume: the build result is not that of the contour set");

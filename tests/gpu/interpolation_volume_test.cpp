@@ -80,3 +80,36 @@ TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirSlabVolume) {
 
 }  // namespace
 }  // namespace scansurf::test
+
+namespace scansurf::test {
+namespace {
+
+// A feature drawn on planes 0, 4, 8 beside one drawn on 2 and 6: on the other's planes each
+// holds its own slab (the nearer of its planes), so neither is cut into one piece per plane
+// (A was three pieces holding half its volume), with interpolation on and off.
+TEST_F(InterpolationVolumeTest, FeaturesOnInterleavedPlanesStayWhole) {
+  ContourSet set;
+  set.source = "interleaved";
+  set.features = {onPlanes("A", circleContour({0, 0}, 10), {0, 4, 8}), onPlanes("B", circleContour({30, 0}, 8), {2, 6})};
+  for (int factor : {1, InterpolationOptions::kAuto}) {
+    SCOPED_TRACE(factor == 1 ? "interpolation off" : "interpolation auto");
+    const BuildResult b = build(set, 0.5, factor);
+    for (int f = 0; f < 2; ++f) {
+      const MeshStats s = computeMeshStats(b.surfaces.mesh.positions, b.surfaces.features[static_cast<std::size_t>(f)].triangles);
+      EXPECT_EQ(s.components, 1) << set.features[static_cast<std::size_t>(f)].name;
+      EXPECT_LE(std::abs(volumeError(b, f)), 0.02) << set.features[static_cast<std::size_t>(f)].name;  // -50 % before
+    }
+    // Layer 2 (z = 2, B's plane) holds A's slab from its plane at z = 0: A is there in the labels.
+    if (factor == 1) {
+      const int k = layerOfZ(b.volume.grid, 2.0, 1e-6);
+      ASSERT_GE(k, 0);
+      std::size_t inA = 0;
+      for (int j = 0; j < b.volume.grid.ny; ++j)
+        for (int i = 0; i < b.volume.grid.nx; ++i) inA += b.volume.at(i, j, k) == labelOfFeature(0);
+      EXPECT_GT(inA, 1000u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace scansurf::test
