@@ -5,7 +5,8 @@
 //   auto built = engine->build(contours, {});      // nesting, grid, scan conversion, surfaces
 //
 // The same, stage by stage (exactly what build() gives, smoothing included, when no features
-// partly overlap; with partial overlaps build() runs the stages once per layer):
+// partly overlap and every feature is drawn on every plane between its first and last; with
+// partial overlaps build() runs the stages once per layer):
 //   auto nesting = scansurf::computeNesting(contours, options.grid.sliceTolerance);
 //   auto grid = scansurf::makeGrid(contours, options.grid);
 //   auto volume = engine->scanConvert(contours, nesting, *grid, options);
@@ -151,7 +152,8 @@ class Engine {
 
   // The stage calls surface one label volume: the whole set when nothing partly overlaps (or
   // in Partition mode), else one layer at a time (a ContourSet holding that layer's features).
-  // They do not split incidental overlaps: scan conversion gives shared voxels by priority.
+  // They do not split incidental overlaps (scan conversion gives shared voxels by priority)
+  // nor give a feature its own slabs on other features' planes: build() does both.
   // Stage 1 on the device: scan converts every slice of a validated contour set into a label
   // volume on `grid` (makeGrid(contours, options.grid)), inner features first by
   // nesting.order. Label of feature i = i + 1; padding layers stay background.
