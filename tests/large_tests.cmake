@@ -10,10 +10,17 @@
 #   RemeshBuildTest.BuildRemeshesThePhantomAfterSmoothing   87 s (12 s)
 #   InterpolatedShapesTest.FinerGridsNeverIncreaseTheSphereError   46 s (10 s)
 #   Remesh.SameResultForAnyThreadCount           24 s
+#   IncidentalOverlapsTest.IndependentlyDrawnNeighboursShareOneSurface   74 s (10 s)
+#   IncidentalOverlapsTest.ThreeNeighboursMeetingAtAJunction             52 s (5.4 s)
+#   InterpolationVolumeTest.FewPlaneStructuresKeepTheirSlabVolume        33 s (5.7 s)
+#   IncidentalOverlapsTest.SplitOnTheDeviceEqualsTheHostRoundTrip        21 s (2.6 s)
 # (ctest -j2 in the clean-clone CI run, 2026-11-30; the whole sanitizer run took 305 s with them.)
 # The other 218 tests (every reader, writer and CPU unit test, the GPU passes on small shapes,
 # the fuzz inputs) take 540 s one at a time, 274 s with ctest -j2 (the VM shared with other
 # builds; 20-35 s the slowest, Smoothing.AbuttingHalvesNeverCross).
 set_tests_properties(SurfacesTest.Volume512x512x400WorksInSlabs Assembly.RandomVolumesAreWellFormed
   Smoothing.PhantomNeverCrosses Remesh.Phantom RemeshBuildTest.BuildRemeshesThePhantomAfterSmoothing
-  InterpolatedShapesTest.FinerGridsNeverIncreaseTheSphereError Remesh.SameResultForAnyThreadCount PROPERTIES LABELS large)
+  InterpolatedShapesTest.FinerGridsNeverIncreaseTheSphereError Remesh.SameResultForAnyThreadCount
+  IncidentalOverlapsTest.IndependentlyDrawnNeighboursShareOneSurface IncidentalOverlapsTest.ThreeNeighboursMeetingAtAJunction
+  InterpolationVolumeTest.FewPlaneStructuresKeepTheirSlabVolume IncidentalOverlapsTest.SplitOnTheDeviceEqualsTheHostRoundTrip
+  PROPERTIES LABELS large)
