@@ -102,7 +102,8 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("-o,--output", o.output,
                  "output directory (created if missing) or NAME.glb; required unless --list-rois, --list-objects or --list-overlaps");
   auto* voxel = app.add_option("--voxel-size", o.build.grid.voxelSize,
-                               "in-plane pixel size, input units (default: 256 pixels along the longer side)")
+                               "in-plane pixel size, input units (default: the reference CT's with --reference, else 256 pixels along "
+                               "the longer side of every structure in the file, selected or not)")
                     ->check(numberIn(0, 1e9, true, "a positive, finite number"));
   app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border")
       ->expected(2)

@@ -62,6 +62,26 @@ Result<Axis> axisFromSpacing(double lo, double hi, double s, const char* name) {
   return axis;
 }
 
+// The default pixel of a whole file: kDefaultPixels along the longer side of its box.
+double defaultSpacing(const ContourSet::Extent& e) {
+  return std::max(e.maxX - e.minX, e.maxY - e.minY) / (GridOptions::kDefaultPixels - 3);
+}
+
+// The part of the whole file's default axis (axisFromSpacing over [fileLo, fileHi]) that holds
+// [lo, hi] with a background pixel each side: the same pixel centres whatever was selected.
+Result<Axis> axisOnFileLattice(double lo, double hi, double fileLo, double fileHi, double s, const char* name) {
+  if (!(s > 0)) return makeError(Errc::InvalidInput, std::string("the file's contours have no extent along ") + name);
+  SCANSURF_ASSIGN_OR_RETURN(const Axis file, axisFromSpacing(fileLo, fileHi, s, name));
+  const double first = std::floor((lo - file.origin) / s + 1e-9) - 1, last = std::ceil((hi - file.origin) / s - 1e-9) + 1;
+  if (!(last - first + 1 <= kMaxPixelsPerSide))
+    return badOption(std::string("more than ") + std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
+  Axis axis;
+  axis.n = static_cast<int>(last - first) + 1;
+  axis.spacing = s;
+  axis.origin = file.origin + first * s;
+  return axis;
+}
+
 Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
   if (n < 4) return badOption(std::string("n") + name + " = " + std::to_string(n) + ": need at least 4 pixels");
   if (n > kMaxPixelsPerSide)
@@ -180,6 +200,11 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
   if (haveCounts) {
     SCANSURF_ASSIGN_OR_RETURN(ax, axisFromCount(box.minX, box.maxX, options.nx, "x"));
     SCANSURF_ASSIGN_OR_RETURN(ay, axisFromCount(box.minY, box.maxY, options.ny, "y"));
+  } else if (!haveSize && contours.fileExtent) {
+    SCANSURF_ASSIGN_OR_RETURN(ax, axisOnFileLattice(box.minX, box.maxX, contours.fileExtent->minX, contours.fileExtent->maxX,
+                                                     defaultSpacing(*contours.fileExtent), "x"));
+    SCANSURF_ASSIGN_OR_RETURN(ay, axisOnFileLattice(box.minY, box.maxY, contours.fileExtent->minY, contours.fileExtent->maxY,
+                                                     defaultSpacing(*contours.fileExtent), "y"));
   } else {
     double s = options.voxelSize;
     if (!haveSize) {

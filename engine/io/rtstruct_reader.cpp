@@ -307,6 +307,19 @@ Result<void> readAllRoiContours(const std::string& file, DcmDataset& dataset, co
   return {};
 }
 
+// The in-plane box of every ROI's closed contours, selected or not (ContourSet::fileExtent).
+std::optional<ContourSet::Extent> extentOf(const std::vector<RawRoi>& rois) {
+  std::optional<ContourSet::Extent> e;
+  for (const RawRoi& r : rois)
+    for (const RawContour& c : r.closed)
+      for (const Point2& p : c.points) {
+        if (!e) e = ContourSet::Extent{p.x, p.y, p.x, p.y};
+        e->minX = std::min(e->minX, p.x), e->minY = std::min(e->minY, p.y);
+        e->maxX = std::max(e->maxX, p.x), e->maxY = std::max(e->maxY, p.y);
+      }
+  return e;
+}
+
 // Slice planes shared by every selected ROI, so abutting structures meet on one plane: the
 // plane of each closed contour of the selected ROIs, in ROI order.
 std::vector<double> sharedSlicePlanes(const std::vector<RawRoi>& rois, double tolerance) {
@@ -484,6 +497,7 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
   readInterpretedTypes(dataset, byNumber, rois);
   SCANSURF_TRY(selectRois(file, options.roiPatterns, rois));
   SCANSURF_TRY(readAllRoiContours(file, dataset, options, byNumber, rois, out.warnings));
+  if (!options.roiPatterns.empty()) out.contours.fileExtent = extentOf(rois);
   addFeatures(file, options.sliceTolerance, rois, out);
   for (RawRoi& r : rois) out.rois.push_back(std::move(r.info));
 

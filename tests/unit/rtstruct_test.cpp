@@ -666,6 +666,33 @@ TEST_F(Dicom, CtFinerThanTheContourPlanes) {
   }
 }
 
+// Selecting ROIs does not change a selected ROI's surface: the default grid's pixel size and
+// lattice come from every ROI of the file, the grid only covering the selected ones.
+TEST_F(Dicom, SelectionKeepsTheDefaultLattice) {
+  TestRtStruct rtFile;
+  TestRoi small{1, "small", "ORGAN", std::nullopt, {}}, far{2, "far", "ORGAN", std::nullopt, {}};
+  for (double z : {0.0, 2.5, 5.0}) {
+    small.contours.push_back(closedContour(square(-5.3, -4.1, 6.2, 5.7), z));
+    far.contours.push_back(closedContour(square(150, 90, 190, 130), z));
+  }
+  rtFile.rois = {small, far};
+  write(rtFile, "two.dcm");
+  auto all = readRtStruct(dir_ / "two.dcm");
+  RtStructOptions only;
+  only.roiPatterns = {"small"};
+  auto selected = readRtStruct(dir_ / "two.dcm", only);
+  ASSERT_TRUE(all && selected);
+  ASSERT_EQ(selected->contours.features.size(), 1u);
+  EXPECT_TRUE(selected->contours.fileExtent.has_value());
+  const Built a = buildCpu(all->contours, {}), b = buildCpu(selected->contours, {});
+  EXPECT_DOUBLE_EQ(a.volume.grid.spacingX, b.volume.grid.spacingX);
+  EXPECT_LT(b.volume.grid.nx, a.volume.grid.nx / 4) << "the grid covers the selection only";
+  const double shift = (b.volume.grid.originX - a.volume.grid.originX) / a.volume.grid.spacingX;
+  EXPECT_NEAR(shift, std::round(shift), 1e-9) << "on the whole file's lattice";
+  EXPECT_NEAR(a.stats(0).volume, b.stats(0).volume, 1e-9 * a.stats(0).volume);
+  EXPECT_EQ(a.stats(0).triangles, b.stats(0).triangles);
+}
+
 TEST_F(Dicom, ReferenceSeriesErrors) {
   auto r = readCtSeries(dir_ / "nothing");
   ASSERT_FALSE(r);

@@ -56,6 +56,13 @@ struct ContourSet {
   // The image lattice the contours were drawn on, when the reader was given it (RTSTRUCT with
   // a reference CT): build() then puts the label volume on it (BuildOptions::grid).
   std::optional<GridReference> reference;
+  // The in-plane box of every feature the file holds, set by a reader that kept only some (ROI
+  // or object selection): the default grid takes its pixel size and lattice from it, so that a
+  // feature's surface does not depend on which others were selected.
+  struct Extent {
+    double minX = 0, minY = 0, maxX = 0, maxY = 0;
+  };
+  std::optional<Extent> fileExtent;
   // What the reader skipped or doubted (skipped contour types, empty ROIs) and what it read
   // (one line each), for a run log. Not used by the method.
   std::vector<std::string> warnings;
