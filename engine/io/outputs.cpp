@@ -319,11 +319,34 @@ Result<std::vector<fs::path>> OutputStaging::commit() {
       return makeError(Errc::Io, "cannot write '" + target.string() + "': a directory is in the way; nothing was replaced");
   // Everything staged reaches the disk before the first move (one sync, not one per file).
   for (const fs::path& dir : dirs_) SCANSURF_TRY(syncFileSystemOf(dir));
-  for (const auto& [staged, target] : files_) {
+  // All or nothing: every old file is moved aside into the staging folder first (same
+  // directory, so a rename), then the new ones into place; a move that fails (an immutable
+  // file, a mount point) puts back everything moved so far.
+  std::vector<std::pair<fs::path, fs::path>> asideOf;  // target, where its old file went
+  const auto undo = [&](std::size_t placed) {
+    std::error_code ignored;
+    for (std::size_t i = 0; i < placed; ++i) fs::rename(files_[i].second, files_[i].first, ignored);
+    for (const auto& [target, aside] : asideOf) fs::rename(aside, target, ignored);
+  };
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    const fs::path& target = files_[i].second;
+    if (!fs::exists(fs::symlink_status(target, ec))) continue;
+    const fs::path aside = files_[i].first.parent_path() / ("old-" + std::to_string(i));
+    fs::rename(target, aside, ec);
+    if (ec) {
+      undo(0);
+      return makeError(Errc::Io, "cannot replace '" + target.string() + "': " + ec.message() + "; nothing was replaced");
+    }
+    asideOf.emplace_back(target, aside);
+  }
+  for (std::size_t i = 0; i < files_.size(); ++i) {
+    const auto& [staged, target] = files_[i];
     fs::rename(staged, target, ec);
-    if (ec)
+    if (ec) {
+      undo(i);
       return makeError(Errc::Io, "cannot move " + target.filename().string() + " into place at '" + target.string() + "': " +
-                                     ec.message());
+                                     ec.message() + "; nothing was replaced");
+    }
     written.push_back(target);
   }
   // The moves themselves: each destination directory's entries.
