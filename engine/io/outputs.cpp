@@ -271,6 +271,21 @@ void OutputStaging::discard() noexcept {
   for (const auto& [dir, fd] : locks_) unlinkOwnLock(dir, fd);
 }
 
+namespace {
+
+// A staged file is named by its index and the target's extensions (writers read ".nii.gz" and
+// ".seg.nrrd" off the name), never its whole name: a 250-character file name plus a prefix
+// was more than a file name may be.
+std::string stagedSuffix(const fs::path& target) {
+  const std::string last = target.extension().string();
+  const std::string before = target.stem().extension().string();
+  std::string suffix = (before.size() > 1 && before.size() <= 8 ? before : std::string()) + last;
+  if (suffix.size() > 24) suffix.clear();
+  return suffix;
+}
+
+}  // namespace
+
 Result<fs::path> OutputStaging::reserve(const fs::path& target) {
   if (!targets_.insert(target).second)
     return makeError(Errc::InvalidArgument, "two outputs would be written to '" + target.string() + "'");
@@ -287,7 +302,7 @@ Result<fs::path> OutputStaging::reserve(const fs::path& target) {
     if (!fs::create_directory(dir, ec)) return makeError(Errc::Io, "cannot create " + dir.string() + ": " + ec.message());
     dirs_.push_back(dir);
   }
-  fs::path staged = dir / (std::to_string(files_.size()) + "-" + target.filename().string());
+  fs::path staged = dir / (std::to_string(files_.size()) + stagedSuffix(target));
   files_.emplace_back(staged, target);
   return staged;
 }

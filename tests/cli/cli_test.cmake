@@ -259,6 +259,14 @@ if(CHATTR)
   endif()
 endif()
 
+# A file name as long as a file name may be (250 characters and .glb): staging adds nothing
+# to it.
+string(REPEAT "n" 250 long_stem)
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/${long_stem}.glb" --grid 64 48 -q)
+if(NOT EXISTS "${OUT}/${long_stem}.glb")
+  message(FATAL_ERROR "the 254-character file name was not written")
+endif()
+
 # No output replaces the input it is made from.
 file(COPY_FILE "${EXAMPLES}/phantom.json" "${OUT}/input.json")
 run_scansurf(2 "${OUT}/input.json" -o "${OUT}/self" --grid 64 48 --report "${OUT}/input.json")
