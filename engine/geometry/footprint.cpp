@@ -61,7 +61,12 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   const double layers = std::max(grid.nz, surfacedLayers);
   const double finer = grid.nz > 0 ? layers / grid.nz : 1.0;
   crossings *= finer;
-  f.surfaceVertices = static_cast<std::uint64_t>(std::min(crossings * kVerticesPerCrossing, 1e18));
+  // Never more than the surfaced grid can hold: a vertex is the barycentre of an edge, face or
+  // tetrahedron of the lattice, 7 + 12 + 6 of each cell's own (a contour far finer than its
+  // pixels, 1e-200 units wide, gave a perimeter of 1e18 vertices and an "EiB" estimate).
+  const double cells = static_cast<double>(plane) * layers;
+  const double byContours = std::isfinite(crossings) ? crossings * kVerticesPerCrossing : 1e18;  // a pixel area of 0: NaN
+  f.surfaceVertices = static_cast<std::uint64_t>(std::min({byContours, 25.0 * cells, 1e18}));
   // The label volume, once on the host and once as it arrives from the device, plus the mesh.
   // With interpolation, the interpolated volume's clearances besides (2 bytes per voxel).
   const double interpolated = finer > 1 ? static_cast<double>(plane) * layers * sizeof(Label) : 0.0;

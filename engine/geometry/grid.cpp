@@ -166,7 +166,9 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
 
 }  // namespace
 
-Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
+namespace {
+
+Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) {
   const double tol = options.sliceTolerance;
   if (!std::isfinite(tol) || tol < 0) return badOption("slice tolerance must be finite and not negative");
   if (!std::isfinite(options.voxelSize) || options.voxelSize < 0)
@@ -218,6 +220,32 @@ Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
   }
 
   return gridFromAxes(ax, ay, planes);
+}
+
+// Surface vertices are float32: at coordinates up to `far` they resolve far * 2^-24. A grid
+// whose steps are not at least 2^8 of those (1/256 of a pixel or layer gap) would give a
+// surface of a few distinct positions, or none (contours 1e-200 units wide came out with
+// volume 0; at 9.9e6 units with 0.25-unit pixels a PLY held 11 distinct x), so it is refused.
+Result<void> checkFloatPrecision(const ContourSet& contours, const Grid& g) {
+  const double far = std::max({std::abs(g.originX), std::abs(g.originX + (g.nx - 1) * g.spacingX), std::abs(g.originY),
+                               std::abs(g.originY + (g.ny - 1) * g.spacingY), std::abs(g.layerZ.front()),
+                               std::abs(g.layerZ.back())});
+  double step = std::min(g.spacingX, g.spacingY);
+  for (std::size_t k = 1; k < g.layerZ.size(); ++k) step = std::min(step, g.layerZ[k] - g.layerZ[k - 1]);
+  const double resolved = std::max(far * 0x1p-24, 1e-30);  // 1e-30: well within float32's normal range
+  if (step >= 256 * resolved) return {};
+  return makeError(Errc::InvalidInput,
+                   contours.source + ": the grid's steps of " + formatNumber(step) + " " + contours.units +
+                       " at coordinates up to " + formatNumber(far) + " are finer than float32 surface vertices resolve there (" +
+                       formatNumber(resolved) + "); move the contours nearer the origin or choose coarser pixels");
+}
+
+}  // namespace
+
+Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
+  SCANSURF_ASSIGN_OR_RETURN(Grid grid, layOutGrid(contours, options));
+  SCANSURF_TRY(checkFloatPrecision(contours, grid));
+  return grid;
 }
 
 int nearestLayer(const Grid& grid, double z) {

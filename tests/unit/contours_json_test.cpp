@@ -365,3 +365,30 @@ TEST(Validation, RepeatedContoursOfASliceAreDroppedWithAWarning) {
 
 }  // namespace
 }  // namespace scansurf
+
+namespace scansurf {
+namespace {
+
+// A grid finer than float32 vertices resolve at its coordinates is refused, saying why:
+// contours 1e-200 units wide, or 0.25-unit pixels 9.9e6 units from the origin.
+TEST(GridPrecision, StepsFinerThanFloat32ResolvesAreRefused) {
+  const auto squareAt = [](double x, double size) {
+    ContourSet set;
+    set.source = "far";
+    const Contour c{{{x, 0}, {x + size, 0}, {x + size, size}, {x, size}}};
+    set.features.push_back(Feature{"f", std::nullopt, {FeatureSlice{0, {c}}, FeatureSlice{1, {c}}}});
+    return set;
+  };
+  GridOptions fine;
+  fine.voxelSize = 0.25;
+  auto far = makeGrid(squareAt(9.9e6, 10), fine);
+  ASSERT_FALSE(far);
+  EXPECT_EQ(far.error().code, Errc::InvalidInput);
+  EXPECT_NE(far.error().message.find("finer than float32 surface vertices resolve"), std::string::npos) << far.error().message;
+  EXPECT_FALSE(makeGrid(squareAt(0, 1e-200), {}));
+  EXPECT_TRUE(makeGrid(squareAt(0, 10), fine));
+  EXPECT_TRUE(makeGrid(squareAt(1e3, 10), fine)) << "0.25 units at 1000 units from the origin is resolved";
+}
+
+}  // namespace
+}  // namespace scansurf
