@@ -223,7 +223,7 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
 }
 
 // Surface vertices are float32: at coordinates up to `far` they resolve far * 2^-24. A grid
-// whose steps are not at least 2^8 of those (1/256 of a pixel or layer gap) would give a
+// whose steps are not at least 16 of those (1/16 of a pixel or layer gap) would give a
 // surface of a few distinct positions, or none (contours 1e-200 units wide came out with
 // volume 0; at 9.9e6 units with 0.25-unit pixels a PLY held 11 distinct x), so it is refused.
 Result<void> checkFloatPrecision(const ContourSet& contours, const Grid& g) {
@@ -233,7 +233,7 @@ Result<void> checkFloatPrecision(const ContourSet& contours, const Grid& g) {
   double step = std::min(g.spacingX, g.spacingY);
   for (std::size_t k = 1; k < g.layerZ.size(); ++k) step = std::min(step, g.layerZ[k] - g.layerZ[k - 1]);
   const double resolved = std::max(far * 0x1p-24, 1e-30);  // 1e-30: well within float32's normal range
-  if (step >= 256 * resolved) return {};
+  if (step >= 16 * resolved) return {};
   return makeError(Errc::InvalidInput,
                    contours.source + ": the grid's steps of " + formatNumber(step) + " " + contours.units +
                        " at coordinates up to " + formatNumber(far) + " are finer than float32 surface vertices resolve there (" +

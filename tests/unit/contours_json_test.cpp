@@ -369,7 +369,7 @@ TEST(Validation, RepeatedContoursOfASliceAreDroppedWithAWarning) {
 namespace scansurf {
 namespace {
 
-// A grid finer than float32 vertices resolve at its coordinates is refused, saying why:
+// A grid finer than float32 vertices resolve at its coordinates (1/16 of a step) is refused, saying why:
 // contours 1e-200 units wide, or 0.25-unit pixels 9.9e6 units from the origin.
 TEST(GridPrecision, StepsFinerThanFloat32ResolvesAreRefused) {
   const auto squareAt = [](double x, double size) {
