@@ -556,7 +556,9 @@ Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& o
     const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, tolerance, options.threads);
     std::vector<std::vector<LabelOverride>> split;
     out.overlaps = overlapAnalysis(contours, grid, out.nesting, regions, options, split);
-    const MedialCrossings medial(contours, grid, out.overlaps, tolerance);
+    // The partition mode gives shared voxels by priority: its interfaces stay as they were.
+    const MedialCrossings medial = options.overlaps == OverlapMode::Layers ? MedialCrossings(contours, grid, out.overlaps, tolerance)
+                                                                           : MedialCrossings();
     clock.lap("overlap analysis");
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them

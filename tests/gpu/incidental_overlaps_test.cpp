@@ -362,3 +362,23 @@ TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
 
 }  // namespace
 }  // namespace scansurf::test
+
+namespace scansurf::test {
+namespace {
+
+// --overlaps partition is as it was: priority gives every shared voxel, the rule changes
+// nothing there (the same surfaces with it on and off).
+TEST_F(IncidentalOverlapsTest, PartitionModeIgnoresTheRule) {
+  const ContourSet set = drawnPelvisContours();
+  BuildOptions on = options(1.0);
+  on.overlaps = OverlapMode::Partition;
+  BuildOptions off = on;
+  off.overlapTolerance.enabled = false;
+  const BuildResult a = build(set, on), b = build(set, off);
+  EXPECT_EQ(a.overlaps.layers, 1);
+  EXPECT_EQ(a.surfaces.mesh.positions, b.surfaces.mesh.positions);
+  EXPECT_EQ(a.surfaces.mesh.triangles, b.surfaces.mesh.triangles);
+}
+
+}  // namespace
+}  // namespace scansurf::test
