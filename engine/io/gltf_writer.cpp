@@ -107,6 +107,27 @@ void realNames(nlohmann::json& gltf, const std::vector<std::string>& names) {
   }
 }
 
+// Without Draco the vertex attributes and indices lie in plain buffer views, which glTF asks
+// to name their target (ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER; the validator hints otherwise).
+void markBufferViewTargets(nlohmann::json& gltf) {
+  if (!gltf.contains("meshes") || !gltf.contains("accessors") || !gltf.contains("bufferViews")) return;
+  const auto mark = [&](const nlohmann::json& accessor, int target) {
+    if (!accessor.is_number_unsigned() || accessor.get<std::size_t>() >= gltf["accessors"].size()) return;
+    const nlohmann::json& a = gltf["accessors"][accessor.get<std::size_t>()];
+    if (!a.contains("bufferView") || a["bufferView"].get<std::size_t>() >= gltf["bufferViews"].size()) return;
+    gltf["bufferViews"][a["bufferView"].get<std::size_t>()]["target"] = target;
+  };
+  const nlohmann::json meshes = gltf["meshes"];  // a copy: mark() writes into gltf
+  for (const nlohmann::json& mesh : meshes) {
+    if (!mesh.contains("primitives")) continue;
+    for (const nlohmann::json& primitive : mesh["primitives"]) {
+      if (primitive.contains("attributes"))
+        for (const nlohmann::json& accessor : primitive["attributes"]) mark(accessor, 34962);
+      if (primitive.contains("indices")) mark(primitive["indices"], 34963);
+    }
+  }
+}
+
 // Patient LPS in `units` to glTF's y-up metres, column-major: x -> x, z (superior) -> y,
 // y (posterior) -> -z (anterior toward the viewer).
 nlohmann::json rootMatrix(double scale) {
@@ -167,6 +188,7 @@ Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFea
   nlohmann::json gltf = nlohmann::json::parse(glb.json, nullptr, false);
   if (gltf.is_discarded()) return makeError(Errc::Internal, "cannot encode '" + path.string() + "': unreadable glTF JSON from Draco");
   realNames(gltf, names);
+  if (!options.draco) markBufferViewTargets(gltf);
   adjustScene(gltf, options);
   glb.json = gltf.dump();
   const std::vector<std::uint8_t> bytes = serializeGlb(glb);

@@ -252,6 +252,15 @@ TEST_F(OutputFormatsTest, GlbSceneWithAndWithoutDracoValidatesAndDecodes) {
     ASSERT_TRUE(writeGlb(path, features, options));
     const Glb glb = parseGlb(readFile(path));
     checkGltfStructure(glb, draco, vertices, triangles);
+    if (!draco)  // plain buffer views name their target: vertex attributes, then indices
+      for (const auto& mesh : glb.json["meshes"]) {
+        const auto& primitive = mesh["primitives"][0];
+        const auto viewOf = [&](const nlohmann::json& accessor) {
+          return glb.json["bufferViews"][glb.json["accessors"][accessor.get<std::size_t>()]["bufferView"].get<std::size_t>()];
+        };
+        EXPECT_EQ(viewOf(primitive["attributes"]["POSITION"]).value("target", 0), 34962);
+        EXPECT_EQ(viewOf(primitive["indices"]).value("target", 0), 34963);
+      }
     // Names and colours.
     for (std::size_t f = 0; f < features.size(); ++f) {
       const auto& mesh = glb.json["meshes"][f];
