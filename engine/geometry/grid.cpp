@@ -149,9 +149,11 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
     // First and last pixel index, relative to the reference, strictly outside [lo, hi].
     const double first = std::min(-1.0, std::floor((lo - origin) / spacing) - 1);
     const double last = std::max(static_cast<double>(n), std::ceil((hi - origin) / spacing) + 1);
+    // The data's fault, not the command line's (a CT of 0.001 mm pixels under a body's contours).
     if (!(last - first + 1 <= kMaxPixelsPerSide))
-      return badOption(std::string("the contours lie too far outside the reference grid along ") + name + " (more than " +
-                       std::to_string(kMaxPixelsPerSide) + " pixels)");
+      return makeError(Errc::InvalidInput, contours.source + ": on the reference lattice (" + formatNumber(spacing) + " " +
+                                               contours.units + " pixels) the contours span more than " +
+                                               std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
     Axis axis;
     axis.n = static_cast<int>(last - first) + 1;
     axis.spacing = spacing;

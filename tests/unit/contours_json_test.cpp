@@ -392,3 +392,28 @@ TEST(GridPrecision, StepsFinerThanFloat32ResolvesAreRefused) {
 
 }  // namespace
 }  // namespace scansurf
+
+namespace scansurf {
+namespace {
+
+// A reference lattice far finer than the contours (a CT of 0.001 mm pixels under a 100 mm
+// structure) is the data's fault: Errc::InvalidInput, naming the file.
+TEST(GridPrecision, AReferenceLatticeTooFineNamesTheFile) {
+  ContourSet set;
+  set.source = "rt.dcm";
+  const Contour c{{{0, 0}, {100, 0}, {100, 100}, {0, 100}}};
+  set.features.push_back(Feature{"body", std::nullopt, {FeatureSlice{0, {c}}}});
+  GridOptions o;
+  GridReference ref;
+  ref.spacingX = ref.spacingY = 0.001;
+  ref.nx = ref.ny = 10;
+  ref.sliceZ = {0};
+  o.reference = ref;
+  auto grid = makeGrid(set, o);
+  ASSERT_FALSE(grid);
+  EXPECT_EQ(grid.error().code, Errc::InvalidInput);
+  EXPECT_EQ(grid.error().message.rfind("rt.dcm: on the reference lattice (0.001 mm pixels)", 0), 0u) << grid.error().message;
+}
+
+}  // namespace
+}  // namespace scansurf
