@@ -9,6 +9,7 @@
 
 #include "geometry/validate.h"
 #include "io/dicom_common.h"
+#include "io/rtstruct_reader.h"
 
 namespace scansurf {
 
@@ -51,6 +52,9 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
 
   std::vector<Image> images;
   for (const auto& path : paths) {
+    // A file that does not start like DICOM is not parsed at all (a 1 GiB file of zeros cost
+    // DCMTK a minute of empty elements).
+    if (!hasDicomPreamble(path) && !looksLikeDicomDataSet(path)) continue;
     auto dicom = loadDicomFile(path, /*stopAtPixelData=*/true);
     if (!dicom) {
       if (dicom.error().code == Errc::InvalidInput) continue;  // not DICOM: not part of the series

@@ -6,6 +6,8 @@
 #include <dcmtk/dcmdata/dcvr.h>
 #include <dcmtk/oflog/oflog.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <mutex>
 #include <string>
@@ -47,6 +49,27 @@ Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPi
     return makeError(Errc::InvalidInput, file + (preamble ? ": DICOM file without SOP Class UID (0008,0016) or Modality (0008,0060)"
                                                           : ": not a DICOM file"));
   return dicom;
+}
+
+// A DICOM data set without the Part 10 header starts with its first data element: group
+// 0002 (meta information) or 0008 (the identifying group every IOD begins with), little
+// endian, then either an explicit VR (two upper-case letters of a known VR) or an implicit
+// VR's 32-bit length that fits the file.
+bool looksLikeDicomDataSet(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, in.tellg()));
+  in.seekg(0);
+  unsigned char b[8];
+  if (!in.read(reinterpret_cast<char*>(b), sizeof b)) return false;
+  const unsigned group = b[0] | (b[1] << 8);
+  if (group != 0x0002 && group != 0x0008) return false;
+  static constexpr const char* kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO", "LT",
+                                         "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST",
+                                         "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+  const std::string vr{static_cast<char>(b[4]), static_cast<char>(b[5])};
+  if (std::find(std::begin(kVrs), std::end(kVrs), vr) != std::end(kVrs)) return true;
+  const std::uint64_t length = b[4] | (b[5] << 8) | (b[6] << 16) | (static_cast<std::uint64_t>(b[7]) << 24);
+  return length == 0xFFFFFFFFu || length <= size - 8;
 }
 
 }  // namespace scansurf

@@ -25,4 +25,8 @@ struct DicomFile {
 // or its DICOM structure is corrupt; Errc::Internal when DCMTK's data dictionary is missing.
 Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPixelData = false);
 
+// Whether a file without the Part 10 header starts like a DICOM data set (its first element in
+// group 0002 or 0008, with an explicit VR or an implicit length that fits the file).
+bool looksLikeDicomDataSet(const std::filesystem::path& path);
+
 }  // namespace scansurf

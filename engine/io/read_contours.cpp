@@ -9,6 +9,7 @@
 #include "core/memory.h"
 #include "geometry/validate.h"
 #include "io/contours_json.h"
+#include "io/dicom_common.h"
 #include "io/ct_series.h"
 #include "io/imod_reader.h"
 #include "io/reconstruct_reader.h"
@@ -101,26 +102,6 @@ Unexpected unrecognised(const std::filesystem::path& path) {
                                            "); supported formats, recognised by content: " + kSupportedFormats);
 }
 
-// A DICOM data set without the Part 10 header starts with its first data element: group
-// 0002 (meta information) or 0008 (the identifying group every IOD begins with), little
-// endian, then either an explicit VR (two upper-case letters of a known VR) or an implicit
-// VR's 32-bit length that fits the file.
-bool looksLikeDicomDataSet(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, in.tellg()));
-  in.seekg(0);
-  unsigned char b[8];
-  if (!in.read(reinterpret_cast<char*>(b), sizeof b)) return false;
-  const unsigned group = b[0] | (b[1] << 8);
-  if (group != 0x0002 && group != 0x0008) return false;
-  static constexpr const char* kVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO", "LT",
-                                         "OB", "OD", "OF", "OL", "OV", "OW", "PN", "SH", "SL", "SQ", "SS", "ST",
-                                         "SV", "TM", "UC", "UI", "UL", "UN", "UR", "US", "UT", "UV"};
-  const std::string vr{static_cast<char>(b[4]), static_cast<char>(b[5])};
-  if (std::find(std::begin(kVrs), std::end(kVrs), vr) != std::end(kVrs)) return true;
-  const std::uint64_t length = b[4] | (b[5] << 8) | (b[6] << 16) | (static_cast<std::uint64_t>(b[7]) << 24);
-  return length == 0xFFFFFFFFu || length <= size - 8;
-}
 
 // --roi, --reference and --object each apply to some formats only.
 Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& path, const ReadOptions& options) {

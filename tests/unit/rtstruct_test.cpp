@@ -693,6 +693,20 @@ TEST_F(Dicom, SelectionKeepsTheDefaultLattice) {
   EXPECT_EQ(a.stats(0).triangles, b.stats(0).triangles);
 }
 
+// Files in the CT folder that do not start like DICOM are passed over unparsed (a large
+// file of zeros cost DCMTK a minute of empty elements: 200 MB took 9 s, now under 1 s).
+TEST_F(Dicom, NonDicomFilesInTheCtFolderAreSkippedUnread) {
+  test::TestCt ct;
+  ct.sliceZ = {0, 2.5};
+  test::writeTestCtSeries(ct, dir_ / "ct");
+  std::ofstream(dir_ / "ct" / "zeros.bin", std::ios::binary) << std::string(1 << 20, '\0');
+  std::ofstream(dir_ / "ct" / "notes.txt") << "scanner notes\n";
+  auto series = readCtSeries(dir_ / "ct");
+  ASSERT_TRUE(series) << series.error().message;
+  EXPECT_EQ(series->sliceZ, ct.sliceZ);
+  EXPECT_EQ(series->files.size(), 2u);
+}
+
 TEST_F(Dicom, ReferenceSeriesErrors) {
   auto r = readCtSeries(dir_ / "nothing");
   ASSERT_FALSE(r);
