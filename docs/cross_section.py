@@ -7,34 +7,19 @@ Draws, in the window [X0, X1] x [Y0, Y1] of the plane z = Z, each named feature'
 contours on the contour plane nearest Z (thin, dark) and the cross-section of its surface at Z
 (thick, the feature's colour: first orange, then blue, green): where two surfaces cross, their
 lines cross. Pure Python (json, struct, zlib), so that it runs where no imaging package is
-installed; used for docs/overlaps.md's before/after picture of an incidental overlap.
+installed (the PLY reader is wireframe.py's); used for docs/overlaps.md's before/after picture of an incidental overlap.
 """
 import json
+import os
 import struct
 import sys
 import zlib
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from wireframe import read_ply  # noqa: E402  (the same PLY reader as the wireframe picture)
+
 COLOURS = [(230, 150, 20), (40, 120, 220), (40, 170, 80)]
 SCALE = 40  # pixels per unit
-
-
-def read_ply(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    end = data.index(b"end_header\n") + len(b"end_header\n")
-    nv = nf = 0
-    for line in data[:end].decode("ascii", "replace").splitlines():
-        if line.startswith("element vertex"):
-            nv = int(line.split()[2])
-        if line.startswith("element face"):
-            nf = int(line.split()[2])
-    verts = [struct.unpack_from("<3f", data, end + 12 * i) for i in range(nv)]
-    faces, at = [], end + 12 * nv
-    for _ in range(nf):
-        n = data[at]
-        faces.append(struct.unpack_from("<%di" % n, data, at + 1))
-        at += 1 + 4 * n
-    return verts, faces
 
 
 def section(verts, faces, z):

@@ -3,6 +3,8 @@
 // centres 1 and n-2 frame the contours' bounding box, with a background pixel on each side.
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <limits>
 #include <string>
 
 #include "geometry/polygon.h"
@@ -67,19 +69,29 @@ double defaultSpacing(const ContourSet::Extent& e) {
   return std::max(e.maxX - e.minX, e.maxY - e.minY) / (GridOptions::kDefaultPixels - 3);
 }
 
+// The pixels of a lattice (origin, spacing) from the last centre below lo to the first above
+// hi, one background pixel each side of [lo, hi], and reaching at least indices first..last;
+// nullopt beyond kMaxPixelsPerSide.
+std::optional<Axis> latticeWindow(double lo, double hi, double origin, double spacing, double first, double last) {
+  first = std::min(first, std::floor((lo - origin) / spacing) - 1);
+  last = std::max(last, std::ceil((hi - origin) / spacing) + 1);
+  if (!(last - first + 1 <= kMaxPixelsPerSide)) return std::nullopt;
+  Axis axis;
+  axis.n = static_cast<int>(last - first) + 1;
+  axis.spacing = spacing;
+  axis.origin = origin + first * spacing;
+  return axis;
+}
+
 // The part of the whole file's default axis (axisFromSpacing over [fileLo, fileHi]) that holds
 // [lo, hi] with a background pixel each side: the same pixel centres whatever was selected.
 Result<Axis> axisOnFileLattice(double lo, double hi, double fileLo, double fileHi, double s, const char* name) {
   if (!(s > 0)) return makeError(Errc::InvalidInput, std::string("the file's contours have no extent along ") + name);
   SCANSURF_ASSIGN_OR_RETURN(const Axis file, axisFromSpacing(fileLo, fileHi, s, name));
-  const double first = std::floor((lo - file.origin) / s + 1e-9) - 1, last = std::ceil((hi - file.origin) / s - 1e-9) + 1;
-  if (!(last - first + 1 <= kMaxPixelsPerSide))
-    return badOption(std::string("more than ") + std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
-  Axis axis;
-  axis.n = static_cast<int>(last - first) + 1;
-  axis.spacing = s;
-  axis.origin = file.origin + first * s;
-  return axis;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const std::optional<Axis> axis = latticeWindow(lo, hi, file.origin, s, kInf, -kInf);
+  if (!axis) return badOption(std::string("more than ") + std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
+  return *axis;
 }
 
 Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
@@ -98,16 +110,22 @@ Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
   return axis;
 }
 
-// The reference slices that hold contours, at the reference's own z. Slices between contour
-// planes are not layers: they lie between two planes, and what lies there is the between-slice
-// model's (the slab rule, or interpolated layers), never background (a 1 mm CT under contours
-// drawn every 2 mm). A single plane keeps the reference's spacing next to it for its slab.
-std::vector<double> contourPlanesOn(const ContourSet& contours, const GridReference& ref, double tol) {
+// The reference slices that hold contours, at the reference's own z; an error naming the
+// first slice that lies on none. Slices between contour planes are not layers: they lie
+// between two planes, and what lies there is the between-slice model's (the slab rule, or
+// interpolated layers), never background (a 1 mm CT under contours drawn every 2 mm).
+Result<std::vector<double>> contourPlanesOn(const ContourSet& contours, const GridReference& ref, double tol) {
   Grid probe;
   probe.layerZ = ref.sliceZ;
   std::vector<char> used(ref.sliceZ.size(), 0);
   for (const Feature& f : contours.features)
-    for (const FeatureSlice& s : f.slices) used[static_cast<std::size_t>(layerOfZ(probe, s.z, tol))] = 1;
+    for (const FeatureSlice& s : f.slices) {
+      const int k = layerOfZ(probe, s.z, tol);
+      if (k < 0)
+        return makeError(Errc::InvalidInput, contours.source + ": feature \"" + f.name + "\", slice z=" +
+                                                 formatNumber(s.z) + " is not on a slice of the reference grid");
+      used[static_cast<std::size_t>(k)] = 1;
+    }
   std::vector<double> planes;
   for (std::size_t k = 0; k < used.size(); ++k)
     if (used[k]) planes.push_back(ref.sliceZ[k]);
@@ -135,34 +153,21 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
   for (std::size_t k = 0; k < ref.sliceZ.size(); ++k)
     if (!std::isfinite(ref.sliceZ[k]) || (k > 0 && !(ref.sliceZ[k] > ref.sliceZ[k - 1])))
       return badOption("reference grid: slice positions must be finite and strictly increasing");
-  for (const Feature& f : contours.features)
-    for (const FeatureSlice& s : f.slices) {
-      Grid probe;
-      probe.layerZ = ref.sliceZ;
-      if (layerOfZ(probe, s.z, tol) < 0)
-        return makeError(Errc::InvalidInput, contours.source + ": feature \"" + f.name + "\", slice z=" +
-                                                 formatNumber(s.z) + " is not on a slice of the reference grid");
-    }
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<double> planes, contourPlanesOn(contours, ref, tol));
   const Box2 box = boundingBox(contours);
   if (box.empty()) return makeError(Errc::InvalidInput, contours.source + ": no contour points");
+  // Pixel indices relative to the reference: the whole reference (-1 .. n) and the contours.
   auto extend = [&](double lo, double hi, double origin, double spacing, int n, const char* name) -> Result<Axis> {
-    // First and last pixel index, relative to the reference, strictly outside [lo, hi].
-    const double first = std::min(-1.0, std::floor((lo - origin) / spacing) - 1);
-    const double last = std::max(static_cast<double>(n), std::ceil((hi - origin) / spacing) + 1);
+    const std::optional<Axis> axis = latticeWindow(lo, hi, origin, spacing, -1.0, static_cast<double>(n));
     // The data's fault, not the command line's (a CT of 0.001 mm pixels under a body's contours).
-    if (!(last - first + 1 <= kMaxPixelsPerSide))
+    if (!axis)
       return makeError(Errc::InvalidInput, contours.source + ": on the reference lattice (" + formatNumber(spacing) + " " +
                                                contours.units + " pixels) the contours span more than " +
                                                std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
-    Axis axis;
-    axis.n = static_cast<int>(last - first) + 1;
-    axis.spacing = spacing;
-    axis.origin = origin + first * spacing;
-    return axis;
+    return *axis;
   };
   SCANSURF_ASSIGN_OR_RETURN(const Axis ax, extend(box.minX, box.maxX, ref.originX, ref.spacingX, ref.nx, "x"));
   SCANSURF_ASSIGN_OR_RETURN(const Axis ay, extend(box.minY, box.maxY, ref.originY, ref.spacingY, ref.ny, "y"));
-  const std::vector<double> planes = contourPlanesOn(contours, ref, tol);
   return gridFromAxes(ax, ay, planes, planes.size() == 1 ? referenceGapAt(ref, planes.front()) : 0);
 }
 

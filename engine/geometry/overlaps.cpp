@@ -42,16 +42,12 @@ bool boxesNear(const FeatureRegion& a, const FeatureRegion& b, int margin) {
 std::pair<std::size_t, double> sharedVoxels(const FeatureRegion& a, const FeatureRegion& b, const Grid& grid) {
   std::size_t voxels = 0;
   double volume = 0;
-  for (std::size_t i = 0, j = 0; i < a.layers.size() && j < b.layers.size();) {
-    if (a.layers[i] != b.layers[j]) {
-      (a.layers[i] < b.layers[j] ? i : j)++;
-      continue;
-    }
-    const std::size_t n = sharedPixels(a.runs[i], b.runs[j]);
+  forEachCommonLayer(a, b, [&](int k, const std::vector<PixelRun>& ra, const std::vector<PixelRun>& rb) {
+    const std::size_t n = sharedPixels(ra, rb);
     voxels += n;
-    volume += static_cast<double>(n) * voxelVolume(grid, a.layers[i]);
-    ++i, ++j;
-  }
+    volume += static_cast<double>(n) * voxelVolume(grid, k);
+    return true;
+  });
   return {voxels, volume};
 }
 

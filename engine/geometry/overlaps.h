@@ -24,6 +24,20 @@ struct FeatureRegion {
   int minRow = 0, maxRow = -1, minColumn = 0, maxColumn = -1;  // empty when maxRow < minRow
 };
 
+// Calls visit(layer, runsOfA, runsOfB) for each grid layer both regions have; stops when visit
+// returns false.
+template <typename Visit>
+void forEachCommonLayer(const FeatureRegion& a, const FeatureRegion& b, Visit&& visit) {
+  for (std::size_t i = 0, j = 0; i < a.layers.size() && j < b.layers.size();) {
+    if (a.layers[i] != b.layers[j]) {
+      (a.layers[i] < b.layers[j] ? i : j)++;
+      continue;
+    }
+    if (!visit(a.layers[i], a.runs[i], b.runs[j])) return;
+    ++i, ++j;
+  }
+}
+
 // Every feature's region on `grid` (threads: 0 = all).
 std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits,
                                              double sliceTolerance, int threads);

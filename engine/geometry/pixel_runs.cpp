@@ -69,8 +69,11 @@ std::vector<PixelRun> rasterizeSlice(const std::vector<Contour>& contours, const
   return runs;
 }
 
-std::size_t sharedPixels(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b) {
-  std::size_t shared = 0;
+namespace {
+
+// Calls shared(run) for each run of pixels in both lists, in order.
+template <typename Shared>
+void forEachSharedRun(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b, Shared&& shared) {
   std::size_t i = 0, j = 0;
   while (i < a.size() && j < b.size()) {
     if (a[i].row != b[j].row) {
@@ -78,24 +81,22 @@ std::size_t sharedPixels(const std::vector<PixelRun>& a, const std::vector<Pixel
       continue;
     }
     const int lo = std::max(a[i].begin, b[j].begin), hi = std::min(a[i].end, b[j].end);
-    if (hi > lo) shared += static_cast<std::size_t>(hi - lo);
+    if (hi > lo) shared(PixelRun{a[i].row, lo, hi});
     (a[i].end < b[j].end ? i : j)++;
   }
+}
+
+}  // namespace
+
+std::size_t sharedPixels(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b) {
+  std::size_t shared = 0;
+  forEachSharedRun(a, b, [&](const PixelRun& r) { shared += static_cast<std::size_t>(r.end - r.begin); });
   return shared;
 }
 
 std::vector<PixelRun> intersectPixelRuns(const std::vector<PixelRun>& a, const std::vector<PixelRun>& b) {
   std::vector<PixelRun> out;
-  std::size_t i = 0, j = 0;
-  while (i < a.size() && j < b.size()) {
-    if (a[i].row != b[j].row) {
-      (a[i].row < b[j].row ? i : j)++;
-      continue;
-    }
-    const int lo = std::max(a[i].begin, b[j].begin), hi = std::min(a[i].end, b[j].end);
-    if (hi > lo) out.push_back({a[i].row, lo, hi});
-    (a[i].end < b[j].end ? i : j)++;
-  }
+  forEachSharedRun(a, b, [&](const PixelRun& r) { out.push_back(r); });
   return out;
 }
 

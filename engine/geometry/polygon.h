@@ -3,6 +3,7 @@
 // a set of contours when a ray from it crosses their edges an odd number of times.
 #pragma once
 
+#include <optional>
 #include <span>
 
 #include "scansurf/contours.h"
@@ -30,6 +31,12 @@ struct Box2 {
   double width() const { return empty() ? 0 : maxX - minX; }
   double height() const { return empty() ? 0 : maxY - minY; }
 };
+
+// The box as a contour set's file extent (ContourSet::fileExtent); nullopt when empty.
+inline std::optional<ContourSet::Extent> extentOf(const Box2& box) {
+  if (box.empty()) return std::nullopt;
+  return ContourSet::Extent{box.minX, box.minY, box.maxX, box.maxY};
+}
 
 Box2 boundingBox(const Contour& contour);
 Box2 boundingBox(std::span<const Contour> contours);

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "geometry/polygon.h"
 #include "geometry/validate.h"
 
 namespace scansurf {
@@ -52,16 +53,12 @@ void makeObjectNamesUnique(std::vector<RawObject>& objects, const std::string& f
 namespace {
 
 // The in-plane box of every object's closed contours, selected or not (ContourSet::fileExtent).
-std::optional<ContourSet::Extent> extentOf(const std::vector<RawObject>& objects) {
-  std::optional<ContourSet::Extent> e;
+std::optional<ContourSet::Extent> fileExtentOf(const std::vector<RawObject>& objects) {
+  Box2 box;
   for (const RawObject& o : objects)
     for (const ObjectContour& c : o.closed)
-      for (const Point2& p : c.points) {
-        if (!e) e = ContourSet::Extent{p.x, p.y, p.x, p.y};
-        e->minX = std::min(e->minX, p.x), e->minY = std::min(e->minY, p.y);
-        e->maxX = std::max(e->maxX, p.x), e->maxY = std::max(e->maxY, p.y);
-      }
-  return e;
+      for (const Point2& p : c.points) box.add(p);
+  return extentOf(box);
 }
 
 }  // namespace
@@ -78,7 +75,7 @@ Result<std::vector<ObjectInfo>> buildObjectFeatures(std::vector<RawObject>& obje
                        file + ": --object \"" + pattern + "\" matches no object; the file holds " + quotedNames(objects));
   }
 
-  if (!options.patterns.empty()) out.fileExtent = extentOf(objects);  // the default grid's lattice
+  if (!options.patterns.empty()) out.fileExtent = fileExtentOf(objects);  // the default grid's lattice
   std::vector<ObjectInfo> infos;
   for (RawObject& o : objects) {
     ObjectInfo& info = o.info;

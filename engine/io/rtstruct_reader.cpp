@@ -23,6 +23,7 @@
 #include <span>
 #include <unordered_map>
 
+#include "geometry/polygon.h"
 #include "geometry/validate.h"
 #include "io/dicom_common.h"
 
@@ -308,16 +309,12 @@ Result<void> readAllRoiContours(const std::string& file, DcmDataset& dataset, co
 }
 
 // The in-plane box of every ROI's closed contours, selected or not (ContourSet::fileExtent).
-std::optional<ContourSet::Extent> extentOf(const std::vector<RawRoi>& rois) {
-  std::optional<ContourSet::Extent> e;
+std::optional<ContourSet::Extent> fileExtentOf(const std::vector<RawRoi>& rois) {
+  Box2 box;
   for (const RawRoi& r : rois)
     for (const RawContour& c : r.closed)
-      for (const Point2& p : c.points) {
-        if (!e) e = ContourSet::Extent{p.x, p.y, p.x, p.y};
-        e->minX = std::min(e->minX, p.x), e->minY = std::min(e->minY, p.y);
-        e->maxX = std::max(e->maxX, p.x), e->maxY = std::max(e->maxY, p.y);
-      }
-  return e;
+      for (const Point2& p : c.points) box.add(p);
+  return extentOf(box);
 }
 
 // Slice planes shared by every selected ROI, so abutting structures meet on one plane: the
@@ -497,7 +494,7 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
   readInterpretedTypes(dataset, byNumber, rois);
   SCANSURF_TRY(selectRois(file, options.roiPatterns, rois));
   SCANSURF_TRY(readAllRoiContours(file, dataset, options, byNumber, rois, out.warnings));
-  if (!options.roiPatterns.empty()) out.contours.fileExtent = extentOf(rois);
+  if (!options.roiPatterns.empty()) out.contours.fileExtent = fileExtentOf(rois);
   addFeatures(file, options.sliceTolerance, rois, out);
   for (RawRoi& r : rois) out.rois.push_back(std::move(r.info));
 
