@@ -64,7 +64,6 @@ void main() {
   if (x >= f.w) return;
   const int d2y = f.scratch + 2 * f.w * f.h;
   const bool square = push.weightX == 1 && push.weightY == 1;
-  int depth = 0;
   for (int y = 0; y < f.h; ++y) {
     const int at = y * f.w + x;
     int d2 = min(fieldValues.values[f.offset + at], scratch.ints[d2y + at]);
@@ -72,7 +71,5 @@ void main() {
     const int d = fixedDistance(d2);
     const bool inside = insideField(f, x, y);
     fieldValues.values[f.offset + at] = inside ? -d : d;
-    if (inside) depth = max(depth, d);
   }
-  atomicMax(fieldRadii.radii[index], depth);
 }

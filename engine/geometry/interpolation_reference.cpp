@@ -81,7 +81,7 @@ std::int32_t refinedDistance2(int x, int y, int w, int h, std::int32_t unit, std
 }
 
 void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, int plane, const shared::DistanceField& f,
-                    const DistanceWeights& weights, std::int32_t* values, std::int32_t& radius) {
+                    const DistanceWeights& weights, std::int32_t* values) {
   const Grid& g = volume.grid;
   const std::size_t w = static_cast<std::size_t>(f.w), area = w * static_cast<std::size_t>(f.h);
   const std::int32_t unit = weights.unit, far = farDistance(g, weights);
@@ -104,7 +104,6 @@ void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>&
   }
   for (int y = 0; y < f.h; ++y)
     lowerEnvelope(gy.data() + y * w, 1, f.w, weights.y, weights.x * unit * unit, v.data(), z.data(), d2y.data() + y * w);
-  radius = 0;
   for (int y = 0; y < f.h; ++y)
     for (int x = 0; x < f.w; ++x) {
       const std::size_t at = x + w * static_cast<std::size_t>(y);
@@ -113,7 +112,6 @@ void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>&
         d2 = refinedDistance2(x, y, f.w, f.h, unit, d2, inside, [&](int cx, int cy, int shift) { return crossing(cx, cy, shift); });
       const std::int32_t d = fixedDistance(d2, weights.fixedScale);
       values[at] = inside(x, y) ? -d : d;
-      if (inside(x, y)) radius = std::max(radius, d);
     }
 }
 
@@ -242,10 +240,9 @@ SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<
                                    const InterpolationSlab& slab, const DistanceWeights& weights) {
   SlabFields out;
   out.values.resize(slab.fieldValues);
-  out.radii.resize(slab.fields.size());
   for (std::size_t i = 0; i < slab.fields.size(); ++i) {
     const shared::DistanceField& f = slab.fields[i];
-    fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset, out.radii[i]);
+    fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset);
   }
   out.capErosions = capErosionTable(slab, [&](int field) {
     return out.values.data() + slab.fields[static_cast<std::size_t>(field)].offset;

@@ -12,7 +12,6 @@ namespace scansurf {
 
 struct SlabFields {
   std::vector<std::int32_t> values;  // InterpolationSlab::fieldValues
-  std::vector<std::int32_t> radii;   // per field: its largest depth inside (1/16 units)
   std::vector<std::int32_t> capErosions;  // the slab's cap table (capErosionTable)
 };
 

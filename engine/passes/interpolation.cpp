@@ -17,12 +17,12 @@
 
 namespace scansurf::passes {
 namespace {
-constexpr std::uint32_t kBindings = 12;
+constexpr std::uint32_t kBindings = 11;
 constexpr std::uint32_t kLineGroup = 64;    // rows and columns: one invocation each
 constexpr std::uint32_t kPixelGroup = 8;    // interpolation: 8 x 8 pixels
 constexpr std::uint32_t kMaxGroupsY = 65535;
 
-enum Binding : std::uint32_t { kPlanes, kFields, kValues, kScratch, kRadii, kEntries, kPairs, kTileRanges, kTileEntries, kOutput, kCaps, kCrossings };
+enum Binding : std::uint32_t { kPlanes, kFields, kValues, kScratch, kEntries, kPairs, kTileRanges, kTileEntries, kOutput, kCaps, kCrossings };
 
 // One buffer per binding, kept from slab to slab and grown when a slab needs more (fresh
 // memory for every slab cost more in page faults than the work).
@@ -30,7 +30,7 @@ struct SlabBuffers {
   std::array<gpu::Buffer, kBindings> buffers;
 
   static gpu::MemoryDomain domainOf(std::uint32_t binding) {
-    if (binding == kValues || binding == kScratch || binding == kRadii) return gpu::MemoryDomain::Device;
+    if (binding == kValues || binding == kScratch) return gpu::MemoryDomain::Device;
     return binding == kOutput ? gpu::MemoryDomain::Readback : gpu::MemoryDomain::Upload;
   }
   // Device buffers are cleared by fills; the planes may arrive by a device copy, and the
@@ -123,7 +123,6 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
   SCANSURF_TRY(track(b.upload(ctx, kFields, slab.fields)));
   SCANSURF_TRY(track(b.reserve(ctx, kValues, slab.fieldValues * 4)));
   SCANSURF_TRY(track(b.reserve(ctx, kScratch, slab.scratchInts * 4)));
-  SCANSURF_TRY(track(b.reserve(ctx, kRadii, slab.fields.size() * 4)));
   SCANSURF_TRY(track(b.upload(ctx, kEntries, slab.entries)));
   SCANSURF_TRY(track(b.upload(ctx, kPairs, slab.pairs)));
   SCANSURF_TRY(track(b.upload(ctx, kTileRanges, slab.tileRanges)));
@@ -259,9 +258,6 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   if (device.planes)
     recordPlanesCopy(cmd, *device.planes, buffers.buffers[kPlanes], plane * static_cast<VkDeviceSize>(slab.firstPlane) * sizeof(Label),
                      plane * static_cast<VkDeviceSize>(slab.planes) * sizeof(Label));
-  vkCmdFillBuffer(cmd, buffers.buffers[kRadii].handle(), 0, VK_WHOLE_SIZE, 0);  // atomicMax starts from 0
-  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
   recordFields(cmd, *state_, slab, push);
   std::optional<gpu::OneShotCommands> second;

@@ -8,15 +8,14 @@ layout(std430, binding = 0) readonly buffer Planes { uint words[]; } planes;  //
 layout(std430, binding = 1) readonly buffer Fields { DistanceField fields[]; } fieldTable;
 layout(std430, binding = 2) buffer Values { int values[]; } fieldValues;
 layout(std430, binding = 3) buffer Scratch { int ints[]; } scratch;
-layout(std430, binding = 4) buffer Radii { int radii[]; } fieldRadii;
-layout(std430, binding = 5) readonly buffer Entries { PairEntry entries[]; } entryTable;
-layout(std430, binding = 6) readonly buffer Pairs { PairPlan pairs[]; } pairTable;
-layout(std430, binding = 7) readonly buffer TileRanges { int ranges[]; } tileRanges;
-layout(std430, binding = 8) readonly buffer TileEntries { int entries[]; } tileEntries;
-layout(std430, binding = 9) writeonly buffer Output { uint labels[]; } outputLabels;
-layout(std430, binding = 10) readonly buffer CapTable { int erosion[]; } capTable;  // [PairEntry::capTable + m]
+layout(std430, binding = 4) readonly buffer Entries { PairEntry entries[]; } entryTable;
+layout(std430, binding = 5) readonly buffer Pairs { PairPlan pairs[]; } pairTable;
+layout(std430, binding = 6) readonly buffer TileRanges { int ranges[]; } tileRanges;
+layout(std430, binding = 7) readonly buffer TileEntries { int entries[]; } tileEntries;
+layout(std430, binding = 8) writeonly buffer Output { uint labels[]; } outputLabels;
+layout(std430, binding = 9) readonly buffer CapTable { int erosion[]; } capTable;  // [PairEntry::capTable + m]
 // Contour crossings of the +x (low byte) and +y (high byte) edge of each voxel, in 1/256.
-layout(std430, binding = 11) readonly buffer Crossings { uint words[]; } crossings;
+layout(std430, binding = 10) readonly buffer Crossings { uint words[]; } crossings;
 
 const int kFarAway = 1 << 28;
 const int kMovingTile = 1 << 30;  // in a tile's count: a label there shifts
