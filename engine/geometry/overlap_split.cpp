@@ -109,7 +109,6 @@ class Outlines {
     const auto it = built_.find({feature, layer});
     return it == built_.end() ? nullptr : &it->second;
   }
-  const Grid& grid() const { return grid_; }
   double sliceTolerance() const { return tolerance_; }
 
  private:
@@ -122,16 +121,12 @@ class Outlines {
 // Calls visit(k, row, column) for every voxel two regions share, layer by layer.
 template <typename Visit>
 void forEachSharedVoxel(const FeatureRegion& a, const FeatureRegion& b, Visit&& visit) {
-  for (std::size_t i = 0, j = 0; i < a.layers.size() && j < b.layers.size();) {
-    if (a.layers[i] != b.layers[j]) {
-      (a.layers[i] < b.layers[j] ? i : j)++;
-      continue;
-    }
-    for (const PixelRun& r : intersectPixelRuns(a.runs[i], b.runs[j]))
+  forEachCommonLayer(a, b, [&](int k, const std::vector<PixelRun>& ra, const std::vector<PixelRun>& rb) {
+    for (const PixelRun& r : intersectPixelRuns(ra, rb))
       for (int c = r.begin; c < r.end; ++c)
-        if (!visit(a.layers[i], r.row, c)) return;
-    ++i, ++j;
-  }
+        if (!visit(k, r.row, c)) return false;
+    return true;
+  });
 }
 
 // The deepest shared voxel's distance to the nearer outline, when every one is within limit.
@@ -305,10 +300,6 @@ std::vector<std::pair<std::size_t, Label>> overridesOnGrid(const Grid& sub, cons
   return out;
 }
 
-}  // namespace scansurf
-
-namespace scansurf {
-
 struct MedialCrossings::State {
   Grid grid;
   Outlines outlines;
@@ -337,9 +328,12 @@ MedialCrossings::MedialCrossings(const ContourSet& contours, const Grid& grid, c
 
 bool MedialCrossings::empty() const { return !state_; }
 
+bool MedialCrossings::separates(Label a, Label b) const {
+  return state_ && a != b && state_->pairs.count({std::min(a, b), std::max(a, b)}) > 0;
+}
+
 double MedialCrossings::crossing(Label a, Label b, double z, Point2 p, Point2 q) const {
-  if (!state_ || a == b) return -1;
-  if (!state_->pairs.count({std::min(a, b), std::max(a, b)})) return -1;
+  if (!separates(a, b)) return -1;
   const int k = layerOfZ(state_->grid, z, state_->outlines.sliceTolerance());
   const OutlineIndex* outlineA = k < 0 ? nullptr : state_->outlines.find(featureOfLabel(a), k);
   const OutlineIndex* outlineB = k < 0 ? nullptr : state_->outlines.find(featureOfLabel(b), k);

@@ -50,6 +50,8 @@ class MedialCrossings {
   ~MedialCrossings();
 
   bool empty() const;
+  // Whether a and b label the two features of an incidental pair.
+  bool separates(Label a, Label b) const;
   // The parameter in [0, 1] from p to q (points of the plane at z) where the medial line of the
   // features labelled a and b crosses; -1 when they are no incidental pair, z is not a contour
   // plane of both, or the line does not cross between p and q. Thread-safe.

@@ -307,6 +307,7 @@ double clearanceCrossing(const Grid& grid, std::span<const std::uint16_t> cleara
 void placeOnMedialLines(const MultiLabelMesh& mesh, const Grid& grid, const Adjacency& adj, const MedialCrossings& medial,
                         std::vector<double>& t) {
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
+    if (!medial.separates(adj.labels[2 * v], adj.labels[2 * v + 1])) continue;  // most vertices: no key decoding
     const Carrier c = carrierOfKey(mesh.keys[v]);
     if (c.count != 2 || c.corners[0][2] != c.corners[1][2]) continue;
     const auto point = [&](const int* corner) {

@@ -65,9 +65,9 @@ bool sameLoop(const Contour& a, const Contour& b) {
 void dropRepeatedContours(ContourSet& contours, int f, FeatureSlice& slice, int s) {
   std::vector<Contour> kept;
   for (int c = 0; c < static_cast<int>(slice.contours.size()); ++c) {
-    const Contour& contour = slice.contours[static_cast<std::size_t>(c)];
+    Contour& contour = slice.contours[static_cast<std::size_t>(c)];
     if (std::none_of(kept.begin(), kept.end(), [&](const Contour& k) { return sameLoop(k, contour); })) {
-      kept.push_back(contour);
+      kept.push_back(std::move(contour));
       continue;
     }
     contours.warnings.push_back(describeSlice(contours, f, s, slice.z) + ": contour " + std::to_string(c) +

@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <string_view>
 
 #include "core/utf8.h"
 #include "io/atomic_file.h"
@@ -69,7 +70,8 @@ std::unique_ptr<draco::Mesh> sceneMesh(const GltfFeature& f, const GlbOptions& o
 // Draco's glTF encoder writes names into its JSON unescaped (a quote, backslash or control
 // character in a name made it unreadable), so it gets a placeholder per feature, and the JSON
 // library writes the real names afterwards (realNames).
-std::string placeholderName(int material) { return "scansurf-feature-" + std::to_string(material); }
+constexpr std::string_view kPlaceholder = "scansurf-feature-";
+std::string placeholderName(int material) { return std::string(kPlaceholder) + std::to_string(material); }
 
 void addFeature(draco::Scene& scene, const GltfFeature& f, const GlbOptions& options, int material) {
   const std::string name = placeholderName(material);
@@ -99,9 +101,8 @@ void realNames(nlohmann::json& gltf, const std::vector<std::string>& names) {
     for (nlohmann::json& item : gltf[kind]) {
       if (!item.contains("name") || !item["name"].is_string()) continue;
       const std::string placeholder = item["name"].get<std::string>();
-      const std::string prefix = placeholderName(0).substr(0, placeholderName(0).size() - 1);
-      if (placeholder.rfind(prefix, 0) != 0) continue;
-      const std::size_t i = std::strtoul(placeholder.c_str() + prefix.size(), nullptr, 10);
+      if (placeholder.rfind(kPlaceholder, 0) != 0) continue;
+      const std::size_t i = std::strtoul(placeholder.c_str() + kPlaceholder.size(), nullptr, 10);
       if (i < names.size() && placeholder == placeholderName(static_cast<int>(i))) item["name"] = validUtf8(names[i]);
     }
   }
