@@ -440,6 +440,8 @@ Result<void> checkOptions(const BuildOptions& o) {
   if (f != InterpolationOptions::kAuto && (f < 1 || f > InterpolationOptions::kMaxFactor))
     return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
   if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);
+  const double tol = o.grid.sliceTolerance;
+  if (!(std::isfinite(tol) && tol >= 0)) return badOption("grid.sliceTolerance", "0 (the contours' own) or a positive length", tol);
   return checkOverlapTolerance(o.overlapTolerance);
 }
 
@@ -475,6 +477,15 @@ OverlapReport overlapAnalysis(const ContourSet& contours, const Grid& grid, cons
   return report;
 }
 
+// The options a run on `contours` uses: the slice tolerance resolved (sliceToleranceOf), so
+// that every stage merges the same planes.
+BuildOptions resolvedOptions(const BuildOptions& given, const ContourSet* contours) {
+  BuildOptions options = given;
+  if (contours) options.grid.sliceTolerance = sliceToleranceOf(*contours, given.grid.sliceTolerance);
+  else if (!(given.grid.sliceTolerance > 0)) options.grid.sliceTolerance = kDefaultSliceTolerance;
+  return options;
+}
+
 }  // namespace
 
 Engine::Engine(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -505,20 +516,22 @@ Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nestin
                                         const BuildOptions& options) {
   return guarded("scan conversion on " + describeGrid(grid), [&]() -> Result<LabelVolume> {
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
-    return scanner->run(contours, grid, nesting.order, options.grid.sliceTolerance);
+    return scanner->run(contours, grid, nesting.order, sliceToleranceOf(contours, options.grid.sliceTolerance));
   });
 }
 
-Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
+Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& given,
                                  const ContourSet* contours) {
+  const BuildOptions options = resolvedOptions(given, contours);
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
     return surfacesOfPlanes(*impl_, volume, std::nullopt, contours, nesting, options,
                             interpolationFactors(volume.grid, options.interpolation), clock);
   });
 }
 
-Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
+Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& given,
                                  const ContourSet* contours) {
+  const BuildOptions options = resolvedOptions(given, contours);
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
     return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock);
   });
@@ -531,9 +544,10 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
   });
 }
 
-Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& options) {
+Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& given) {
   return guarded("building the surfaces of " + input.source, [&]() -> Result<BuildResult> {
-    SCANSURF_TRY(checkOptions(options));
+    SCANSURF_TRY(checkOptions(given));
+    const BuildOptions options = resolvedOptions(given, &input);
     BuildResult out;
     StageClock clock(out.timings, options);
     const double tolerance = options.grid.sliceTolerance;
@@ -582,9 +596,10 @@ Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& o
   });
 }
 
-Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& input, const BuildOptions& options) {
+Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& input, const BuildOptions& given) {
   return guarded("analyzing the overlaps of " + input.source, [&]() -> Result<OverlapReport> {
-    SCANSURF_TRY(checkOptions(options));
+    SCANSURF_TRY(checkOptions(given));
+    const BuildOptions options = resolvedOptions(given, &input);
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.grid.sliceTolerance);
     const ContourSet& contours = filled ? *filled : input;

@@ -176,8 +176,9 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
 namespace {
 
 Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) {
-  const double tol = options.sliceTolerance;
-  if (!std::isfinite(tol) || tol < 0) return badOption("slice tolerance must be finite and not negative");
+  if (!std::isfinite(options.sliceTolerance) || options.sliceTolerance < 0)
+    return badOption("slice tolerance must be finite and not negative");
+  const double tol = sliceToleranceOf(contours, options.sliceTolerance);
   if (!std::isfinite(options.voxelSize) || options.voxelSize < 0)
     return badOption("voxel size must be positive and finite, got " + formatNumber(options.voxelSize));
   if (options.nx < 0 || options.ny < 0) return badOption("nx and ny must not be negative");

@@ -74,7 +74,8 @@ bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature&
 
 }  // namespace
 
-Nesting computeNesting(const ContourSet& contours, double sliceTolerance) {
+Nesting computeNesting(const ContourSet& contours, double requestedTolerance) {
+  const double sliceTolerance = sliceToleranceOf(contours, requestedTolerance);
   const int n = static_cast<int>(contours.features.size());
   std::vector<FeatureInfo> info;
   info.reserve(n);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "scansurf/label_volume.h"
@@ -77,6 +78,89 @@ void dropRepeatedContours(ContourSet& contours, int f, FeatureSlice& slice, int 
   slice.contours = std::move(kept);
 }
 
+
+// The largest magnitude of the set's coordinates: differences below 1e-12 of it are rounding
+// of one value, not a spacing.
+double magnitudeOf(const ContourSet& contours) {
+  double m = 0;
+  for (const Feature& f : contours.features)
+    for (const FeatureSlice& s : f.slices) {
+      m = std::max(m, std::abs(s.z));
+      for (const Contour& c : s.contours)
+        for (const Point2& p : c.points) m = std::max({m, std::abs(p.x), std::abs(p.y)});
+    }
+  return m;
+}
+
+// Sorted gaps between consecutive distinct values above `noise`.
+void appendGaps(std::vector<double> z, double noise, std::vector<double>& gaps) {
+  std::sort(z.begin(), z.end());
+  for (std::size_t i = 1; i < z.size(); ++i)
+    if (z[i] - z[i - 1] > noise) gaps.push_back(z[i] - z[i - 1]);
+}
+
+// kRelativeSliceTolerance of the median gap between a feature's own planes (the slice spacing
+// the data was drawn at, whatever its unit), or of the set's planes when no feature has two.
+// A fixed tolerance merged 5 nm sections in metres into one plane and kept copies of a plane
+// written 1e-9 apart in mm as two.
+double planeToleranceOf(const ContourSet& contours) {
+  const double noise = 1e-12 * magnitudeOf(contours);
+  std::vector<double> gaps, all;
+  for (const Feature& f : contours.features) {
+    std::vector<double> z;
+    for (const FeatureSlice& s : f.slices) z.push_back(s.z);
+    all.insert(all.end(), z.begin(), z.end());
+    appendGaps(std::move(z), noise, gaps);
+  }
+  if (gaps.empty()) appendGaps(std::move(all), noise, gaps);
+  if (gaps.empty()) return std::max(noise, std::numeric_limits<double>::min());  // one plane
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  return std::max(kRelativeSliceTolerance * gaps[gaps.size() / 2], noise);
+}
+
+// Puts every slice within planeTolerance of a plane onto that plane's z (the lowest of its
+// group), across features, so that later stages compare planes exactly. Merging distinct
+// values is worth a warning: the slices may have been meant as planes of their own.
+void snapToSharedPlanes(ContourSet& contours) {
+  std::vector<double> z;
+  for (const Feature& f : contours.features)
+    for (const FeatureSlice& s : f.slices) z.push_back(s.z);
+  std::sort(z.begin(), z.end());
+  z.erase(std::unique(z.begin(), z.end()), z.end());
+  std::vector<double> plane(z.size());
+  std::size_t merged = 0;
+  double firstFrom = 0, firstTo = 0;
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    plane[i] = i > 0 && z[i] - plane[i - 1] <= contours.planeTolerance ? plane[i - 1] : z[i];
+    if (plane[i] == z[i]) continue;
+    if (merged++ == 0) firstFrom = z[i], firstTo = plane[i];
+  }
+  if (merged == 0) return;
+  for (Feature& f : contours.features)
+    for (FeatureSlice& s : f.slices) s.z = plane[static_cast<std::size_t>(std::lower_bound(z.begin(), z.end(), s.z) - z.begin())];
+  contours.warnings.push_back(sourceName(contours) + ": " + std::to_string(merged) + " slice position(s) within " +
+                              formatNumber(contours.planeTolerance) + " " + contours.units +
+                              " (a thousandth of the median slice spacing) of a lower one were merged into its plane, e.g. z=" +
+                              formatNumber(firstFrom) + " into z=" + formatNumber(firstTo));
+}
+
+// Slices of one feature on one plane combine: sorted by z (stable, so contours keep their
+// input order), equal z joined.
+void mergeSlicesOfOnePlane(Feature& feature) {
+  std::stable_sort(feature.slices.begin(), feature.slices.end(),
+                   [](const FeatureSlice& a, const FeatureSlice& b) { return a.z < b.z; });
+  std::vector<FeatureSlice> merged;
+  for (FeatureSlice& slice : feature.slices) {
+    if (!merged.empty() && slice.z == merged.back().z) {
+      auto& into = merged.back().contours;
+      into.insert(into.end(), std::make_move_iterator(slice.contours.begin()), std::make_move_iterator(slice.contours.end()));
+    } else {
+      merged.push_back(std::move(slice));
+    }
+  }
+  feature.slices = std::move(merged);
+}
+
 }  // namespace
 
 std::string describeFeature(const ContourSet& contours, int feature) {
@@ -133,20 +217,13 @@ Result<void> validateAndNormalize(ContourSet& contours) {
           return invalid(describeContour(contours, f, s, slice.z, c) + ": fewer than 3 distinct points");
       }
     }
-    // Merge slices of one plane: sort by z (stable, so contours keep their input order).
-    std::stable_sort(feature.slices.begin(), feature.slices.end(),
-                     [](const FeatureSlice& a, const FeatureSlice& b) { return a.z < b.z; });
-    std::vector<FeatureSlice> merged;
-    for (FeatureSlice& slice : feature.slices) {
-      if (!merged.empty() && slice.z - merged.back().z <= kDefaultSliceTolerance) {
-        auto& into = merged.back().contours;
-        into.insert(into.end(), std::make_move_iterator(slice.contours.begin()),
-                    std::make_move_iterator(slice.contours.end()));
-      } else {
-        merged.push_back(std::move(slice));
-      }
-    }
-    feature.slices = std::move(merged);
+  }
+
+  contours.planeTolerance = planeToleranceOf(contours);
+  snapToSharedPlanes(contours);
+  for (int f = 0; f < featureCount; ++f) {
+    mergeSlicesOfOnePlane(contours.features[static_cast<std::size_t>(f)]);
+    Feature& feature = contours.features[static_cast<std::size_t>(f)];
     for (int s = 0; s < static_cast<int>(feature.slices.size()); ++s)
       dropRepeatedContours(contours, f, feature.slices[static_cast<std::size_t>(s)], s);
   }

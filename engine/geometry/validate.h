@@ -15,8 +15,9 @@ inline constexpr double kMaxCoordinate = 1e7;
 
 // Checks a freshly read contour set and normalizes it in place:
 // - drops consecutive duplicate points and a repeated closing point;
-// - sorts each feature's slices by z and merges slices whose z lie within
-//   kDefaultSliceTolerance of the first of their group (their contours combine).
+// - sets planeTolerance (kRelativeSliceTolerance of the median spacing of the features' own
+//   planes), moves every slice within it of a lower plane onto that plane, across features
+//   (with a warning), and merges each feature's slices of one plane (their contours combine).
 // Errors (Errc::InvalidInput), each naming contours.source and the feature, slice and contour
 // at fault: no features; more than kMaxFeatures; an empty or duplicate feature name; a
 // non-finite z or coordinate, or one beyond kMaxCoordinate; a contour of fewer than 3 distinct points; a slice without

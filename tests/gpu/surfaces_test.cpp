@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "geometry/validate.h"
 #include "gpu/gpu_test_env.h"
 #include "io/contours_json.h"
 #include "support/shapes.h"
@@ -169,6 +170,34 @@ TEST_F(SurfacesTest, SliceToleranceReachesEveryStage) {
   const MeshStats a = stats(*built, 0), moved = stats(*built, 1);
   EXPECT_TRUE(moved.closed && moved.manifold && moved.oriented);
   EXPECT_NEAR(moved.volume, a.volume, 1e-6 * a.volume) << "both spheres on the same layers";
+}
+
+// The plane tolerance follows the data's own slice spacing, not its unit: the same sphere in
+// millimetres and scaled to 2 nm sections in metres gives the same surface, scaled (a fixed
+// 0.001-unit tolerance merged every nm section into one plane and gave an empty surface).
+TEST_F(SurfacesTest, SliceToleranceFollowsTheSpacingInAnyUnit) {
+  auto scaled = [](double factor, const char* units) {
+    ContourSet set = sphereContours(5, 2.0);
+    set.units = units;
+    for (FeatureSlice& slice : set.features[0].slices) {
+      slice.z *= factor;
+      for (Contour& c : slice.contours)
+        for (Point2& p : c.points) p.x *= factor, p.y *= factor;
+    }
+    EXPECT_TRUE(validateAndNormalize(set));
+    return set;
+  };
+  const ContourSet mm = scaled(1, "mm"), nm = scaled(1e-9, "m");
+  EXPECT_EQ(nm.features[0].slices.size(), mm.features[0].slices.size());
+  EXPECT_NEAR(nm.planeTolerance, 2e-12, 1e-20);
+  auto a = engine_->build(mm, BuildOptions{});
+  auto b = engine_->build(nm, BuildOptions{});
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(b->volume.grid.nz, a->volume.grid.nz);
+  const MeshStats sa = stats(*a, 0), sb = stats(*b, 0);
+  EXPECT_TRUE(sb.closed && sb.manifold);
+  EXPECT_GT(sa.volume, 400);
+  EXPECT_NEAR(sb.volume * 1e27, sa.volume, 1e-4 * sa.volume);
 }
 
 // A feature left without a surface is reported by name, never dropped in silence.

@@ -348,6 +348,44 @@ namespace {
 // A contour repeated point for point on its slice (an exporter's duplicate, from any start
 // point and in either direction) is dropped with a warning naming the place: the two copies
 // would cancel by the even-odd rule and empty the feature there. A different contour stays.
+// Planes are merged within a thousandth of the median spacing of each feature's own slices,
+// across features, onto the lower plane's exact z, with a warning when distinct positions
+// merge: 0.00005 mm sections stay apart, copies of a plane 1e-9 apart join.
+TEST(Validation, SlicePlanesMergeRelativeToTheSpacing) {
+  const Contour square{{{0, 0}, {4, 0}, {4, 4}, {0, 4}}};
+  auto stack = [&](std::vector<double> zs) {
+    Feature f{"organ", std::nullopt, {}};
+    for (double z : zs) f.slices.push_back(FeatureSlice{z, {square}});
+    return f;
+  };
+  ContourSet fine;
+  fine.source = "fine";
+  fine.features.push_back(stack({0, 0.00005, 0.0001, 0.00015}));
+  ASSERT_TRUE(validateAndNormalize(fine));
+  EXPECT_EQ(fine.features[0].slices.size(), 4u);
+  EXPECT_NEAR(fine.planeTolerance, 5e-8, 1e-15);
+  EXPECT_TRUE(fine.warnings.empty());
+  GridOptions o;
+  o.voxelSize = 1;
+  const auto g = makeGrid(fine, o);
+  ASSERT_TRUE(g) << g.error().message;
+  EXPECT_EQ(g->nz, 6);
+
+  ContourSet close;
+  close.source = "close";
+  close.features.push_back(stack({0, 1e-9, 2, 4, 6}));
+  close.features.push_back(stack({2.0015, 4.5}));
+  close.features[1].name = "other";
+  ASSERT_TRUE(validateAndNormalize(close));
+  EXPECT_DOUBLE_EQ(close.planeTolerance, 2e-3);
+  ASSERT_EQ(close.features[0].slices.size(), 4u);
+  EXPECT_EQ(close.features[0].slices[0].contours.size(), 1u) << "the copies meet on one plane; one is kept";
+  EXPECT_EQ(close.features[1].slices[0].z, 2.0) << "moved onto the lower plane exactly";
+  ASSERT_EQ(close.warnings.size(), 2u) << "the merge, then the copies dropped";
+  EXPECT_EQ(close.warnings[0], "close: 2 slice position(s) within 0.002 mm (a thousandth of the median slice spacing) of a "
+                               "lower one were merged into its plane, e.g. z=1e-09 into z=0");
+}
+
 TEST(Validation, RepeatedContoursOfASliceAreDroppedWithAWarning) {
   const Contour square{{{0, 0}, {4, 0}, {4, 4}, {0, 4}}};
   const Contour rotatedReversed{{{4, 4}, {4, 0}, {0, 0}, {0, 4}}};

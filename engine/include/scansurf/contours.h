@@ -63,13 +63,27 @@ struct ContourSet {
     double minX = 0, minY = 0, maxX = 0, maxY = 0;
   };
   std::optional<Extent> fileExtent;
+  // Slice z values closer than this are one plane (input units), set by validation from the
+  // data itself (sliceToleranceOf); 0 = not validated.
+  double planeTolerance = 0;
   // What the reader skipped or doubted (skipped contour types, empty ROIs) and what it read
   // (one line each), for a run log. Not used by the method.
   std::vector<std::string> warnings;
   std::vector<std::string> notes;
 };
 
-// Tolerance (in input units) below which two slice z values are the same plane.
+// Two slice z values closer than this share of the typical spacing between a feature's own
+// planes are one plane, in any unit: 5 nm sections in metres and 2 mm CT slices alike.
+inline constexpr double kRelativeSliceTolerance = 1e-3;
+
+// The plane tolerance of a set that carries none (not validated), in input units.
 inline constexpr double kDefaultSliceTolerance = 1e-3;
+
+// The slice tolerance a run uses: `requested` when positive, else the set's own
+// (ContourSet::planeTolerance), else kDefaultSliceTolerance.
+inline double sliceToleranceOf(const ContourSet& contours, double requested = 0) {
+  if (requested > 0) return requested;
+  return contours.planeTolerance > 0 ? contours.planeTolerance : kDefaultSliceTolerance;
+}
 
 }  // namespace scansurf

@@ -21,8 +21,9 @@ struct GridOptions {
   int ny = 0;
   // When neither is set: square pixels, kDefaultPixels along the longer side.
   static constexpr int kDefaultPixels = 256;
-  // Slice z values closer than this (input units) are one plane.
-  double sliceTolerance = kDefaultSliceTolerance;
+  // Slice z values closer than this (input units) are one plane; 0 = the contour set's own
+  // tolerance (sliceToleranceOf: a thousandth of its typical plane spacing).
+  double sliceTolerance = 0;
   // When set (and voxelSize, nx, ny are not), the grid is the reference lattice extended by
   // whole pixels: one background pixel beyond the reference and the contours on each side in
   // x and y; its layers are the reference slices that hold contours, one layer below and above

@@ -21,7 +21,7 @@ struct Nesting {
 // Computes containment and the nesting order of a validated contour set; slices closer than
 // sliceTolerance (input units) are one plane. The order is acyclic and deterministic;
 // contours.order, when not empty, is used as the order instead.
-Nesting computeNesting(const ContourSet& contours, double sliceTolerance = kDefaultSliceTolerance);
+Nesting computeNesting(const ContourSet& contours, double sliceTolerance = 0);
 
 // The nesting of `featureCount` features none of which contains another, in index order: for
 // label volumes made elsewhere (Engine::extract) where containment is not known.
