@@ -29,9 +29,21 @@ namespace {
 
 int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 
+// The library names a refused option by its BuildOptions field; a command-line user reads the
+// flag that set it.
+std::string inFlags(std::string message) {
+  static constexpr std::pair<const char*, const char*> kFlags[] = {
+      {"option remeshing.edgeLength ", "option --edge-length "}, {"option smoothing.strength ", "option --smooth-strength "},
+      {"option smoothing.iterations ", "option --smooth-iterations "}, {"option threads ", "option --threads "},
+      {"option interpolation.factor ", "option --interpolate "}};
+  for (const auto& [field, flag] : kFlags)
+    if (message.rfind(field, 0) == 0) return flag + message.substr(std::char_traits<char>::length(field));
+  return message;
+}
+
 int fail(const Error& error) {
   if (::isatty(STDERR_FILENO)) std::fputs("\r\033[K", stderr);  // over a progress line
-  std::fprintf(stderr, "scansurf: error: %s\n", cli::printable(error.message).c_str());
+  std::fprintf(stderr, "scansurf: error: %s\n", cli::printable(inFlags(error.message)).c_str());
   return exitCode(error.code);
 }
 

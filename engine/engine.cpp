@@ -382,7 +382,8 @@ std::string formatCount(std::uint64_t n) {
 // the kernel's OOM killer.
 Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, int surfacedLayers, const BuildOptions& options,
                                const DeviceInfo& device, BuildResult& out) {
-  const Footprint need = estimateFootprint(contours, grid, surfacedLayers);
+  const Footprint need = estimateFootprint(contours, grid, surfacedLayers,
+                                           options.remeshing.enabled ? options.remeshing.edgeLength : 0);
   HostMemory limit{options.memoryLimit, "the limit asked for"};
   if (limit.bytes == 0) limit = availableHostMemory();
   out.estimatedMemory = need.hostBytes;
@@ -414,6 +415,20 @@ Unexpected badOption(const std::string& option, const std::string& allowed, doub
   char got[64];
   std::snprintf(got, sizeof got, "%g", value);
   return makeError(Errc::InvalidArgument, "option " + option + " must be " + allowed + " (got " + got + ")");
+}
+
+// A remeshing target far off the grid's scale is refused before the run: under a quarter voxel
+// the mesh grows as 1 / length^2 (1e-6 reached 3.5 GB), beyond 16 voxels every collapse is
+// tried and fails against the surface bound (1e9 took 93 s for an unchanged mesh).
+Result<void> checkEdgeLength(const RemeshOptions& r, const Grid& grid) {
+  if (!r.enabled || r.edgeLength == 0) return {};
+  const double voxel = std::min(grid.spacingX, grid.spacingY);
+  if (r.edgeLength >= RemeshOptions::kLeastVoxels * voxel && r.edgeLength <= RemeshOptions::kMostVoxels * voxel) return {};
+  char range[96];
+  std::snprintf(range, sizeof range, "between %.3g and %.3g (%g to %g in-plane voxels of this grid)",
+                RemeshOptions::kLeastVoxels * voxel, RemeshOptions::kMostVoxels * voxel, RemeshOptions::kLeastVoxels,
+                RemeshOptions::kMostVoxels);
+  return badOption("remeshing.edgeLength", range, r.edgeLength);
 }
 
 Result<void> checkOverlapTolerance(const OverlapTolerance& t) {
@@ -555,6 +570,7 @@ Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& g
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
     out.interpolation = summarizeInterpolation(grid, factors, options.interpolation.caps);
+    SCANSURF_TRY(checkEdgeLength(options.remeshing, grid));
     SCANSURF_TRY(checkMemoryBudget(input, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(input, grid);
     // Every feature holds its own slabs on the other features' planes (own_slabs.h).

@@ -89,9 +89,10 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
 
   parallelChunks(runs.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     std::vector<Segment> segments;
+    std::vector<std::uint64_t> cells;
     for (std::size_t r = begin; r < end; ++r) {
       const Run& run = runs[r];
-      // Each contour segment in pixel units, filed under every cell its closed box touches.
+      // Each contour segment in pixel units, filed under every cell it touches.
       segments.clear();
       for (const auto& [feature, slice] : slicesOfLayer[static_cast<std::size_t>(run.layer)])
         for (const Contour& c : slice->contours)
@@ -100,13 +101,12 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
             const Point2& q = c.points[(i + 1) % c.points.size()];
             Segment s{0, feature, (p.x - grid.originX) / grid.spacingX, (p.y - grid.originY) / grid.spacingY,
                       (q.x - grid.originX) / grid.spacingX, (q.y - grid.originY) / grid.spacingY};
-            const auto lo = [](double a, double b) { return static_cast<long long>(std::ceil(std::min(a, b))) - 1; };
-            const auto hi = [](double a, double b) { return static_cast<long long>(std::floor(std::max(a, b))); };
-            for (long long cj = std::max(0LL, lo(s.v0, s.v1)); cj <= std::min<long long>(grid.ny - 1, hi(s.v0, s.v1)); ++cj)
-              for (long long ci = std::max(0LL, lo(s.u0, s.u1)); ci <= std::min<long long>(grid.nx - 1, hi(s.u0, s.u1)); ++ci) {
-                s.cell = static_cast<std::uint64_t>(ci) | (static_cast<std::uint64_t>(cj) << 32);
-                segments.push_back(s);
-              }
+            cells.clear();
+            appendTouchedCells(s.u0, s.v0, s.u1, s.v1, grid.nx, grid.ny, cells);
+            for (const std::uint64_t cell : cells) {
+              s.cell = cell;
+              segments.push_back(s);
+            }
           }
       std::stable_sort(segments.begin(), segments.end(), [](const Segment& a, const Segment& b) { return a.cell < b.cell; });
 
@@ -130,6 +130,27 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
     }
   });
   return t;
+}
+
+// Column by column: the segment clipped to the column's closed strip gives its rows. Filing a
+// segment under its bounding box instead was O(length^2): a 1001-spike star filed 1.4 GB of
+// segments per plane and took 17 s.
+void appendTouchedCells(double u0, double v0, double u1, double v1, int nx, int ny, std::vector<std::uint64_t>& cells) {
+  constexpr double kSlack = 1e-9;  // pixel units: rounding of the clip never drops a touched cell
+  const double du = u1 - u0, dv = v1 - v0;
+  const long long ciLo = std::max(0LL, static_cast<long long>(std::ceil(std::min(u0, u1) - kSlack)) - 1);
+  const long long ciHi = std::min<long long>(nx - 1, static_cast<long long>(std::floor(std::max(u0, u1) + kSlack)));
+  for (long long ci = ciLo; ci <= ciHi; ++ci) {
+    double t0 = 0, t1 = 1;
+    if (du != 0) {
+      t0 = std::clamp((static_cast<double>(ci) - kSlack - u0) / du, 0.0, 1.0);
+      t1 = std::clamp((static_cast<double>(ci) + 1 + kSlack - u0) / du, 0.0, 1.0);
+    }
+    const double va = v0 + t0 * dv, vb = v0 + t1 * dv;
+    const long long cjLo = std::max(0LL, static_cast<long long>(std::ceil(std::min(va, vb) - kSlack)) - 1);
+    const long long cjHi = std::min<long long>(ny - 1, static_cast<long long>(std::floor(std::max(va, vb) + kSlack)));
+    for (long long cj = cjLo; cj <= cjHi; ++cj) cells.push_back(static_cast<std::uint64_t>(ci) | (static_cast<std::uint64_t>(cj) << 32));
+  }
 }
 
 }  // namespace scansurf

@@ -32,4 +32,9 @@ Carrier carrierOfKey(std::uint64_t key);
 std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,
                                         std::span<const Label> vertexLabels, double sliceTolerance, int threads);
 
+// The pixel-lattice cells (ci | cj << 32, within nx x ny) whose closed square [ci, ci+1] x
+// [cj, cj+1] the segment (u0, v0)-(u1, v1) touches, in pixel units: the cells whose lower and
+// left lattice edges it can cross. O(length) cells, column by column; appended to `cells`.
+void appendTouchedCells(double u0, double v0, double u1, double v1, int nx, int ny, std::vector<std::uint64_t>& cells);
+
 }  // namespace scansurf

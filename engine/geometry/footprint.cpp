@@ -45,6 +45,10 @@ constexpr double kBaseline = 128.0 * (1 << 20);
 // Vertices per crossing, measured (tests/unit/footprint_test.cpp) on the test shapes at 1 and
 // 0.5 mm pixels: 2.1 (torus) to 3.8 (branching); rounded up, so the estimate bounds the mesh.
 constexpr double kVerticesPerCrossing = 4;
+// Remeshing's peak per vertex of the remeshed mesh (the network with its reference surface,
+// broad phase and slab copies): 390 MB over smoothing's peak for 337 k vertices (phantom,
+// --edge-length 0.5 at 1 mm pixels), rounded up.
+constexpr double kRemeshBytesPerVertex = 1300;
 // The device's slab budget of scan conversion, and per pixel of one slab layer what it holds:
 // label image, depth-stencil image and the readback buffer.
 constexpr std::uint64_t kSlabBudget = std::uint64_t{64} << 20;
@@ -52,7 +56,7 @@ constexpr std::uint64_t kDeviceBytesPerPixel = 16;
 
 }  // namespace
 
-Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers) {
+Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers, double remeshLength) {
   Footprint f;
   const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
   f.labelVoxels = plane * static_cast<std::uint64_t>(grid.nz);
@@ -70,8 +74,14 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   // The label volume, once on the host and once as it arrives from the device, plus the mesh.
   // With interpolation, the interpolated volume's clearances besides (2 bytes per voxel).
   const double interpolated = finer > 1 ? static_cast<double>(plane) * layers * sizeof(Label) : 0.0;
+  double remeshed = 0;
+  if (remeshLength > 0) {
+    const double halfVoxel = 0.5 * std::min(grid.spacingX, grid.spacingY);
+    const double growth = std::max(1.0, (halfVoxel / remeshLength) * (halfVoxel / remeshLength));
+    remeshed = std::min(static_cast<double>(f.surfaceVertices) * growth, 1e18) * kRemeshBytesPerVertex;
+  }
   const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) + interpolated +
-                      static_cast<double>(f.surfaceVertices) * kBytesPerVertex;
+                      static_cast<double>(f.surfaceVertices) * kBytesPerVertex + remeshed;
   f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
   // One slab of scan conversion, the label volume kept on the device until classified and,
   // with interpolation, its volume of 32-bit label | clearance words.

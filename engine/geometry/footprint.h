@@ -23,6 +23,8 @@ struct Footprint {
 // its smoothing state and the feature surfaces.
 // With interpolation the surfaced volume has `surfacedLayers` layers instead of grid.nz: its
 // labels count too, and the side walls gain vertices in proportion.
-Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers = 0);
+// With remeshing to edges of `remeshLength` (input units; 0 = no remeshing), its network and
+// the remeshed mesh count too: at edges under half a voxel the mesh grows as 1 / length^2.
+Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers = 0, double remeshLength = 0);
 
 }  // namespace scansurf

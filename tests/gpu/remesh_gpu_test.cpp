@@ -13,6 +13,28 @@ namespace {
 
 class RemeshBuildTest : public GpuTest {};
 
+// An edge length far off the grid's scale is refused before any work, naming the option and
+// the range in this grid's units (1e-6 grew to 3.5 GB, 1e9 took 93 s); in the range it runs.
+TEST_F(RemeshBuildTest, EdgeLengthsOffTheGridsScaleAreRefused) {
+  auto engine = Engine::create(validatedEngineOptions());
+  ASSERT_TRUE(engine) << engine.error().message;
+  const ContourSet set = sphereContours(6, 2.0);
+  BuildOptions options;
+  options.grid.voxelSize = 1.0;
+  options.remeshing.enabled = true;
+  for (double length : {1e-6, 0.2, 17.0, 1e9}) {
+    options.remeshing.edgeLength = length;
+    auto built = engine->build(set, options);
+    ASSERT_FALSE(built) << length;
+    EXPECT_EQ(built.error().code, Errc::InvalidArgument);
+    EXPECT_NE(built.error().message.find("option remeshing.edgeLength must be between 0.25 and 16 (0.25 to 16 in-plane voxels"),
+              std::string::npos)
+        << built.error().message;
+  }
+  options.remeshing.edgeLength = 0.25;
+  EXPECT_TRUE(engine->build(set, options));
+}
+
 TEST_F(RemeshBuildTest, BuildRemeshesThePhantomAfterSmoothing) {
   auto engine = Engine::create(validatedEngineOptions());
   ASSERT_TRUE(engine) << engine.error().message;

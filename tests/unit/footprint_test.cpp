@@ -43,5 +43,21 @@ TEST(Footprint, VertexEstimateBoundsTheMeshFromAbove) {
   }
 }
 
+// Remeshing counts in the estimate: nothing at the default length or at a voxel, and as
+// 1 / length^2 below half a voxel (its network and the finer mesh).
+TEST(Footprint, RemeshingToShortEdgesCounts) {
+  const ContourSet set = sphereContours(20, 2);
+  GridOptions options;
+  options.voxelSize = 1;
+  const auto grid = makeGrid(set, options);
+  ASSERT_TRUE(grid) << grid.error().message;
+  const Footprint plain = estimateFootprint(set, *grid);
+  const Footprint voxel = estimateFootprint(set, *grid, 0, 1.0);
+  const Footprint quarter = estimateFootprint(set, *grid, 0, 0.25);
+  EXPECT_EQ(voxel.surfaceVertices, plain.surfaceVertices);
+  EXPECT_GT(voxel.hostBytes, plain.hostBytes + 1000 * plain.surfaceVertices);
+  EXPECT_GT(quarter.hostBytes - plain.hostBytes, 3.9 * (voxel.hostBytes - plain.hostBytes));
+}
+
 }  // namespace
 }  // namespace scansurf

@@ -11,13 +11,17 @@ struct RemeshOptions {
   // after smoothing, on the whole multi-label mesh; one of 400 000 triangles or more in slabs
   // along z, on BuildOptions::threads threads, with the same output for any thread count.
   bool enabled = false;
-  // Target edge length in input units; 0 (or anything not finite and positive) = 1.15 times
+  // Target edge length in input units; 0 = 1.15 times
   // the grid's in-plane voxel size (the smaller of its x and y spacings) or 0.33 times the
   // median gap between contour planes, whichever is longer: the benchmark sets then get fewer
-  // triangles than the Slicer route's. The CLI refuses such values. Around
+  // triangles than the Slicer route's. Around
   // feature-line edges that stay shorter (a contour's close points) the target shrinks
   // gradually, so the triangles there are small rather than thin.
   double edgeLength = 0;
+  // A set edgeLength must lie within these many in-plane voxels of the run's grid (refused
+  // otherwise, Errc::InvalidArgument): finer grows the mesh as 1 / length^2, coarser cannot
+  // collapse within the surface bound.
+  static constexpr double kLeastVoxels = 0.25, kMostVoxels = 16;
   // Curvature sizing: where the surface curves so tightly that a chord of the target length
   // would stand more than 0.2 voxel inside it at its middle (radius under about 0.6 L^2 per
   // voxel: a thin bar's sides and ends, a vessel's branch), the target shrinks to the longest
