@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "core/memory.h"
+
 namespace scansurf {
 namespace {
 
@@ -196,8 +198,10 @@ Syntax guessSyntax(std::istream& stream) {
   return big ? Syntax::ExplicitBig : Syntax::ExplicitLittle;
 }
 
-// The rest of the stream, inflated (raw deflate, RFC 1951); empty when it is not.
-std::string inflateRest(std::istream& stream) {
+// The rest of the stream, inflated (raw deflate, RFC 1951); empty when it is not. Stops with
+// `over` set once more than `limit` bytes came out: a 2 MB deflated file of zeros inflated to
+// 4.1 GB and ended in an out-of-memory exit.
+std::string inflateRest(std::istream& stream, std::uint64_t limit, bool& over) {
   std::string compressed((std::istreambuf_iterator<char>(stream)), {});
   std::string out;
   z_stream z{};
@@ -211,6 +215,10 @@ std::string inflateRest(std::istream& stream) {
     z.avail_out = chunk.size();
     status = inflate(&z, Z_NO_FLUSH);
     out.append(chunk.data(), chunk.size() - z.avail_out);
+    if (limit > 0 && out.size() > limit) {
+      over = true;
+      break;
+    }
   }
   inflateEnd(&z);
   return out;
@@ -218,7 +226,7 @@ std::string inflateRest(std::istream& stream) {
 
 }  // namespace
 
-Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth) {
+Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth, std::uint64_t inflateLimit) {
   std::ifstream stream(path, std::ios::binary);
   if (!stream) return {};  // the loader reports what it cannot open
   char preamble[132] = {};
@@ -234,7 +242,15 @@ Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPix
   }
   int deepest = 0;
   if (syntax == Syntax::DeflatedLittle) {
-    std::istringstream inflated(inflateRest(stream));
+    // The parser holds the data set a few times over, as for a file of that size (checkInputFile).
+    HostMemory memory{inflateLimit * 4, "the limit asked for"};
+    if (inflateLimit == 0) memory = availableHostMemory();
+    bool over = false;
+    std::istringstream inflated(inflateRest(stream, memory.bytes / 4, over));
+    if (over)
+      return makeError(Errc::ResourceLimit, path.string() + ": its deflated data set inflates to more than " +
+                                                formatBytes(memory.bytes / 4) + ", a quarter of the " + formatBytes(memory.bytes) +
+                                                " of memory available (" + memory.source + "); not read");
     Reader in(inflated, false);
     deepest = deepestNesting(in, Syntax::ExplicitLittle, stopAtPixelData, maxDepth);
   } else {

@@ -2,6 +2,7 @@
 // hostile file cannot overflow the stack of DCMTK's recursive parser (issue 15, cause 1).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 
 #include "scansurf/result.h"
@@ -16,6 +17,9 @@ inline constexpr int kMaxDicomNesting = 64;
 // endian; deflated data sets inflated in memory), stopping at Pixel Data when stopAtPixelData,
 // and fails with Errc::InvalidInput naming the file and the depth when sequences nest deeper
 // than maxDepth. Bytes it cannot make sense of end the walk quietly: judging them is DCMTK's job.
-Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth = kMaxDicomNesting);
+// A deflated data set that inflates to more than inflateLimit bytes (0: a quarter of the
+// memory available, as for a file read whole) fails with Errc::ResourceLimit naming the file.
+Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth = kMaxDicomNesting,
+                               std::uint64_t inflateLimit = 0);
 
 }  // namespace scansurf

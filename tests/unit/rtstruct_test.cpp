@@ -1,6 +1,9 @@
 // DICOM input: RT Structure Sets and CT series written with DCMTK in the test (nested,
 // abutting, holes, keyholes, islands, uneven slices, POINT and empty ROIs, every bad input),
 // surfaced with the CPU pipeline; and the public samples in ../shared/data/rtstruct.
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcxfer.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -16,6 +19,7 @@
 #include "geometry/feature_surfaces.h"
 #include "geometry/label_layers.h"
 #include "io/ct_series.h"
+#include "io/dicom_nesting.h"
 #include "io/rtstruct_reader.h"
 #include "support/scratch_dir_test.h"
 #include "scansurf/grid.h"
@@ -510,6 +514,29 @@ TEST_F(Dicom, DeeplyNestedSequencesRefusedBeforeParsing) {
   r = readRtStruct(p);
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().message.find("nested"), std::string::npos) << r.error().message;
+}
+
+// A deflated data set is inflated under a budget before it is parsed: past it, the file is
+// refused by name (a 2 MB deflated file of zeros inflated to 4.1 GB and ended in an
+// out-of-memory exit). Within it, the deflated file reads as the plain one does.
+TEST_F(Dicom, DeflatedDataSetsInflateUnderABudget) {
+  TestRoi roi{1, "box", "ORGAN", std::nullopt, {}};
+  for (double z : {0.0, 2.0, 4.0}) roi.contours.push_back(closedContour(square(-6, -6, 6, 6), z));
+  TestRtStruct rt;
+  rt.rois = {roi};
+  const fs::path plain = write(rt), deflated = dir_ / "deflated.dcm";
+  DcmFileFormat file;
+  ASSERT_TRUE(file.loadFile(plain.c_str()).good());
+  ASSERT_TRUE(file.saveFile(deflated.c_str(), EXS_DeflatedLittleEndianExplicit).good());
+  const auto tooMuch = checkDicomNesting(deflated, false, kMaxDicomNesting, 100);
+  ASSERT_FALSE(tooMuch);
+  EXPECT_EQ(tooMuch.error().code, Errc::ResourceLimit);
+  EXPECT_NE(tooMuch.error().message.find("deflated.dcm: its deflated data set inflates to more than 100 B"), std::string::npos)
+      << tooMuch.error().message;
+  EXPECT_TRUE(checkDicomNesting(plain, false, kMaxDicomNesting, 100)) << "a plain file is not inflated";
+  auto a = readRtStruct(plain), b = readRtStruct(deflated);
+  ASSERT_TRUE(a && b) << (b ? "" : b.error().message);
+  EXPECT_EQ(b->contours.features[0].slices.size(), a->contours.features[0].slices.size());
 }
 
 TEST_F(Dicom, NeverCrashesOnTruncatedFiles) {
