@@ -257,6 +257,141 @@ def judge(outcome, category, case, cmd, out_dir, expect, args, send=None, mentio
     outcome.add(category, case, "ok", "exit %d, %.1f s" % (code, seconds))
 
 
+# ---------------------------------------------------------------------------------------------
+# Second round (issue 32): the lock file, names in every format, precision, results that are
+# silently wrong (judged by the report's volumes), memory outside the budget, unbounded inputs
+# and paths.
+
+def ball_json(path, units, zs, r, name="ball"):
+    path.write_text(json.dumps({"version": 1, "units": units,
+                                "features": [feature(name, zs, circle(r, 48))]}))
+    return path
+
+
+def judge_volumes(outcome, category, case, cmd, report, args, tolerance=0.05):
+    """A run that must succeed with every surface's volume within tolerance of its contours'."""
+    code, text, seconds, timed_out = run(cmd + ["--report", str(report)], args.timeout, args.cap_gib << 30)
+    if timed_out or code != 0:
+        return outcome.add(category, case, "hang" if timed_out else "wrong exit", "exit %s: %s" % (code, text[-300:]))
+    rows = json.loads(report.read_text())["features"]
+    for f in rows:
+        want, got = f["contour_volume"], f["surface_volume"]
+        if not (want > 0 and abs(got - want) <= tolerance * want):
+            return outcome.add(category, case, "wrong result", "%s: surface %g, contours %g" % (f["name"], got, want))
+    outcome.add(category, case, "ok", "exit 0, %.1f s, volumes within %g %%" % (seconds, 100 * tolerance))
+
+
+def deflated_bomb(work):
+    """A Part 10 RTSTRUCT in deflated explicit VR whose data set holds 4 GiB of zeros."""
+    import zlib
+    ts = b"1.2.840.10008.1.2.1.99\0"
+    meta_body = struct.pack("<HH2sHI", 0x0002, 0x0001, b"OB", 0, 2) + b"\0\1"
+    meta_body += struct.pack("<HH2sH", 0x0002, 0x0010, b"UI", len(ts)) + ts
+    meta = struct.pack("<HH2sHI", 0x0002, 0x0000, b"UL", 4, len(meta_body)) + meta_body
+    head = struct.pack("<HH2sH", 0x0008, 0x0060, b"CS", 8) + b"RTSTRUCT"
+    head += struct.pack("<HH2sHI", 0x0009, 0x1010, b"OB", 0, 0xFFFFFFF0)  # a private value of zeros
+    z = zlib.compressobj(9, zlib.DEFLATED, -15)
+    parts = [z.compress(head)]
+    zeros = bytes(1 << 24)
+    for _ in range(0xFFFFFFF0 >> 24):
+        parts.append(z.compress(zeros))
+    parts.append(z.flush())
+    p = work / "in" / "deflated-bomb.dcm"
+    p.write_bytes(b"\0" * 128 + b"DICM" + meta + b"".join(parts))
+    return p
+
+
+def second_round(exe, work, outcome, args):
+    r2 = work / "round2"
+    r2.mkdir()
+    ex = str(EXAMPLE)
+
+    # Security: a lock file that is a link is never followed; names never become statements.
+    victim = r2 / "victim"
+    victim.write_text("keep me")
+    for kind in ("link", "dangling"):
+        d = r2 / ("lock-" + kind)
+        d.mkdir()
+        (d / ".scansurf.lock").symlink_to(victim if kind == "link" else r2 / "nowhere")
+        code, text, _, _ = run([exe, ex, "-o", str(d), "-q"], args.timeout, args.cap_gib << 30)
+        ok = victim.read_text() == "keep me" and not (r2 / "nowhere").exists() and code in (0, 4)
+        outcome.add("security", "lock-file-" + kind, "ok" if ok else "wrong result", "exit %d: %s" % (code, text[-200:]))
+    forged = ball_json(r2 / "forged.json", "mm", [0, 2, 4], 10, name='PTV "boost"\nmtllib /etc/passwd\nv 1 2 3')
+    for fmt in ("obj", "ply", "stl", "glb", "nrrd"):
+        d = r2 / ("names-" + fmt)
+        what = ["--label-volume", str(d / "labels.nrrd")] if fmt == "nrrd" else ["--format", fmt]
+        d.mkdir()
+        code, text, _, _ = run([exe, str(forged), "-o", str(d)] + what + ["-q"], args.timeout, args.cap_gib << 30)
+        raw = b"".join(p.read_bytes() for p in d.glob("*") if p.is_file()) if d.exists() else b""
+        bad = code != 0 or b"\nmtllib /etc/passwd" in raw or b"\nv 1 2 3" in raw
+        outcome.add("names", "newline-quote-name-" + fmt, "wrong result" if bad else "ok", "exit %d: %s" % (code, text[-200:]))
+
+    # Precision: planes in any unit, coordinates far from the origin, duplicated contours.
+    cases = {
+        "nm-sections-in-metres": ("m", [5e-9 * k for k in range(12)], 4e-8),
+        "mm-0.00005-slices": ("mm", [5e-5 * k for k in range(12)], 4e-4),
+        "metres-0.5mm-slices": ("m", [5e-4 * k for k in range(20)], 0.02),
+    }
+    for name, (units, zs, r) in cases.items():
+        judge_volumes(outcome, "precision", name, [exe, str(ball_json(r2 / (name + ".json"), units, zs, r)), "-o",
+                                                   str(r2 / name), "-q"], r2 / (name + ".report.json"), args)
+    pair = r2 / "slices-1e-9-apart.json"
+    pair.write_text(json.dumps({"version": 1, "features": [feature("ball", [0, 1e-9, 2, 4, 6], circle(5, 48))]}))
+    code, text, _, _ = run([exe, str(pair), "-o", str(r2 / "pair")], args.timeout, args.cap_gib << 30)
+    outcome.add("precision", "slices-1e-9-apart-warned", "ok" if code == 0 and "merged into its plane" in text else "wrong result",
+                "exit %d: %s" % (code, text[-200:]))
+    far = r2 / "far-9.9e6.json"
+    far.write_text(json.dumps({"version": 1, "features": [feature("f", [0, 2, 4], circle(10, 48, cx=9.9e6))]}))
+    judge(outcome, "precision", "coordinates-9.9e6-voxel-0.25", [exe, str(far), "-o", str(r2 / "far"), "--voxel-size", "0.25", "-q"],
+          r2 / "far", {0, 3}, args, mention="float32")
+    dup = r2 / "duplicate-contour.json"
+    f = feature("organ", [0, 2, 4], circle(10, 48))
+    f["slices"][1]["contours"].append(f["slices"][1]["contours"][0])
+    dup.write_text(json.dumps({"version": 1, "features": [f]}))
+    judge_volumes(outcome, "precision", "duplicate-contour", [exe, str(dup), "-o", str(r2 / "dup"), "-q"],
+                  r2 / "dup.report.json", args)
+
+    # Memory outside the budget: smoothing of a self-crossing star, remeshing far off the grid.
+    star = r2 / "star-1001.json"
+    n, k = 1001, 500
+    pts = [[50 * math.cos(2 * math.pi * (i * k % n) / n), 50 * math.sin(2 * math.pi * (i * k % n) / n)] for i in range(n)]
+    star.write_text(json.dumps({"version": 1, "features": [{"name": "star", "slices": [{"z": z, "contours": [pts]}
+                                                                                       for z in range(8)]}]}))
+    judge(outcome, "memory", "star-1001-smoothing", [exe, str(star), "-o", str(r2 / "star"), "--grid", "256", "256", "-q"],
+          r2 / "star", {0, 9}, args)
+    for length in ("1e-6", "1e9"):
+        judge(outcome, "memory", "edge-length-" + length, [exe, ex, "-o", str(r2 / "edge"), "--remesh", "--edge-length", length, "-q"],
+              r2 / "edge", {2}, args, mention="--edge-length")
+
+    # Unbounded inputs: named, refused before they are read.
+    judge(outcome, "unbounded", "deflated-bomb", [exe, str(deflated_bomb(work)), "-o", str(r2 / "bomb"), "-q"], r2 / "bomb",
+          {3, 9}, args, mention="deflated-bomb.dcm")
+    zero = r2 / "zero.json"
+    zero.symlink_to("/dev/zero")
+    judge(outcome, "unbounded", "json-link-to-dev-zero", [exe, str(zero), "-o", str(r2 / "zero"), "-q"], r2 / "zero", {3}, args,
+          mention="zero.json")
+    fifo = r2 / "fifo.json"
+    os.mkfifo(fifo)
+    judge(outcome, "unbounded", "fifo-without-writer", [exe, str(fifo), "-o", str(r2 / "fifo"), "-q"], r2 / "fifo", {3}, args,
+          mention="fifo.json")
+
+    # Paths: long names, an output that is the input, SIGPIPE.
+    longname = r2 / ("L" * 240 + ".json")
+    shutil.copy(EXAMPLE, longname)
+    judge(outcome, "paths", "file-name-240-characters", [exe, str(longname), "-o", str(r2 / ("O" * 240)), "-q"], r2, {0}, args)
+    copy = r2 / "input-copy.json"
+    shutil.copy(EXAMPLE, copy)
+    code, text, _, _ = run([exe, str(copy), "-o", str(r2 / "same"), "--report", str(copy)], args.timeout, args.cap_gib << 30)
+    intact = copy.read_bytes() == EXAMPLE.read_bytes()
+    outcome.add("paths", "report-equals-input", "ok" if code == 2 and intact else "wrong result", "exit %d: %s" % (code, text[-200:]))
+    pipe = r2 / "sigpipe"
+    code, text, _, _ = run(["bash", "-c", "\"$0\" \"$@\" | head -c0; exit ${PIPESTATUS[0]}", exe, ex, "-o", str(pipe)],
+                           args.timeout, args.cap_gib << 30)
+    left = [p.name for p in pipe.iterdir() if p.name.startswith(".scansurf")] if pipe.exists() else []
+    outcome.add("paths", "stdout-closed-early", "ok" if code in (0, 4) and not left else "partial output",
+                "exit %d, left %s" % (code, left))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--scansurf", required=True)
@@ -264,6 +399,7 @@ def main():
     ap.add_argument("--timeout", type=int, default=120)
     ap.add_argument("--cap-gib", type=int, default=6)
     ap.add_argument("--quick", action="store_true", help="skip the slowest cases")
+    ap.add_argument("--round2-only", action="store_true", help="only the second round's cases (issue 32)")
     args = ap.parse_args()
     exe = str(Path(args.scansurf).resolve())
     work = Path(args.work)
@@ -275,12 +411,12 @@ def main():
 
     # 1. Input files: valid ones must surface (exit 0); the rest exit 3 (or 9 when too big for
     # the memory cap), naming the file.
-    for name, path in write_json_cases(work).items():
+    for name, path in ({} if args.round2_only else write_json_cases(work)).items():
         if args.quick and name in ("slices-20000", "nested-3000", "too-many-features-70000"):
             continue
         extra = ["--label-volume", str(out / "labels.nrrd")] if name == "z-gap-1e12" else []
         judge(outcome, "json", name, [exe, str(path), "-o", str(out), "-q"] + extra, out, {0, 3, 9}, args, mention=None)
-    for name, path in write_dicom_cases(work, rng).items():
+    for name, path in ({} if args.round2_only else write_dicom_cases(work, rng)).items():
         judge(outcome, "dicom", name + " --list-rois", [exe, str(path), "--list-rois"], out, {0, 3}, args)
         judge(outcome, "dicom", name, [exe, str(path), "-o", str(out), "-q"], out, {0, 3, 9}, args)
 
@@ -302,51 +438,55 @@ def main():
         "dicom-seg-no-ref": ["--dicom-seg", str(out / "s.dcm")], "view-junk": ["--view", "sideways"],
         "tolerance-long-arg": ["--voxel-size", "1" * 5000],
     }
-    for name, opts in option_cases.items():
+    for name, opts in ({} if args.round2_only else option_cases).items():
         judge(outcome, "options", name, [exe, ex, "-o", str(out), "-q"] + opts, out, {0, 2, 3, 4, 5, 9}, args)
 
-    # 3. Output clashes: nothing may be replaced when any target cannot be written.
-    clash = work / "clash"
-    clash.mkdir()
-    (clash / "BODY.ply").write_text("old body")
-    (clash / "vertebra.ply").mkdir()  # a directory where a file goes
-    judge(outcome, "outputs", "target-is-directory", [exe, ex, "-o", str(clash), "-q"], clash, {4}, args)
-    ro = work / "readonly"
-    ro.mkdir()
-    (ro / "BODY.ply").write_text("old")
-    ro.chmod(0o555)
-    if os.geteuid() != 0:
-        judge(outcome, "outputs", "read-only-dir", [exe, ex, "-o", str(ro), "-q"], ro, {4}, args)
-    judge(outcome, "outputs", "output-is-file", [exe, ex, "-o", str(EXAMPLE) + "/x", "-q"], out, {4}, args)
-    judge(outcome, "outputs", "report-equals-preview", [exe, ex, "-o", str(out), "--report", str(out / "a.png"),
-                                                        "--preview", str(out / "a.png")], out, {2, 4}, args)
-    fsz = work / "fsize"
-    fsz.mkdir()
-    judge(outcome, "outputs", "file-size-limit", ["bash", "-c", "ulimit -f 1024; exec \"$0\" \"$@\"", exe, ex, "-o", str(fsz), "-q"],
-          fsz, {4}, args)
-    lockd = work / "locked"
-    lockd.mkdir()
-    (lockd / ".scansurf.lock").write_text("")  # held by flock below, as another run would
-    judge(outcome, "outputs", "locked-by-another-run", ["flock", str(lockd / ".scansurf.lock"), exe, ex, "-o", str(lockd), "-q"],
-          lockd, {4}, args)
+    if not args.round2_only:
+        # 3. Output clashes: nothing may be replaced when any target cannot be written.
+        clash = work / "clash"
+        clash.mkdir()
+        (clash / "BODY.ply").write_text("old body")
+        (clash / "vertebra.ply").mkdir()  # a directory where a file goes
+        judge(outcome, "outputs", "target-is-directory", [exe, ex, "-o", str(clash), "-q"], clash, {4}, args)
+        ro = work / "readonly"
+        ro.mkdir()
+        (ro / "BODY.ply").write_text("old")
+        ro.chmod(0o555)
+        if os.geteuid() != 0:
+            judge(outcome, "outputs", "read-only-dir", [exe, ex, "-o", str(ro), "-q"], ro, {4}, args)
+        judge(outcome, "outputs", "output-is-file", [exe, ex, "-o", str(EXAMPLE) + "/x", "-q"], out, {4}, args)
+        judge(outcome, "outputs", "report-equals-preview", [exe, ex, "-o", str(out), "--report", str(out / "a.png"),
+                                                            "--preview", str(out / "a.png")], out, {2, 4}, args)
+        fsz = work / "fsize"
+        fsz.mkdir()
+        judge(outcome, "outputs", "file-size-limit", ["bash", "-c", "ulimit -f 1024; exec \"$0\" \"$@\"", exe, ex, "-o", str(fsz), "-q"],
+              fsz, {4}, args)
+        lockd = work / "locked"
+        lockd.mkdir()
+        (lockd / ".scansurf.lock").write_text("")  # held by flock below, as another run would
+        judge(outcome, "outputs", "locked-by-another-run", ["flock", str(lockd / ".scansurf.lock"), exe, ex, "-o", str(lockd), "-q"],
+              lockd, {4}, args)
 
-    # 4. Signals at several moments of a ~10 s run: exit 128 + signal, nothing left, old files kept.
-    sig = work / "signals"
-    sig.mkdir()
-    (sig / "BODY.ply").write_text("previous")
-    for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-        for at in (0.3, 1.5, 3.0, 5.0, 7.0):
-            judge(outcome, "signals", "%s@%.1fs" % (s.name, at),
-                  [exe, ex, "-o", str(sig), "--voxel-size", "0.25", "--format", "ply,obj", "-q"], sig,
-                  {0, 128 + s}, args, send=(at, s))
-    # SIGKILL leaves staging behind, which the next run into the same place removes.
-    for at in (1.5, 3.0, 5.0, 7.0):
-        run([exe, ex, "-o", str(sig), "--voxel-size", "0.25", "--format", "ply,obj", "-q"], 60, args.cap_gib << 30,
-            send=(at, signal.SIGKILL))
-        code, text, _, _ = run([exe, ex, "-o", str(sig), "-q"], 60, args.cap_gib << 30)
-        left = [p.name for p in sig.iterdir() if p.name.startswith(".scansurf")]
-        outcome.add("signals", "SIGKILL@%.1fs then a run" % at, "ok" if code == 0 and not left else "partial output",
-                    "exit %d, left %s" % (code, left))
+        # 4. Signals at several moments of a ~10 s run: exit 128 + signal, nothing left, old files kept.
+        sig = work / "signals"
+        sig.mkdir()
+        (sig / "BODY.ply").write_text("previous")
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            for at in (0.3, 1.5, 3.0, 5.0, 7.0):
+                judge(outcome, "signals", "%s@%.1fs" % (s.name, at),
+                      [exe, ex, "-o", str(sig), "--voxel-size", "0.25", "--format", "ply,obj", "-q"], sig,
+                      {0, 128 + s}, args, send=(at, s))
+        # SIGKILL leaves staging behind, which the next run into the same place removes.
+        for at in (1.5, 3.0, 5.0, 7.0):
+            run([exe, ex, "-o", str(sig), "--voxel-size", "0.25", "--format", "ply,obj", "-q"], 60, args.cap_gib << 30,
+                send=(at, signal.SIGKILL))
+            code, text, _, _ = run([exe, ex, "-o", str(sig), "-q"], 60, args.cap_gib << 30)
+            left = [p.name for p in sig.iterdir() if p.name.startswith(".scansurf")]
+            outcome.add("signals", "SIGKILL@%.1fs then a run" % at, "ok" if code == 0 and not left else "partial output",
+                        "exit %d, left %s" % (code, left))
+
+    # 5. The second round's causes (issue 32).
+    second_round(exe, work, outcome, args)
 
     # Every row, for the record; then the summary.
     with open(work / "results.tsv", "w") as f:
@@ -357,7 +497,7 @@ def main():
     for c, *_ in outcome.rows:
         if c not in cats:
             cats.append(c)
-    verdicts = ["crash", "hang", "memory abort", "wrong exit", "unclear message", "partial output"]
+    verdicts = ["crash", "hang", "memory abort", "wrong exit", "unclear message", "partial output", "wrong result"]
     print("\n| category | inputs | " + " | ".join(verdicts) + " |")
     print("|---|---|" + "---|" * len(verdicts))
     total = [0] * (len(verdicts) + 1)
