@@ -45,6 +45,9 @@ constexpr double kBaseline = 128.0 * (1 << 20);
 // Vertices per crossing, measured (tests/unit/footprint_test.cpp) on the test shapes at 1 and
 // 0.5 mm pixels: 2.1 (torus) to 3.8 (branching); rounded up, so the estimate bounds the mesh.
 constexpr double kVerticesPerCrossing = 4;
+// The feature surfaces' triangle lists per vertex of a feature's own surface: two triangles of
+// three 32-bit indices, with a vector's growth slack.
+constexpr double kFeatureBytesPerVertex = 2 * 3 * 4 * 1.5;
 // Remeshing's peak per vertex of the remeshed mesh (the network with its reference surface,
 // broad phase and slab copies): 390 MB over smoothing's peak for 337 k vertices (phantom,
 // --edge-length 0.5 at 1 mm pixels), rounded up.
@@ -60,17 +63,23 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   Footprint f;
   const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
   f.labelVoxels = plane * static_cast<std::uint64_t>(grid.nz);
-  double crossings = 0;
-  for (const Feature& feature : contours.features) crossings += featureCrossings(feature, grid);
   const double layers = std::max(grid.nz, surfacedLayers);
   const double finer = grid.nz > 0 ? layers / grid.nz : 1.0;
-  crossings *= finer;
   // Never more than the surfaced grid can hold: a vertex is the barycentre of an edge, face or
   // tetrahedron of the lattice, 7 + 12 + 6 of each cell's own (a contour far finer than its
   // pixels, 1e-200 units wide, gave a perimeter of 1e18 vertices and an "EiB" estimate).
   const double cells = static_cast<double>(plane) * layers;
-  const double byContours = std::isfinite(crossings) ? crossings * kVerticesPerCrossing : 1e18;  // a pixel area of 0: NaN
-  f.surfaceVertices = static_cast<std::uint64_t>(std::min({byContours, 25.0 * cells, 1e18}));
+  // Each feature's own surface, bounded by the grid the same way; the multi-label mesh shares
+  // their vertices. The enclosing surfaces copy every triangle into each feature whose region
+  // holds one side only: nested features pay for their depth (3 000 nested rings, whose
+  // capped mesh the grid bounds to 2 GB, need 116 GiB of feature surfaces).
+  double ownVertices = 0;
+  for (const Feature& feature : contours.features) {
+    const double crossings = featureCrossings(feature, grid) * finer;  // NaN for a pixel area of 0
+    ownVertices += std::isfinite(crossings) ? std::min(crossings * kVerticesPerCrossing, 25.0 * cells) : 25.0 * cells;
+  }
+  f.surfaceVertices = static_cast<std::uint64_t>(std::min({ownVertices, 25.0 * cells, 1e18}));
+  const double featureSurfaces = std::min(ownVertices, 1e18) * kFeatureBytesPerVertex;
   // The label volume, once on the host and once as it arrives from the device, plus the mesh.
   // With interpolation, the interpolated volume's clearances besides (2 bytes per voxel).
   const double interpolated = finer > 1 ? static_cast<double>(plane) * layers * sizeof(Label) : 0.0;
@@ -81,7 +90,7 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
     remeshed = std::min(static_cast<double>(f.surfaceVertices) * growth, 1e18) * kRemeshBytesPerVertex;
   }
   const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) + interpolated +
-                      static_cast<double>(f.surfaceVertices) * kBytesPerVertex + remeshed;
+                      static_cast<double>(f.surfaceVertices) * kBytesPerVertex + featureSurfaces + remeshed;
   f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
   // One slab of scan conversion, the label volume kept on the device until classified and,
   // with interpolation, its volume of 32-bit label | clearance words.

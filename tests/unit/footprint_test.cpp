@@ -5,6 +5,7 @@
 
 #include "geometry/assembly.h"
 #include "geometry/cell_cases.h"
+#include "geometry/feature_surfaces.h"
 #include "geometry/footprint.h"
 #include "scansurf/grid.h"
 #include "scansurf/nesting.h"
@@ -57,6 +58,33 @@ TEST(Footprint, RemeshingToShortEdgesCounts) {
   EXPECT_EQ(voxel.surfaceVertices, plain.surfaceVertices);
   EXPECT_GT(voxel.hostBytes, plain.hostBytes + 1000 * plain.surfaceVertices);
   EXPECT_GT(quarter.hostBytes - plain.hostBytes, 3.9 * (voxel.hostBytes - plain.hostBytes));
+}
+
+// Nested features pay for their depth: each enclosing surface copies the triangles of its
+// region's boundary, caps included, which the grid does not bound (3 000 nested rings passed a
+// grid-bounded estimate of 2 GB and ran out of memory in the feature surfaces).
+TEST(Footprint, NestedFeaturesCountTheirEnclosingSurfaces) {
+  ContourSet rings;
+  for (int i = 0; i < 200; ++i)
+    rings.features.push_back(Feature{"r" + std::to_string(i), std::nullopt,
+                                     {FeatureSlice{0, {circleContour({0, 0}, 1 + 0.5 * i, 64)}},
+                                      FeatureSlice{2, {circleContour({0, 0}, 1 + 0.5 * i, 64)}}}});
+  GridOptions options;
+  options.voxelSize = 1;
+  const auto grid = makeGrid(rings, options);
+  ASSERT_TRUE(grid) << grid.error().message;
+  const Nesting nesting = computeNesting(rings);
+  const LabelVolume volume = test::referenceScanConvert(rings, *grid, nesting.order, 8);
+  const MultiLabelMesh mesh = assembleMesh(*grid, classifyCellsReference(volume));
+  std::size_t copies = 0;
+  for (const FeatureSurface& s : extractFeatureSurfaces(mesh, 200, nesting, SurfaceConvention::Enclosing))
+    copies += s.triangles.size();
+  const Footprint f = estimateFootprint(rings, *grid);
+  const double meshBytes = 300.0 * static_cast<double>(mesh.vertexCount());
+  std::printf("200 nested rings: %zu mesh vertices, %zu triangle indices in the feature surfaces, estimate %.0f MB\n",
+              mesh.vertexCount(), copies, f.hostBytes / 1e6);
+  EXPECT_GT(static_cast<double>(f.hostBytes), meshBytes + 4.0 * static_cast<double>(copies));
+  EXPECT_GT(4.0 * static_cast<double>(copies), 3 * meshBytes) << "the feature surfaces are what costs here";
 }
 
 }  // namespace
