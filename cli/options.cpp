@@ -188,7 +188,7 @@ void addInterpolation(CLI::App& app, Flags& f) {
 void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_flag("--remesh,!--no-remesh", f.remesh,
                "remesh the smoothed surfaces into well-shaped triangles of about --edge-length (default: off; "
-               "it takes minutes on a million triangles, see README \"Remeshing\")");
+               "it takes minutes on a million triangles, see docs/method.md \"Remeshing\")");
   app.add_option("--edge-length", o.build.remeshing.edgeLength,
                  "remeshing's target edge length, input units (default: 1.15 in-plane voxels or 0.33 slice gaps, the longer)")
       ->check(numberIn(0, 1e9, true, "a positive, finite number"));

@@ -27,6 +27,8 @@ if(SCANSURF_BUILD_CLI)
   install(TARGETS scansurf_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION ${CMAKE_INSTALL_DOCDIR})
-install(FILES "${PROJECT_SOURCE_DIR}/docs/input-format.md" "${PROJECT_SOURCE_DIR}/docs/library.md"
-  DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# The user's pages (README links them); the measurements stay in the source tree.
+foreach(page input-format library outputs formats limits method overlaps)
+  install(FILES "${PROJECT_SOURCE_DIR}/docs/${page}.md" DESTINATION ${CMAKE_INSTALL_DOCDIR})
+endforeach()
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/examples/" DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples)

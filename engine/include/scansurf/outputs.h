@@ -86,7 +86,7 @@ std::filesystem::path labelTablePathFor(const std::filesystem::path& labelVolume
 
 // The label volume (label = feature index + 1, 0 = background) in the format of `path`'s
 // extension, plus its label table beside it (labelTablePathFor). Unevenly spaced layers are
-// resampled along z onto even planes first (nearest layer; see regularize in the README).
+// resampled along z onto even planes first (nearest layer; docs/outputs.md, "Uneven slices").
 // - NRRD: gzip, `space: left-posterior-superior`, 3D Slicer segment keys (*.seg.nrrd opens as a
 //   named, coloured segmentation), the table in Slicer's colour-table format.
 // - NIfTI-1 through the NIfTI reference library: uint8 (uint16 when a label exceeds 255),
@@ -124,7 +124,7 @@ struct DicomSegSummary {
 // its images (Referenced Series, Derivation Image and Source Image Sequences), with its
 // patient, study and frame of reference. `volume` must lie on that CT's lattice, as build()
 // puts it when the contours were read with ReadOptions::referenceSeries and the grid options
-// set no voxel size or counts. Details: README, "DICOM SEG".
+// set no voxel size or counts. Details: docs/formats.md, "DICOM SEG".
 // Errors: Errc::InvalidArgument (the volume is not on the CT lattice), Errc::InvalidInput (the
 // series cannot be read, or no feature has a voxel on it), Errc::Io naming the path,
 // Errc::Internal (DCMTK refused the object).
