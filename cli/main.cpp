@@ -29,8 +29,8 @@ namespace {
 
 int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 
-// The library names a refused option by its BuildOptions field; a command-line user reads the
-// flag that set it.
+// The library names a refused option by its BuildOptions field and a selection or setting in
+// its own words; a command-line user reads the flag that set it.
 std::string inFlags(std::string message) {
   static constexpr std::pair<const char*, const char*> kFlags[] = {
       {"option remeshing.edgeLength ", "option --edge-length "}, {"option smoothing.strength ", "option --smooth-strength "},
@@ -38,6 +38,14 @@ std::string inFlags(std::string message) {
       {"option interpolation.factor ", "option --interpolate "}};
   for (const auto& [field, flag] : kFlags)
     if (message.rfind(field, 0) == 0) return flag + message.substr(std::char_traits<char>::length(field));
+  static constexpr std::pair<const char*, const char*> kPhrases[] = {
+      {"the ROI pattern \"", "--roi \""},          {"the object pattern \"", "--object \""},
+      {"with an ROI pattern", "with --roi"},        {"with an object pattern", "with --object"},
+      {"turn interpolation off", "use --interpolate off"}, {"(a reference series)", "(--reference CT_DIR)"},
+      {"(the reference is the folder of a CT series)", "(--reference takes the folder of a CT series)"}};
+  for (const auto& [phrase, flag] : kPhrases)
+    if (const auto at = message.find(phrase); at != std::string::npos)
+      message.replace(at, std::char_traits<char>::length(phrase), flag);
   return message;
 }
 

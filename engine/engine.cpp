@@ -29,11 +29,13 @@
 #include "passes/interpolation.h"
 #include "passes/preview.h"
 #include "passes/scan_conversion.h"
+#include "scansurf/input.h"
 #include "scansurf/vulkan_interop.h"
 
 namespace scansurf {
 
-struct Engine::Impl {
+// The device and the passes made on it (each on first use): the engine's whole state.
+struct EngineState {
   std::unique_ptr<gpu::Context> context;
   std::unique_ptr<passes::ScanConverter> scanConverter;  // created on first use
   std::unique_ptr<passes::Classifier> classifier;
@@ -65,6 +67,8 @@ struct Engine::Impl {
     return previewRenderer.get();
   }
 };
+
+struct Engine::Impl : EngineState {};
 
 namespace {
 
@@ -132,7 +136,7 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
 // Classification and the CPU stages for one label volume, on the host (LabelVolume) or
 // already on the device (DeviceLabelVolume).
 template <typename Volume>
-Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
+Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
                                   const BuildOptions& options, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
@@ -143,7 +147,7 @@ Result<Surfaces> surfacesOfVolume(Engine::Impl& impl, const Volume& volume, cons
 // Classification of labels in one of scansurf's own device buffers, bound in place; the buffer
 // is released once classified: the CPU stages' peak memory need not hold it.
 // upperIsData: 32-bit label | clearance words (interpolation).
-Result<std::vector<CellCase>> classifyOwnBuffer(Engine::Impl& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
+Result<std::vector<CellCase>> classifyOwnBuffer(EngineState& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
                                                 bool upperIsData, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
@@ -165,7 +169,7 @@ std::vector<int> factorsOf(const Grid& planes, const Grid& grid, const std::vect
 // device labels when there are some; the interpolated labels stay on the device for
 // classification (as label | clearance words), and the host gets the clearances, which
 // smoothing needs.
-Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& planes,
+Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& planes,
                                       std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                       const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
                                       StageClock& clock, const MedialCrossings* medial) {
@@ -189,7 +193,7 @@ Result<Surfaces> interpolatedSurfaces(Engine::Impl& impl, const LabelVolume& pla
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked, else
 // classified from the device labels when there are some (bound in place, no upload).
-Result<Surfaces> surfacesOfPlanes(Engine::Impl& impl, const LabelVolume& planes,
+Result<Surfaces> surfacesOfPlanes(EngineState& impl, const LabelVolume& planes,
                                   std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                   const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
                                   StageClock& clock, const MedialCrossings* medial = nullptr) {
@@ -237,7 +241,7 @@ Result<void> patchDeviceLabels(const gpu::Context& ctx, const gpu::Buffer& label
 
 // Scan conversion of one layer with the medial split of its incidental overlaps written in
 // (overlap_split.h), on the device and in the host copy when there is one.
-Result<passes::ScanConverter::DeviceLabels> scanAndSplit(Engine::Impl& impl, const ContourSet& contours, const Grid& wholeGrid,
+Result<passes::ScanConverter::DeviceLabels> scanAndSplit(EngineState& impl, const ContourSet& contours, const Grid& wholeGrid,
                                                          const Grid& grid, const std::vector<int>& order, double tolerance,
                                                          bool interpolating, bool toHost, const std::vector<LabelOverride>& split,
                                                          LabelVolume& planes) {
@@ -327,7 +331,7 @@ Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, cons
 }
 
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
-Result<void> buildLayers(Engine::Impl& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
+Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
                          const std::vector<FeatureRegion>& regions, const std::vector<std::vector<LabelOverride>>& split,
                          const MedialCrossings& medial, const BuildOptions& options, BuildResult& out, StageClock& clock) {
   out.surfaces.convention = options.convention;
@@ -358,7 +362,7 @@ void warnAboutLosses(const ContourSet& contours, const OverlapReport& report, st
     const std::string to = l.to >= 0 ? "\"" + contours.features[static_cast<std::size_t>(l.to)].name + "\"" : "background";
     warnings.push_back("feature \"" + contours.features[static_cast<std::size_t>(l.feature)].name + "\" lost " +
                        std::to_string(static_cast<int>(std::lround(100.0 * l.volume / contour))) +
-                       " % of its contour volume to " + to + " (--overlaps partition; the default, layers, keeps it)");
+                       " % of its contour volume to " + to + " (overlaps as a partition; as layers, the default, it keeps them)");
   }
 }
 
@@ -492,6 +496,34 @@ OverlapReport overlapAnalysis(const ContourSet& contours, const Grid& grid, cons
   return report;
 }
 
+// The contours a run uses: the caller's own when validated (readContours, validateContours),
+// else a validated copy, so that an application's contours made in memory meet the same checks.
+class Validated {
+ public:
+  static Validated borrowed(const ContourSet& original) {
+    Validated v;
+    v.original_ = &original;
+    return v;
+  }
+  static Validated owned(ContourSet copy) {
+    Validated v;
+    v.copy_ = std::move(copy);
+    return v;
+  }
+  const ContourSet& get() const { return copy_ ? *copy_ : *original_; }
+
+ private:
+  const ContourSet* original_ = nullptr;
+  std::optional<ContourSet> copy_;
+};
+
+Result<Validated> validatedCopy(const ContourSet& contours) {
+  if (contours.planeTolerance > 0) return Validated::borrowed(contours);
+  ContourSet copy = contours;
+  SCANSURF_TRY(validateContours(copy));
+  return Validated::owned(std::move(copy));
+}
+
 // The options a run on `contours` uses: the slice tolerance resolved (sliceToleranceOf), so
 // that every stage merges the same planes.
 BuildOptions resolvedOptions(const BuildOptions& given, const ContourSet* contours) {
@@ -559,9 +591,11 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
   });
 }
 
-Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& given) {
-  return guarded("building the surfaces of " + input.source, [&]() -> Result<BuildResult> {
+Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOptions& given) {
+  return guarded("building the surfaces of " + givenContours.source, [&]() -> Result<BuildResult> {
     SCANSURF_TRY(checkOptions(given));
+    SCANSURF_ASSIGN_OR_RETURN(const Validated validated, validatedCopy(givenContours));
+    const ContourSet& input = validated.get();
     const BuildOptions options = resolvedOptions(given, &input);
     BuildResult out;
     StageClock clock(out.timings, options);
@@ -612,9 +646,11 @@ Result<BuildResult> Engine::build(const ContourSet& input, const BuildOptions& g
   });
 }
 
-Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& input, const BuildOptions& given) {
-  return guarded("analyzing the overlaps of " + input.source, [&]() -> Result<OverlapReport> {
+Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, const BuildOptions& given) {
+  return guarded("analyzing the overlaps of " + givenContours.source, [&]() -> Result<OverlapReport> {
     SCANSURF_TRY(checkOptions(given));
+    SCANSURF_ASSIGN_OR_RETURN(const Validated validated, validatedCopy(givenContours));
+    const ContourSet& input = validated.get();
     const BuildOptions options = resolvedOptions(given, &input);
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.grid.sliceTolerance);

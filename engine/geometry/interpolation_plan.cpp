@@ -77,7 +77,7 @@ Result<DistanceWeights> distanceWeights(const Grid& grid) {
   return makeError(Errc::InvalidArgument, "interpolation: pixels of " + std::to_string(grid.spacingX) + " x " +
                                               std::to_string(grid.spacingY) + " on a grid of " + std::to_string(grid.nx) +
                                               " x " + std::to_string(grid.ny) +
-                                              " are too elongated for exact distances; use --interpolate off");
+                                              " are too elongated for exact distances; turn interpolation off");
 }
 
 std::int32_t deepDistance(const Grid& grid) {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "scansurf/input.h"
 #include "scansurf/label_volume.h"
 
 namespace scansurf {
@@ -172,6 +173,8 @@ std::string describeSlice(const ContourSet& contours, int feature, int slice, do
   return describeFeature(contours, feature) + ", slice z=" + formatNumber(z) + " (#" +
          std::to_string(slice) + ")";
 }
+
+Result<void> validateContours(ContourSet& contours) { return validateAndNormalize(contours); }
 
 Result<void> validateAndNormalize(ContourSet& contours) {
   const std::string source = sourceName(contours);

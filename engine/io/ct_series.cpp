@@ -43,7 +43,7 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
   const std::string dir = directory.string();
   std::error_code ec;
   if (!std::filesystem::is_directory(directory, ec))
-    return makeError(Errc::Io, dir + ": not a directory (--reference takes the folder of a CT series)");
+    return makeError(Errc::Io, dir + ": not a directory (the reference is the folder of a CT series)");
   std::vector<std::filesystem::path> paths;
   for (const auto& entry : std::filesystem::directory_iterator(directory, ec))
     if (entry.is_regular_file()) paths.push_back(entry.path());

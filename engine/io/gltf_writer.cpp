@@ -148,7 +148,7 @@ void adjustScene(nlohmann::json& gltf, const GlbOptions& options) {
     frame["root_node"] = metres > 0 ? "turns patient LPS into glTF y-up and scales " + options.units + " to metres"
                                     : "turns patient LPS into glTF y-up; unit '" + options.units + "' not scaled";
   } else {
-    frame["root_node"] = "none: vertices are raw patient coordinates (--gltf-frame patient)";
+    frame["root_node"] = "none: vertices are raw patient coordinates (the patient frame was asked for)";
   }
   gltf["asset"]["generator"] = std::string("scansurf ") + version();
   gltf["asset"]["extras"]["scansurf"] = frame;

@@ -167,7 +167,7 @@ Result<void> checkOutputs(const OutputPlan& plan) {
   SCANSURF_TRY(checkFile(plan.dicomSeg, "DICOM SEG output", ".dcm", seen));
   if (!plan.dicomSeg.empty() && plan.referenceSeries.empty())
     return makeError(Errc::InvalidArgument, "DICOM SEG output '" + plan.dicomSeg.string() +
-                                                "' needs the CT series the label volume lies on (--reference CT_DIR)");
+                                                "' needs the CT series the label volume lies on (a reference series)");
   SCANSURF_TRY(checkFile(plan.report, "report", ".json", seen));
   SCANSURF_TRY(checkFile(plan.preview, "preview", ".png", seen));
   return {};

@@ -110,11 +110,11 @@ Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& 
   if (!dicom && (!options.roiPatterns.empty() || !options.referenceSeries.empty()))
     return makeError(Errc::InvalidArgument,
                      std::string("ROI selection and a reference series apply to DICOM RTSTRUCT input, not to ") +
-                         inputFormatName(format) + " " + path.string() + (objects ? " (select its objects with --object)" : ""));
+                         inputFormatName(format) + " " + path.string() + (objects ? " (select its objects with an object pattern)" : ""));
   if (!objects && !options.objectPatterns.empty())
     return makeError(Errc::InvalidArgument, std::string("object selection applies to Reconstruct and IMOD input, not to ") +
                                                 inputFormatName(format) + " " + path.string() +
-                                                (dicom ? " (select its ROIs with --roi)" : ""));
+                                                (dicom ? " (select its ROIs with an ROI pattern)" : ""));
   return {};
 }
 

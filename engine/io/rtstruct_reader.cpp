@@ -274,7 +274,7 @@ Result<void> selectRois(const std::string& file, const std::vector<std::string>&
     if (!any) {
       std::string names;
       for (const RawRoi& r : rois) names += (names.empty() ? "" : ", ") + ("\"" + r.info.name + "\"");
-      return makeError(Errc::InvalidArgument, file + ": --roi \"" + pattern + "\" matches no ROI; the file holds " +
+      return makeError(Errc::InvalidArgument, file + ": the ROI pattern \"" + pattern + "\" matches no ROI; the file holds " +
                                                   (names.empty() ? std::string("none") : names));
     }
   }

@@ -9,7 +9,7 @@
 
 #include "io/nrrd_writer.h"
 #include "scansurf/contours.h"
-#include "scansurf/engine.h"
+#include "scansurf/build_result.h"
 #include "scansurf/result.h"
 
 namespace scansurf {

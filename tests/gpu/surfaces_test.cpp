@@ -1,12 +1,14 @@
 // The whole method on generated shapes: every feature surface a closed, consistently
 // oriented 2-manifold with the right genus and components; volumes near analytic; abutting
 // features sharing their interface.
+#include <algorithm>
 #include <cmath>
 #include <set>
 
 #include "geometry/validate.h"
 #include "gpu/gpu_test_env.h"
 #include "io/contours_json.h"
+#include "scansurf/input.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"
 
@@ -198,6 +200,30 @@ TEST_F(SurfacesTest, SliceToleranceFollowsTheSpacingInAnyUnit) {
   EXPECT_TRUE(sb.closed && sb.manifold);
   EXPECT_GT(sa.volume, 400);
   EXPECT_NEAR(sb.volume * 1e27, sa.volume, 1e-4 * sa.volume);
+}
+
+// Contours made in memory meet the same checks as a file's: build() validates a copy of a set
+// that has not been validated (a bad contour is refused naming it; slices in any order give
+// what the validated set gives), and validateContours is public for callers that validate first.
+TEST_F(SurfacesTest, BuildValidatesContoursMadeInMemory) {
+  ContourSet bad = sphereContours(5, 1.0);
+  bad.source = "app";
+  bad.features[0].slices[2].contours[0].points.resize(2);
+  auto refused = engine_->build(bad, BuildOptions{});
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, Errc::InvalidInput);
+  EXPECT_NE(refused.error().message.find("app: feature \"sphere\" (#0), slice z="), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("contour 0: fewer than 3 distinct points"), std::string::npos);
+
+  ContourSet shuffled = sphereContours(5, 1.0);
+  std::reverse(shuffled.features[0].slices.begin(), shuffled.features[0].slices.end());
+  ContourSet validated = shuffled;
+  ASSERT_TRUE(validateContours(validated));
+  EXPECT_GT(validated.planeTolerance, 0);
+  auto a = engine_->build(shuffled, BuildOptions{}), b = engine_->build(validated, BuildOptions{});
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->surfaces.mesh.positions, b->surfaces.mesh.positions);
+  EXPECT_EQ(a->surfaces.mesh.triangles, b->surfaces.mesh.triangles);
 }
 
 // A feature left without a surface is reported by name, never dropped in silence.

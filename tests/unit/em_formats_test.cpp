@@ -397,7 +397,7 @@ TEST_F(Reconstruct, ObjectPatternsSelectAndAPatternMatchingNothingIsRefused) {
   auto none = readReconstructSeries(ser, options);
   ASSERT_FALSE(none);
   EXPECT_EQ(none.error().code, Errc::InvalidArgument);
-  EXPECT_NE(none.error().message.find("cells.ser: --object \"nucleus*\" matches no object; the file holds \"axon\", "
+  EXPECT_NE(none.error().message.find("cells.ser: the object pattern \"nucleus*\" matches no object; the file holds \"axon\", "
                                       "\"dendrite\", \"marker\", \"spine\""),
             std::string::npos)
       << none.error().message;
@@ -424,7 +424,7 @@ TEST_F(Reconstruct, ObjectPatternsSelectAndAPatternMatchingNothingIsRefused) {
   auto wrong = readContours(ser, roi);
   ASSERT_FALSE(wrong);
   EXPECT_EQ(wrong.error().code, Errc::InvalidArgument);
-  EXPECT_NE(wrong.error().message.find("--object"), std::string::npos);
+  EXPECT_NE(wrong.error().message.find("an object pattern"), std::string::npos);
 }
 
 TEST_F(Reconstruct, SurfacesAreClosedWithTheVolumesAndPositionsOfTheTraces) {
@@ -659,7 +659,7 @@ TEST_F(Imod, ThroughThePublicApiAndTheListing) {
   auto none = readContours(path, options);
   ASSERT_FALSE(none);
   EXPECT_EQ(none.error().code, Errc::InvalidArgument);
-  EXPECT_NE(none.error().message.find("--object \"nucleus\" matches no object; the file holds \"mito\", \"er\", "
+  EXPECT_NE(none.error().message.find("the object pattern \"nucleus\" matches no object; the file holds \"mito\", \"er\", "
                                       "\"object 3\", \"vesicles\", \"mito #5\""),
             std::string::npos)
       << none.error().message;

@@ -40,10 +40,11 @@ Result<int> tryInValueFunction(bool ok) {
 
 TEST(Result, HoldsValue) {
   Result<int> r = half(8);
-  ASSERT_TRUE(r.hasValue());
+  ASSERT_TRUE(r.has_value());
   EXPECT_TRUE(static_cast<bool>(r));
   EXPECT_EQ(*r, 4);
   EXPECT_EQ(r.value(), 4);
+  EXPECT_EQ(r.value_or(-1), 4);
 }
 
 TEST(Result, HoldsError) {
@@ -51,6 +52,8 @@ TEST(Result, HoldsError) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, Errc::InvalidArgument);
   EXPECT_EQ(r.error().message, "odd: 3");
+  EXPECT_FALSE(r.has_value());
+  EXPECT_EQ(r.value_or(-1), -1);
 }
 
 TEST(Result, ArrowAndMoveOnlyValue) {

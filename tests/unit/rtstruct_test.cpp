@@ -325,7 +325,7 @@ TEST_F(Dicom, RoiSelectionByGlob) {
   r = readBack(rt, o);
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, Errc::InvalidArgument);
-  EXPECT_NE(r.error().message.find("--roi \"Liver\" matches no ROI; the file holds \"Lung_L\", \"Lung_R\", \"Heart\""),
+  EXPECT_NE(r.error().message.find("the ROI pattern \"Liver\" matches no ROI; the file holds \"Lung_L\", \"Lung_R\", \"Heart\""),
             std::string::npos)
       << r.error().message;
   EXPECT_TRUE(roiNameMatches("[bB]ody*", "BODY_ext"));

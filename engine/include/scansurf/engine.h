@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "scansurf/build_result.h"
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
 #include "scansurf/grid.h"
@@ -42,11 +43,6 @@ namespace scansurf {
 struct ExternalVulkan;     // scansurf/vulkan_interop.h
 struct DeviceLabelVolume;  // scansurf/vulkan_interop.h
 
-// The time one stage took.
-struct StageTime {
-  std::string stage;
-  double seconds = 0;
-};
 
 // Everything that shapes a run, for build() and for each stage call alike. An option out of
 // its range is refused (Errc::InvalidArgument, naming it), never clamped.
@@ -84,41 +80,6 @@ struct BuildOptions {
   bool keepLabelVolume = true;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
-};
-
-// What interpolation did (BuildOptions::interpolation).
-struct InterpolationSummary {
-  int planeLayers = 0;    // layers of the grid (contour planes and padding)
-  int surfacedLayers = 0;  // layers of the volume that was surfaced: planeLayers when off
-  int minFactor = 1, maxFactor = 1;  // layers per gap, the gaps' smallest and largest
-  CapShape caps = CapShape::Round;
-  bool used() const { return surfacedLayers > planeLayers; }
-};
-
-struct BuildResult {
-  Nesting nesting;
-  // The label volume of the contour planes as scan conversion made it, incidental overlaps
-  // split (OverlapTolerance): the single partition, or with several layers the volume of
-  // layer 0 (OverlapReport::features[f].layer says which features it holds). With interpolation the surfaces come from a volume with more layers
-  // (interpolation says how many), which is not kept. Without BuildOptions::keepLabelVolume,
-  // only its grid (labels empty, unless interpolation or the partition mode needed them).
-  LabelVolume volume;
-  InterpolationSummary interpolation;
-  // Every feature's surface; with several layers the layers' meshes side by side in one mesh
-  // (vertices shared within a layer only).
-  Surfaces surfaces;
-  // Volumes three ways, overlapping and touching pairs, layers, and (Partition) volume losses.
-  OverlapReport overlaps;
-  // The device's sub-pixel precision of scan conversion (bits), with which the writers
-  // rasterize each feature's own mask on the CPU exactly as the device did.
-  int subPixelBits = 8;
-  double sliceTolerance = kDefaultSliceTolerance;  // the run's slice tolerance (sliceToleranceOf, resolved)
-  int threads = 1;  // CPU threads the run used (BuildOptions::threads, 0 resolved)
-  // The budget check: estimated peak host memory, and the limit it was held to (bytes).
-  std::uint64_t estimatedMemory = 0;
-  std::uint64_t memoryLimit = 0;
-  std::vector<std::string> warnings;  // e.g. contours too small to cover a pixel centre
-  std::vector<StageTime> timings;
 };
 
 class Engine {
@@ -176,9 +137,8 @@ class Engine {
   // options.colors, an orthographic camera fitted to them from options.view.
   Result<PreviewImage> renderPreview(const Surfaces& surfaces, const PreviewOptions& options);
 
-  struct Impl;
-
  private:
+  struct Impl;
   explicit Engine(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };

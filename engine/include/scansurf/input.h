@@ -55,6 +55,15 @@ InputFormat detectInputFormat(const std::filesystem::path& path);
 // Errc::OutOfMemory.
 Result<ContourSet> readContours(const std::filesystem::path& path, const ReadOptions& options = {});
 
+// Checks a contour set made in memory as readContours checks a file's, and normalizes it in
+// place: repeated points and contours dropped (with a warning), slices sorted, the plane
+// tolerance set (ContourSet::planeTolerance) and slices within it merged onto shared planes.
+// Errors: Errc::InvalidInput naming contours.source and the feature, slice, contour and point
+// at fault (no features, an empty or duplicate name, a non-finite or far coordinate, a contour
+// of fewer than 3 distinct points, a slice without contours, an order that does not name every
+// feature once). Engine::build validates a copy of any set that has not been validated.
+Result<void> validateContours(ContourSet& contours);
+
 // One ROI of a structure set as the file holds it.
 struct RoiInfo {
   int number = 0;               // ROI Number (3006,0022)

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "scansurf/contours.h"
-#include "scansurf/engine.h"
+#include "scansurf/build_result.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/preview.h"
 #include "scansurf/result.h"

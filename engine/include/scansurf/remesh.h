@@ -7,14 +7,14 @@
 namespace scansurf {
 
 struct RemeshOptions {
-  // Off by default, in the library and the command-line tool (--remesh): it is slow yet. Runs
+  // Off by default, in the library and the command-line tool: it is slow yet. Runs
   // after smoothing, on the whole multi-label mesh; one of 400 000 triangles or more in slabs
   // along z, on BuildOptions::threads threads, with the same output for any thread count.
   bool enabled = false;
   // Target edge length in input units; 0 = 1.15 times
   // the grid's in-plane voxel size (the smaller of its x and y spacings) or 0.33 times the
-  // median gap between contour planes, whichever is longer: the benchmark sets then get fewer
-  // triangles than the Slicer route's. Around
+  // median gap between contour planes, whichever is longer: clinical-scale structure sets then get fewer
+  // triangles than flying edges + windowed sinc on the same grid. Around
   // feature-line edges that stay shorter (a contour's close points) the target shrinks
   // gradually, so the triangles there are small rather than thin.
   double edgeLength = 0;
@@ -29,7 +29,7 @@ struct RemeshOptions {
   // everywhere but around short feature-line edges.
   bool curvatureSizing = true;
   // Split / collapse / flip / relax rounds (Botsch & Kobbelt use 5 to 10; past 4 the angles
-  // of the test shapes no longer improve, see tests/unit/remesh_test.cpp).
+  // of analytic test shapes no longer improve).
   int iterations = 4;
 };
 

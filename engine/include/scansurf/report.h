@@ -11,7 +11,7 @@
 
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
-#include "scansurf/engine.h"
+#include "scansurf/build_result.h"
 #include "scansurf/grid.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"
@@ -51,7 +51,7 @@ struct RunReport {
     double volume = 0, percentOfContour = 0;
     bool nested = false;
   };
-  std::vector<Loss> losses;  // --overlaps partition
+  std::vector<Loss> losses;  // OverlapMode::Partition only
   OverlapTolerance overlapTolerance;
   double overlapDepthLimit = 0;  // the tolerance's depth on the grid (input units)
   // Every partial overlap: its verdict and, when incidental, what each side gave up.

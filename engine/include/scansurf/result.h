@@ -1,5 +1,9 @@
 // scansurf: Result<T>, the error type returned at every module edge.
-// Shaped like std::expected<T, Error> so it can become one when the toolchain has it.
+// A subset of C++23's std::expected<T, Error>, spelled the same (has_value, value, error,
+// operator bool, *, ->, value_or), so code written against it reads as std::expected code.
+// Unlike std::expected, value() on an error is undefined behaviour rather than a throw (no
+// exception crosses the API), and takeError() moves the error out for returning it upward:
+// `return std::move(r).takeError();` is std::expected's `return std::unexpected(r.error());`.
 #pragma once
 
 #include <string>
@@ -8,7 +12,7 @@
 
 namespace scansurf {
 
-// Error categories; the CLI maps each to a documented exit code.
+// Error categories; the command-line tool maps each to an exit code (docs/limits.md).
 enum class Errc {
   InvalidArgument = 1,  // an option or parameter out of range
   InvalidInput = 2,     // the input file is malformed or inconsistent
@@ -55,8 +59,8 @@ class [[nodiscard]] Result {
   Result(T value) : state_(std::move(value)) {}
   Result(Unexpected e) : state_(std::move(e.error)) {}
 
-  bool hasValue() const { return state_.index() == 0; }
-  explicit operator bool() const { return hasValue(); }
+  bool has_value() const { return state_.index() == 0; }
+  explicit operator bool() const { return has_value(); }
 
   T& value() & { return std::get<0>(state_); }
   const T& value() const& { return std::get<0>(state_); }
@@ -65,6 +69,9 @@ class [[nodiscard]] Result {
   const T* operator->() const { return &value(); }
   T& operator*() & { return value(); }
   const T& operator*() const& { return value(); }
+
+  template <typename U>
+  T value_or(U&& fallback) const& { return has_value() ? value() : static_cast<T>(std::forward<U>(fallback)); }
 
   const Error& error() const { return std::get<1>(state_); }
   Unexpected takeError() && { return Unexpected{std::get<1>(std::move(state_))}; }
@@ -79,7 +86,7 @@ class [[nodiscard]] Result<void> {
   Result() = default;
   Result(Unexpected e) : error_(std::move(e.error)), failed_(true) {}
 
-  bool hasValue() const { return !failed_; }
+  bool has_value() const { return !failed_; }
   explicit operator bool() const { return !failed_; }
   const Error& error() const { return error_; }
   Unexpected takeError() && { return Unexpected{std::move(error_)}; }

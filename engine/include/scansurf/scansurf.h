@@ -12,6 +12,7 @@
 // Nothing throws across this API: every fallible call returns Result<T> (scansurf/result.h).
 #pragma once
 
+#include "scansurf/build_result.h"
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
 #include "scansurf/engine.h"
@@ -21,9 +22,11 @@
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"
 #include "scansurf/outputs.h"
+#include "scansurf/overlaps.h"
 #include "scansurf/palette.h"
 #include "scansurf/preview.h"
 #include "scansurf/process.h"
+#include "scansurf/remesh.h"
 #include "scansurf/report.h"
 #include "scansurf/result.h"
 #include "scansurf/smoothing.h"

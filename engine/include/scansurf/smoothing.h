@@ -10,7 +10,7 @@ struct SmoothingOptions {
   // Off by default in the library (Engine::build); the command-line tool turns it on.
   bool enabled = false;
   // How much to smooth, in plain Jacobi sweeps of every vertex; the smoother covers them in
-  // far fewer sweeps (super-steps: 150 in 35, see geometry/smoothing.cpp).
+  // far fewer sweeps (super-steps: 150 in 35).
   int iterations = 150;
   // Step size of each sweep in (0, 1]: how far a vertex moves toward its relaxed target.
   double strength = 0.8;

@@ -20,9 +20,10 @@ struct MultiLabelMesh {
   // 2 labels per triangle, {a, b} with a < b; the triangle's normal (counter-clockwise
   // winding, right-hand rule) points out of a's region into b's.
   std::vector<Label> labels;
-  // Per vertex, its exact position on the grid lattice of 1/12 cell (packVertexKey in
-  // geometry/assembly.h), sorted; empty for meshes not made by assembly. Smoothing uses it to
-  // know which grid edge, face or tetrahedron each vertex belongs to.
+  // Per vertex, its exact place on the grid: the barycentre of the lattice edge, face or
+  // tetrahedron it lies on, in twelfths of a voxel, packed as x | y << 21 | z << 42 (voxel
+  // indices times 12), sorted; empty for meshes not made by assembly or after remeshing.
+  // Smoothing uses it to keep each vertex inside its own lattice simplex.
   std::vector<std::uint64_t> keys;
 
   std::size_t vertexCount() const { return positions.size() / 3; }
