@@ -111,12 +111,12 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
   cells = {};
   clock.lap("assembly");
   if (options.smoothing.enabled) {
-    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, options.grid.sliceTolerance, clearance, medial);
+    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, medial);
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {
     surfaces.remeshing =
-        remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.grid.sliceTolerance, options.threads);
+        remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.threads);
     clock.lap("remeshing");
   }
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
@@ -176,7 +176,7 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
-      contours ? planeEdgeCrossings(planes, *contours, options.grid.sliceTolerance, options.threads, medial)
+      contours ? planeEdgeCrossings(planes, *contours, options.threads, medial)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer words, gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,
@@ -214,10 +214,10 @@ Result<Surfaces> surfacesOfPlanes(EngineState& impl, const LabelVolume& planes,
 // come to the host too when `toHost` or when interpolating (the edge crossings of the planes
 // are a CPU stage). `planes` always gets the grid.
 Result<passes::ScanConverter::DeviceLabels> scanPlanes(passes::ScanConverter& scanner, const ContourSet& contours,
-                                                       const Grid& grid, const std::vector<int>& order, double tolerance,
+                                                       const Grid& grid, const std::vector<int>& order,
                                                        bool interpolating, bool toHost, LabelVolume& planes) {
   planes.grid = grid;
-  return scanner.runOnDevice(contours, grid, order, tolerance, toHost || interpolating ? &planes : nullptr);
+  return scanner.runOnDevice(contours, grid, order, toHost || interpolating ? &planes : nullptr);
 }
 
 // Writes the medial split's labels into the device's labels in place: one 2-byte copy region
@@ -242,11 +242,11 @@ Result<void> patchDeviceLabels(const gpu::Context& ctx, const gpu::Buffer& label
 // Scan conversion of one layer with the medial split of its incidental overlaps written in
 // (overlap_split.h), on the device and in the host copy when there is one.
 Result<passes::ScanConverter::DeviceLabels> scanAndSplit(EngineState& impl, const ContourSet& contours, const Grid& wholeGrid,
-                                                         const Grid& grid, const std::vector<int>& order, double tolerance,
+                                                         const Grid& grid, const std::vector<int>& order,
                                                          bool interpolating, bool toHost, const std::vector<LabelOverride>& split,
                                                          LabelVolume& planes) {
   SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
-  SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, order, tolerance, interpolating, toHost, planes));
+  SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, order, interpolating, toHost, planes));
   if (split.empty()) return device;
   const std::vector<std::pair<std::size_t, Label>> patch = overridesOnGrid(grid, wholeGrid, split);
   if (patch.empty()) return device;
@@ -342,7 +342,7 @@ Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Gr
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     const std::vector<int> subFactors = factorsOf(sub, grid, factors);
     LabelVolume volume;
-    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(impl, subset, grid, sub, out.nesting.order, options.grid.sliceTolerance,
+    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(impl, subset, grid, sub, out.nesting.order,
                                                         interpolates(subFactors), layer == 0 && options.keepLabelVolume,
                                                         split[static_cast<std::size_t>(layer)], volume));
     clock.lap("scan conversion");
@@ -484,15 +484,14 @@ const std::vector<LabelOverride> kNoSplit;
 OverlapReport overlapAnalysis(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
                               const std::vector<FeatureRegion>& regions, const BuildOptions& options,
                               std::vector<std::vector<LabelOverride>>& split) {
-  const double tolerance = options.grid.sliceTolerance;
-  OverlapReport report = analyzeOverlaps(contours, grid, nesting, regions, tolerance, options.overlapTolerance);
+  OverlapReport report = analyzeOverlaps(contours, grid, nesting, regions, options.overlapTolerance);
   report.mode = options.overlaps;
   if (options.overlaps == OverlapMode::Partition) {
     for (FeatureVolumes& f : report.features) f.layer = 0;
     report.layers = 1;
     return report;
   }
-  split = splitIncidentalOverlaps(contours, grid, nesting, regions, tolerance, report);
+  split = splitIncidentalOverlaps(contours, grid, nesting, regions, report);
   return report;
 }
 
@@ -522,15 +521,6 @@ Result<Validated> validatedCopy(const ContourSet& contours) {
   ContourSet copy = contours;
   SCANSURF_TRY(validateContours(copy));
   return Validated::owned(std::move(copy));
-}
-
-// The options a run on `contours` uses: the slice tolerance resolved (sliceToleranceOf), so
-// that every stage merges the same planes.
-BuildOptions resolvedOptions(const BuildOptions& given, const ContourSet* contours) {
-  BuildOptions options = given;
-  if (contours) options.grid.sliceTolerance = sliceToleranceOf(*contours, given.grid.sliceTolerance);
-  else if (!(given.grid.sliceTolerance > 0)) options.grid.sliceTolerance = kDefaultSliceTolerance;
-  return options;
 }
 
 }  // namespace
@@ -563,22 +553,20 @@ Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nestin
                                         const BuildOptions& options) {
   return guarded("scan conversion on " + describeGrid(grid), [&]() -> Result<LabelVolume> {
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
-    return scanner->run(contours, grid, nesting.order, sliceToleranceOf(contours, options.grid.sliceTolerance));
+    return scanner->run(contours, grid, nesting.order);
   });
 }
 
-Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& given,
+Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  const BuildOptions options = resolvedOptions(given, contours);
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
     return surfacesOfPlanes(*impl_, volume, std::nullopt, contours, nesting, options,
                             interpolationFactors(volume.grid, options.interpolation), clock);
   });
 }
 
-Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& given,
+Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  const BuildOptions options = resolvedOptions(given, contours);
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
     return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock);
   });
@@ -591,15 +579,13 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
   });
 }
 
-Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOptions& given) {
+Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOptions& options) {
   return guarded("building the surfaces of " + givenContours.source, [&]() -> Result<BuildResult> {
-    SCANSURF_TRY(checkOptions(given));
+    SCANSURF_TRY(checkOptions(options));
     SCANSURF_ASSIGN_OR_RETURN(const Validated validated, validatedCopy(givenContours));
     const ContourSet& input = validated.get();
-    const BuildOptions options = resolvedOptions(given, &input);
     BuildResult out;
     StageClock clock(out.timings, options);
-    const double tolerance = options.grid.sliceTolerance;
     // The grid and the budget first: a run that cannot fit is refused before any real work.
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
@@ -608,25 +594,24 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     SCANSURF_TRY(checkMemoryBudget(input, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(input, grid);
     // Every feature holds its own slabs on the other features' planes (own_slabs.h).
-    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, tolerance);
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
     const ContourSet& contours = filled ? *filled : input;
     clock.lap("grid");
-    out.nesting = computeNesting(contours, tolerance);
+    out.nesting = computeNesting(contours, options.grid.sliceTolerance);
     clock.lap("nesting");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     out.subPixelBits = scanner->subPixelBits();
-    out.sliceTolerance = tolerance;
     out.threads = options.threads > 0 ? options.threads : defaultThreadCount();
-    const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, tolerance, options.threads);
+    const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, options.threads);
     std::vector<std::vector<LabelOverride>> split;
     out.overlaps = overlapAnalysis(contours, grid, out.nesting, regions, options, split);
     // The partition mode gives shared voxels by priority: its interfaces stay as they were.
-    const MedialCrossings medial = options.overlaps == OverlapMode::Layers ? MedialCrossings(contours, grid, out.overlaps, tolerance)
+    const MedialCrossings medial = options.overlaps == OverlapMode::Layers ? MedialCrossings(contours, grid, out.overlaps)
                                                                            : MedialCrossings();
     clock.lap("overlap analysis");
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
-      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order, tolerance,
+      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order,
                                                           interpolates(factors), toHost, split.empty() ? kNoSplit : split[0],
                                                           out.volume));
       clock.lap("scan conversion");
@@ -646,19 +631,18 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
   });
 }
 
-Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, const BuildOptions& given) {
+Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, const BuildOptions& options) {
   return guarded("analyzing the overlaps of " + givenContours.source, [&]() -> Result<OverlapReport> {
-    SCANSURF_TRY(checkOptions(given));
+    SCANSURF_TRY(checkOptions(options));
     SCANSURF_ASSIGN_OR_RETURN(const Validated validated, validatedCopy(givenContours));
     const ContourSet& input = validated.get();
-    const BuildOptions options = resolvedOptions(given, &input);
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
-    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.grid.sliceTolerance);
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
     const ContourSet& contours = filled ? *filled : input;
     const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     const std::vector<FeatureRegion> regions =
-        rasterizeFeatures(contours, grid, scanner->subPixelBits(), options.grid.sliceTolerance, options.threads);
+        rasterizeFeatures(contours, grid, scanner->subPixelBits(), options.threads);
     std::vector<std::vector<LabelOverride>> split;
     return overlapAnalysis(contours, grid, nesting, regions, options, split);
   });

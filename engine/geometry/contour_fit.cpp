@@ -64,7 +64,7 @@ bool crossing(double au, double av, double bu, double bv, const Segment& s, doub
 }  // namespace
 
 std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,
-                                        std::span<const Label> vertexLabels, double sliceTolerance, int threads) {
+                                        std::span<const Label> vertexLabels, int threads) {
   std::vector<double> t(keys.size(), -1.0);
   // Keys are sorted by z first, so each plane's vertices are one run.
   struct Run {
@@ -83,7 +83,7 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
   std::vector<std::vector<std::pair<int, const FeatureSlice*>>> slicesOfLayer(static_cast<std::size_t>(grid.nz));
   for (std::size_t f = 0; f < contours.features.size(); ++f)
     for (const FeatureSlice& s : contours.features[f].slices) {
-      const int k = layerOfZ(grid, s.z, sliceTolerance);
+      const int k = grid.layerOfPlane(s.z);
       if (k >= 0) slicesOfLayer[static_cast<std::size_t>(k)].push_back({static_cast<int>(f), &s});
     }
 

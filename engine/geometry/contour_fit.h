@@ -28,9 +28,9 @@ Carrier carrierOfKey(std::uint64_t key);
 // vertex's two labels (vertexLabels: 2 per vertex; background has no contours) crosses that
 // edge, choosing the crossing nearest the edge midpoint; -1 for vertices not on an in-plane
 // edge of a layer, or whose edge no such contour crosses. Slices belong to the layer within
-// sliceTolerance of their z. Deterministic for any thread count (0 = all).
+// their z (Grid::layerOfPlane). Deterministic for any thread count (0 = all).
 std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,
-                                        std::span<const Label> vertexLabels, double sliceTolerance, int threads);
+                                        std::span<const Label> vertexLabels, int threads);
 
 // The pixel-lattice cells (ci | cj << 32, within nx x ny) whose closed square [ci, ci+1] x
 // [cj, cj+1] the segment (u0, v0)-(u1, v1) touches, in pixel units: the cells whose lower and

@@ -79,7 +79,7 @@ void medialEdges(const LabelVolume& volume, int k, const MedialCrossings& medial
 
 }  // namespace
 
-std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours, double sliceTolerance,
+std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours,
                                               int threads, const MedialCrossings* medial) {
   const Grid& g = volume.grid;
   std::vector<std::uint16_t> out(volume.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
@@ -87,7 +87,7 @@ std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const C
   std::vector<std::vector<int>> features(static_cast<std::size_t>(g.nz));
   for (std::size_t f = 0; f < contours.features.size(); ++f)
     for (const FeatureSlice& s : contours.features[f].slices) {
-      const int k = layerOfZ(g, s.z, sliceTolerance);
+      const int k = g.layerOfPlane(s.z);
       if (k < 0) continue;
       slices[static_cast<std::size_t>(k)].push_back(&s);
       features[static_cast<std::size_t>(k)].push_back(static_cast<int>(f));

@@ -252,6 +252,7 @@ Result<void> checkFloatPrecision(const ContourSet& contours, const Grid& g) {
 
 Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options) {
   SCANSURF_ASSIGN_OR_RETURN(Grid grid, layOutGrid(contours, options));
+  grid.planeTolerance = sliceToleranceOf(contours, options.sliceTolerance);
   SCANSURF_TRY(checkFloatPrecision(contours, grid));
   return grid;
 }
@@ -264,6 +265,8 @@ int nearestLayer(const Grid& grid, double z) {
   if (it == layers.end()) return static_cast<int>(layers.size()) - 1;
   return static_cast<int>(it - layers.begin()) - (z - *(it - 1) <= *it - z ? 1 : 0);
 }
+
+int Grid::layerOfPlane(double z) const { return layerOfZ(*this, z, planeTolerance); }
 
 int layerOfZ(const Grid& grid, double z, double tolerance) {
   const auto& layers = grid.layerZ;

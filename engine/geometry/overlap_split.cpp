@@ -21,11 +21,11 @@ constexpr double kFar = std::numeric_limits<double>::infinity();
 // widening rings of rows until the rows left lie farther than the best distance found.
 class OutlineIndex {
  public:
-  OutlineIndex(const Feature& feature, const Grid& grid, int layer, double sliceTolerance)
+  OutlineIndex(const Feature& feature, const Grid& grid, int layer)
       : originY_(grid.originY), spacingY_(grid.spacingY), rows_(grid.ny) {
     std::vector<Segment> segments;
     for (const FeatureSlice& slice : feature.slices) {
-      if (layerOfZ(grid, slice.z, sliceTolerance) != layer) continue;
+      if (grid.layerOfPlane(slice.z) != layer) continue;
       contours_.insert(contours_.end(), slice.contours.begin(), slice.contours.end());
       for (const Contour& c : slice.contours)
         for (std::size_t p = 0; p < c.points.size(); ++p) segments.push_back({c.points[p], c.points[(p + 1) % c.points.size()]});
@@ -94,13 +94,12 @@ class OutlineIndex {
 // Outline indices built on first use, one per (feature, layer).
 class Outlines {
  public:
-  Outlines(const ContourSet& contours, const Grid& grid, double sliceTolerance)
-      : contours_(contours), grid_(grid), tolerance_(sliceTolerance) {}
+  Outlines(const ContourSet& contours, const Grid& grid) : contours_(contours), grid_(grid) {}
   const OutlineIndex& of(int feature, int layer) {
     auto it = built_.find({feature, layer});
     if (it == built_.end())
       it = built_.emplace(std::pair{feature, layer}, OutlineIndex(contours_.features[static_cast<std::size_t>(feature)], grid_,
-                                                                  layer, tolerance_)).first;
+                                                                  layer)).first;
     return it->second;
   }
   Point2 centre(int i, int j) const { return {grid_.originX + i * grid_.spacingX, grid_.originY + j * grid_.spacingY}; }
@@ -109,12 +108,10 @@ class Outlines {
     const auto it = built_.find({feature, layer});
     return it == built_.end() ? nullptr : &it->second;
   }
-  double sliceTolerance() const { return tolerance_; }
 
  private:
   const ContourSet& contours_;
   const Grid& grid_;
-  double tolerance_;
   std::map<std::pair<int, int>, OutlineIndex> built_;
 };
 
@@ -238,10 +235,10 @@ double incidentalDepthLimit(const OverlapTolerance& tolerance, const Grid& grid)
 }
 
 void judgeOverlaps(const ContourSet& contours, const Grid& grid, const std::vector<FeatureRegion>& regions,
-                   const OverlapTolerance& tolerance, double sliceTolerance, OverlapReport& report) {
+                   const OverlapTolerance& tolerance, OverlapReport& report) {
   report.tolerance = tolerance;
   if (!tolerance.enabled) return;
-  Outlines outlines(contours, grid, sliceTolerance);
+  Outlines outlines(contours, grid);
   const double limit = incidentalDepthLimit(tolerance, grid);
   for (SharedVolume& s : report.shared) {
     if (s.nested) continue;
@@ -258,7 +255,7 @@ void judgeOverlaps(const ContourSet& contours, const Grid& grid, const std::vect
 std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet& contours, const Grid& grid,
                                                                 const Nesting& nesting,
                                                                 const std::vector<FeatureRegion>& regions,
-                                                                double sliceTolerance, OverlapReport& report) {
+                                                                OverlapReport& report) {
   std::vector<std::vector<LabelOverride>> overrides(static_cast<std::size_t>(report.layers));
   // The shared voxels of incidental pairs per surface layer, once each (a voxel three
   // features share is in three pairs).
@@ -273,7 +270,7 @@ std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet
   }
   std::vector<int> rank(regions.size(), 0);
   for (std::size_t p = 0; p < nesting.order.size(); ++p) rank[static_cast<std::size_t>(nesting.order[p])] = static_cast<int>(p);
-  Outlines outlines(contours, grid, sliceTolerance);
+  Outlines outlines(contours, grid);
   GivenUp givenUp(report);
   VoxelSplit split{regions, nesting, rank, outlines, givenUp, grid};
   for (std::size_t layer = 0; layer < voxels.size(); ++layer) {
@@ -304,7 +301,7 @@ struct MedialCrossings::State {
   Grid grid;
   Outlines outlines;
   std::set<std::pair<Label, Label>> pairs;  // label pairs, smaller first
-  State(const ContourSet& contours, const Grid& g, double tolerance) : grid(g), outlines(contours, grid, tolerance) {}
+  State(const ContourSet& contours, const Grid& g) : grid(g), outlines(contours, grid) {}
 };
 
 MedialCrossings::MedialCrossings() = default;
@@ -312,16 +309,15 @@ MedialCrossings::MedialCrossings(MedialCrossings&&) noexcept = default;
 MedialCrossings& MedialCrossings::operator=(MedialCrossings&&) noexcept = default;
 MedialCrossings::~MedialCrossings() = default;
 
-MedialCrossings::MedialCrossings(const ContourSet& contours, const Grid& grid, const OverlapReport& report,
-                                 double sliceTolerance) {
-  auto state = std::make_unique<State>(contours, grid, sliceTolerance);
+MedialCrossings::MedialCrossings(const ContourSet& contours, const Grid& grid, const OverlapReport& report) {
+  auto state = std::make_unique<State>(contours, grid);
   for (const SharedVolume& s : report.shared) {
     if (!s.incidental || report.features[static_cast<std::size_t>(s.a)].layer != report.features[static_cast<std::size_t>(s.b)].layer)
       continue;
     state->pairs.insert({labelOfFeature(s.a), labelOfFeature(s.b)});
     for (int f : {s.a, s.b})  // built now: read by several threads later
       for (const FeatureSlice& slice : contours.features[static_cast<std::size_t>(f)].slices)
-        if (const int k = layerOfZ(state->grid, slice.z, sliceTolerance); k >= 0) state->outlines.of(f, k);
+        if (const int k = state->grid.layerOfPlane(slice.z); k >= 0) state->outlines.of(f, k);
   }
   if (!state->pairs.empty()) state_ = std::move(state);
 }
@@ -334,7 +330,7 @@ bool MedialCrossings::separates(Label a, Label b) const {
 
 double MedialCrossings::crossing(Label a, Label b, double z, Point2 p, Point2 q) const {
   if (!separates(a, b)) return -1;
-  const int k = layerOfZ(state_->grid, z, state_->outlines.sliceTolerance());
+  const int k = state_->grid.layerOfPlane(z);
   const OutlineIndex* outlineA = k < 0 ? nullptr : state_->outlines.find(featureOfLabel(a), k);
   const OutlineIndex* outlineB = k < 0 ? nullptr : state_->outlines.find(featureOfLabel(b), k);
   if (!outlineA || !outlineB) return -1;

@@ -20,7 +20,7 @@ namespace scansurf {
 // Marks each partial overlap of `report` incidental or not by `tolerance`, measuring depths
 // (SharedVolume::depth) for the pairs small enough to be incidental.
 void judgeOverlaps(const ContourSet& contours, const Grid& grid, const std::vector<FeatureRegion>& regions,
-                   const OverlapTolerance& tolerance, double sliceTolerance, OverlapReport& report);
+                   const OverlapTolerance& tolerance, OverlapReport& report);
 
 // A voxel (i, j, k of the whole grid) whose surface label the medial split changes.
 struct LabelOverride {
@@ -35,7 +35,7 @@ struct LabelOverride {
 std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet& contours, const Grid& grid,
                                                                 const Nesting& nesting,
                                                                 const std::vector<FeatureRegion>& regions,
-                                                                double sliceTolerance, OverlapReport& report);
+                                                                OverlapReport& report);
 
 // Where the shared surface of an incidental pair crosses an in-plane grid edge of a contour
 // plane: where the two features' signed outline distances (positive inside) are equal, the
@@ -44,7 +44,7 @@ std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet
 class MedialCrossings {
  public:
   MedialCrossings();
-  MedialCrossings(const ContourSet& contours, const Grid& grid, const OverlapReport& report, double sliceTolerance);
+  MedialCrossings(const ContourSet& contours, const Grid& grid, const OverlapReport& report);
   MedialCrossings(MedialCrossings&&) noexcept;
   MedialCrossings& operator=(MedialCrossings&&) noexcept;
   ~MedialCrossings();

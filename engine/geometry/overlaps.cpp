@@ -11,11 +11,11 @@
 namespace scansurf {
 namespace {
 
-FeatureRegion rasterizeFeature(const Feature& feature, const Grid& grid, int bits, double tolerance) {
+FeatureRegion rasterizeFeature(const Feature& feature, const Grid& grid, int bits) {
   FeatureRegion region;
   region.minRow = grid.ny, region.minColumn = grid.nx;
   for (const FeatureSlice& slice : feature.slices) {
-    const int k = layerOfZ(grid, slice.z, tolerance);
+    const int k = grid.layerOfPlane(slice.z);
     if (k < 0) continue;
     std::vector<PixelRun> runs = rasterizeSlice(slice.contours, grid, bits);
     for (const PixelRun& r : runs) {
@@ -69,10 +69,10 @@ bool regionsTouch(const FeatureRegion& a, const FeatureRegion& b) {
 
 double slab(const Grid& grid, int k) { return 0.5 * (grid.layerZ[static_cast<std::size_t>(k + 1)] - grid.layerZ[static_cast<std::size_t>(k - 1)]); }
 
-FeatureVolumes volumesOf(const Feature& feature, const FeatureRegion& region, const Grid& grid, double tolerance) {
+FeatureVolumes volumesOf(const Feature& feature, const FeatureRegion& region, const Grid& grid) {
   FeatureVolumes v;
   for (const FeatureSlice& slice : feature.slices) {
-    const int k = layerOfZ(grid, slice.z, tolerance);
+    const int k = grid.layerOfPlane(slice.z);
     if (k > 0 && k < grid.nz - 1) v.contour += std::abs(regionArea(slice.contours)) * slab(grid, k);
   }
   for (std::size_t s = 0; s < region.layers.size(); ++s) {
@@ -186,10 +186,10 @@ std::vector<std::vector<int>> components(int n, const std::vector<std::vector<in
 }  // namespace
 
 std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits,
-                                             double sliceTolerance, int threads) {
+                                             int threads) {
   std::vector<FeatureRegion> regions(contours.features.size());
   parallelChunks(regions.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t f = begin; f < end; ++f) regions[f] = rasterizeFeature(contours.features[f], grid, subPixelBits, sliceTolerance);
+    for (std::size_t f = begin; f < end; ++f) regions[f] = rasterizeFeature(contours.features[f], grid, subPixelBits);
   });
   return regions;
 }
@@ -259,13 +259,13 @@ struct NestingIntervals {
 };
 
 OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
-                              const std::vector<FeatureRegion>& regions, double sliceTolerance,
+                              const std::vector<FeatureRegion>& regions,
                               const OverlapTolerance& tolerance) {
   const NestingIntervals intervals(nesting);
   OverlapReport report;
   const int n = static_cast<int>(contours.features.size());
   for (int f = 0; f < n; ++f)
-    report.features.push_back(volumesOf(contours.features[static_cast<std::size_t>(f)], regions[static_cast<std::size_t>(f)], grid, sliceTolerance));
+    report.features.push_back(volumesOf(contours.features[static_cast<std::size_t>(f)], regions[static_cast<std::size_t>(f)], grid));
   std::vector<std::pair<int, int>> anyShared, affinity;
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b) {
@@ -283,7 +283,7 @@ OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, cons
     }
   // Real partial overlaps keep their features apart; nested and incidental pairs and abutting
   // ones would rather share a layer.
-  judgeOverlaps(contours, grid, regions, tolerance, sliceTolerance, report);
+  judgeOverlaps(contours, grid, regions, tolerance, report);
   std::vector<std::pair<int, int>> real;
   for (const SharedVolume& s : report.shared) {
     if (s.nested || s.incidental) affinity.emplace_back(s.a, s.b);

@@ -39,8 +39,7 @@ void forEachCommonLayer(const FeatureRegion& a, const FeatureRegion& b, Visit&& 
 }
 
 // Every feature's region on `grid` (threads: 0 = all).
-std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits,
-                                             double sliceTolerance, int threads);
+std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits, int threads);
 
 // Volume of one voxel of layer k (1 .. nz-2): pixel area times the layer's slab.
 double voxelVolume(const Grid& grid, int k);
@@ -49,8 +48,7 @@ double voxelVolume(const Grid& grid, int k);
 // real, by `tolerance`: geometry/overlap_split.h), and both layer assignments: real overlaps
 // apart in the surface layers, any shared voxel apart in the mask layers.
 OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
-                              const std::vector<FeatureRegion>& regions, double sliceTolerance,
-                              const OverlapTolerance& tolerance);
+                              const std::vector<FeatureRegion>& regions, const OverlapTolerance& tolerance);
 
 // Colours n features so that no conflicting pair shares a colour, with the fewest colours this
 // finds (exact for components of up to 24 features, else DSatur's greedy bound), preferring the

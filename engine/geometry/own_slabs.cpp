@@ -7,12 +7,12 @@ namespace scansurf {
 namespace {
 
 // The slices to add to one feature (its slices sorted by z, as validation leaves them).
-std::vector<FeatureSlice> gapSlices(const Feature& feature, const Grid& grid, double tolerance) {
+std::vector<FeatureSlice> gapSlices(const Feature& feature, const Grid& grid) {
   std::vector<FeatureSlice> added;
   int previous = -1;
   const FeatureSlice* previousSlice = nullptr;
   for (const FeatureSlice& slice : feature.slices) {
-    const int k = layerOfZ(grid, slice.z, tolerance);
+    const int k = grid.layerOfPlane(slice.z);
     if (k < 0) continue;
     if (previousSlice && k > previous + 1) {
       const double za = grid.layerZ[static_cast<std::size_t>(previous)], zb = grid.layerZ[static_cast<std::size_t>(k)];
@@ -28,10 +28,10 @@ std::vector<FeatureSlice> gapSlices(const Feature& feature, const Grid& grid, do
 
 }  // namespace
 
-std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid, double sliceTolerance) {
+std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid) {
   std::optional<ContourSet> filled;
   for (std::size_t f = 0; f < contours.features.size(); ++f) {
-    std::vector<FeatureSlice> added = gapSlices(contours.features[f], grid, sliceTolerance);
+    std::vector<FeatureSlice> added = gapSlices(contours.features[f], grid);
     if (added.empty()) continue;
     if (!filled) filled = contours;
     std::vector<FeatureSlice>& slices = filled->features[f].slices;

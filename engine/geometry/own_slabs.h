@@ -16,6 +16,6 @@ namespace scansurf {
 // The contour set with, for each feature, a slice on every layer of `grid` strictly between two
 // of its consecutive planes, holding the nearer plane's contours; nullopt when no feature
 // needs one (the set is used as it is).
-std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid, double sliceTolerance);
+std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid);
 
 }  // namespace scansurf

@@ -769,7 +769,8 @@ void accumulate(RemeshReport& into, const RemeshReport& layer) {
 }
 
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, double sliceTolerance, int threads, std::size_t trianglesPerSlab) {
+                        const RemeshOptions& options, int threads, std::size_t trianglesPerSlab) {
+  const double sliceTolerance = grid.planeTolerance;
   RemeshReport report;
   if (!options.enabled || mesh.triangleCount() == 0) return report;
   report.ran = true;

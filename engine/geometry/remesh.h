@@ -16,7 +16,7 @@ namespace scansurf {
 // the grid's in-plane voxel size or 0.33 times the median contour-plane gap, whichever is
 // longer), graded down around short feature-line edges. Labels stay with their triangles;
 // junction curves (three or more labels) and the cross-sections at the contour planes (the z of contours' slices, within
-// sliceTolerance; contours may be null: no planes) are feature lines that are only split or
+// grid.planeTolerance; contours may be null: no planes) are feature lines that are only split or
 // shortened along themselves, and their meeting points stay. An operation is kept only if,
 // afterwards, every feature surface of both conventions (nesting.parent.size() features) is
 // still a closed oriented 2-manifold of the same genus and components, no triangle crosses
@@ -27,7 +27,7 @@ namespace scansurf {
 // threads. Returns the figures; ran = false when disabled or empty.
 inline constexpr std::size_t kTrianglesPerSlab = 200'000;
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, double sliceTolerance = kDefaultSliceTolerance, int threads = 0,
+                        const RemeshOptions& options, int threads = 0,
                         std::size_t trianglesPerSlab = kTrianglesPerSlab);
 
 // Adds a layer's figures to the run's (Surfaces::remeshing): counts summed, smallest angle

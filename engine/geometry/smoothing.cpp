@@ -320,8 +320,8 @@ void placeOnMedialLines(const MultiLabelMesh& mesh, const Grid& grid, const Adja
 }
 
 void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, std::span<const std::uint16_t> clearance,
-                         Adjacency& adj, double sliceTolerance, int threads, const MedialCrossings* medial) {
-  std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, sliceTolerance, threads)
+                         Adjacency& adj, int threads, const MedialCrossings* medial) {
+  std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, threads)
                                    : std::vector<double>(mesh.vertexCount(), -1.0);
   if (medial && !medial->empty()) placeOnMedialLines(mesh, grid, adj, *medial, t);
   if (clearance.size() == grid.voxelCount())
@@ -626,13 +626,13 @@ std::vector<Stage> scheduleOf(int iterations, double strength) {
 }  // namespace
 
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                           const SmoothingOptions& options, int threads, double sliceTolerance,
+                           const SmoothingOptions& options, int threads,
                            std::span<const std::uint16_t> clearance, const MedialCrossings* medial) {
   const std::size_t vertexCount = mesh.vertexCount();
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
   if (options.contourFit && (contours || !clearance.empty()))
-    placeFittedVertices(mesh, grid, contours, clearance, adj, sliceTolerance, threads, medial);
+    placeFittedVertices(mesh, grid, contours, clearance, adj, threads, medial);
   std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
   SmoothingReport report = settleRoles(mesh.keys, adj.kind);
   Relaxation relaxation(mesh, grid, adj, options.strength, threads);

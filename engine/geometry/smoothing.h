@@ -33,8 +33,7 @@ struct SmoothingReport {
 // medial line instead (geometry/overlap_split.h).
 class MedialCrossings;
 SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                           const SmoothingOptions& options, int threads = 0,
-                           double sliceTolerance = kDefaultSliceTolerance, std::span<const std::uint16_t> clearance = {},
+                           const SmoothingOptions& options, int threads = 0, std::span<const std::uint16_t> clearance = {},
                            const MedialCrossings* medial = nullptr);
 
 }  // namespace scansurf

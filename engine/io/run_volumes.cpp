@@ -23,12 +23,12 @@ Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridRefe
 Result<RunVolumes> runVolumes(const ContourSet& input, const BuildResult& built, bool withPartition) {
   const Grid& grid = built.volume.grid;
   // The masks hold each feature's own slabs on the other features' planes, as the surfaces do.
-  const std::optional<ContourSet> filled = withOwnSlabs(input, grid, built.sliceTolerance);
+  const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
   const ContourSet& contours = filled ? *filled : input;
   const std::size_t n = contours.features.size();
   if (built.overlaps.features.size() != n)
     return makeError(Errc::InvalidArgument, "label volume: the build result is not that of the contour set");
-  const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, built.subPixelBits, built.sliceTolerance, 0);
+  const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, built.subPixelBits, 0);
   RunVolumes out;
   out.masksOnGrid = maskLayerVolumes(regions, grid, built.overlaps);
   for (const FeatureVolumes& f : built.overlaps.features) out.maskLayerOf.push_back(f.maskLayer);

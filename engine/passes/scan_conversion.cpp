@@ -103,12 +103,11 @@ Result<void> checkRunArguments(const VkPhysicalDeviceLimits& limits, const Grid&
 }
 
 // Which feature slices land on which layer; a slice off the grid's layers is a bug upstream.
-Result<std::vector<std::vector<SliceRef>>> slicesByLayer(const ContourSet& contours, const Grid& grid,
-                                                         double sliceTolerance) {
+Result<std::vector<std::vector<SliceRef>>> slicesByLayer(const ContourSet& contours, const Grid& grid) {
   std::vector<std::vector<SliceRef>> byLayer(static_cast<std::size_t>(grid.nz));
   for (int f = 0; f < static_cast<int>(contours.features.size()); ++f)
     for (const FeatureSlice& s : contours.features[static_cast<std::size_t>(f)].slices) {
-      const int layer = layerOfZ(grid, s.z, sliceTolerance);
+      const int layer = grid.layerOfPlane(s.z);
       if (layer < 1 || layer > grid.nz - 2)
         return makeError(Errc::Internal, "scan conversion: slice z=" + std::to_string(s.z) + " of feature \"" +
                                              contours.features[static_cast<std::size_t>(f)].name + "\" is not a layer of the grid");
@@ -117,14 +116,13 @@ Result<std::vector<std::vector<SliceRef>>> slicesByLayer(const ContourSet& conto
   return byLayer;
 }
 
-Result<RunPlan> planRun(const ContourSet& contours, const Grid& grid, const std::vector<int>& order, int subPixelBits,
-                        double sliceTolerance) {
+Result<RunPlan> planRun(const ContourSet& contours, const Grid& grid, const std::vector<int>& order, int subPixelBits) {
   RunPlan plan;
   plan.grid = &grid;
   plan.featureCount = static_cast<int>(contours.features.size());
   plan.rank.assign(static_cast<std::size_t>(plan.featureCount), -1);
   for (int r = 0; r < plan.featureCount; ++r) plan.rank[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])] = r;
-  SCANSURF_ASSIGN_OR_RETURN(plan.byLayer, slicesByLayer(contours, grid, sliceTolerance));
+  SCANSURF_ASSIGN_OR_RETURN(plan.byLayer, slicesByLayer(contours, grid));
   plan.subPixelBits = subPixelBits;
   plan.invScale = static_cast<float>(std::ldexp(1.0, -subPixelBits));
   plan.viewportW = viewportExtent(grid.nx);
@@ -383,9 +381,9 @@ LabelVolume backgroundVolume(const Grid& grid) { return LabelVolume{grid, std::v
 
 // Scan converts every slice layer, slab by slab, into the sinks.
 Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours, const Grid& grid,
-                        const std::vector<int>& order, double sliceTolerance, const LabelSinks& sinks) {
+                        const std::vector<int>& order, const LabelSinks& sinks) {
   const gpu::Context& ctx = *state.ctx;
-  SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state.subPixelBits, sliceTolerance));
+  SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state.subPixelBits));
   const int sliceLayers = grid.nz - 2;
   const int slabLayers = slabLayerCount(state.slabBudget, plan.layerBytes, ctx.limits().maxImageArrayLayers, sliceLayers);
   SCANSURF_ASSIGN_OR_RETURN(const SlabTargets targets, createSlabTargets(ctx, state.depthStencilFormat, grid, slabLayers,
@@ -401,17 +399,15 @@ Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours,
 
 }  // namespace
 
-Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                                       double sliceTolerance) {
+Result<LabelVolume> ScanConverter::run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order) {
   SCANSURF_TRY(checkRunArguments(state_->ctx->limits(), grid, contours.features.size(), order.size()));
   LabelVolume volume = backgroundVolume(grid);
-  SCANSURF_TRY(convertAll(*state_, contours, grid, order, sliceTolerance, LabelSinks{&volume, nullptr}));
+  SCANSURF_TRY(convertAll(*state_, contours, grid, order, LabelSinks{&volume, nullptr}));
   return volume;
 }
 
 Result<ScanConverter::DeviceLabels> ScanConverter::runOnDevice(const ContourSet& contours, const Grid& grid,
-                                                               const std::vector<int>& order, double sliceTolerance,
-                                                               LabelVolume* host) {
+                                                               const std::vector<int>& order, LabelVolume* host) {
   SCANSURF_TRY(checkRunArguments(state_->ctx->limits(), grid, contours.features.size(), order.size()));
   const VkDeviceSize bytes = (grid.voxelCount() * sizeof(Label) + 3) / 4 * 4;  // fills take whole words
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer buffer,
@@ -420,7 +416,7 @@ Result<ScanConverter::DeviceLabels> ScanConverter::runOnDevice(const ContourSet&
                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                 gpu::MemoryDomain::Device));
   if (host) *host = backgroundVolume(grid);
-  SCANSURF_TRY(convertAll(*state_, contours, grid, order, sliceTolerance, LabelSinks{host, &buffer}));
+  SCANSURF_TRY(convertAll(*state_, contours, grid, order, LabelSinks{host, &buffer}));
   return DeviceLabels{std::move(buffer), grid};
 }
 

@@ -23,8 +23,8 @@ class ScanConverter {
 
   // Rasterizes a validated contour set on `grid` (made by makeGrid for it) into a label
   // volume; order is the nesting order, innermost first. Padding layers stay background.
-  Result<LabelVolume> run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                          double sliceTolerance = kDefaultSliceTolerance);
+  // Slices go to the layer whose plane holds them (Grid::layerOfPlane).
+  Result<LabelVolume> run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order);
 
   // The same labels left on the device for classification (issue 12: no readback and upload
   // again between GPU passes): a buffer of 16-bit labels in LabelVolume's layout, usable as
@@ -35,7 +35,7 @@ class ScanConverter {
     Grid grid;
   };
   Result<DeviceLabels> runOnDevice(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                                   double sliceTolerance, LabelVolume* host);
+                                   LabelVolume* host);
 
   int subPixelBits() const;
   // Slabs used by the last run (for reports and tests).

@@ -242,7 +242,7 @@ TEST_F(IncidentalOverlapsTest, MasksKeepEachFeaturesOwnRegion) {
   BuildOptions on = options(1.0), off = on;
   off.overlapTolerance.enabled = false;
   const BuildResult a = build(set, on), b = build(set, off);
-  const std::vector<FeatureRegion> regions = rasterizeFeatures(set, a.volume.grid, a.subPixelBits, a.sliceTolerance, 1);
+  const std::vector<FeatureRegion> regions = rasterizeFeatures(set, a.volume.grid, a.subPixelBits, 1);
   EXPECT_EQ(a.overlaps.maskLayers, b.overlaps.maskLayers);
   const std::vector<LabelVolume> masksA = maskLayerVolumes(regions, a.volume.grid, a.overlaps);
   const std::vector<LabelVolume> masksB = maskLayerVolumes(regions, b.volume.grid, b.overlaps);

@@ -409,7 +409,7 @@ void expectLabelsWithinOneVoxel(const ContourSet& set, double voxel, const Dista
   ASSERT_TRUE(interpolator);
   InterpolationOptions options;
   options.factor = InterpolationOptions::kAuto;
-  auto fine = (*interpolator)->run(*volume, planeEdgeCrossings(*volume, set, kDefaultSliceTolerance, 1),
+  auto fine = (*interpolator)->run(*volume, planeEdgeCrossings(*volume, set, 1),
                                    interpolationFactors(grid, options), CapShape::Round, 1);
   ASSERT_TRUE(fine) << fine.error().message;
   const Grid& g = fine->volume.grid;

@@ -212,7 +212,7 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
   ASSERT_TRUE(converter && classifier);
   (*converter)->setSlabBudget(3 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
   LabelVolume host;
-  auto device = (*converter)->runOnDevice(set, grid, {0, 1}, kDefaultSliceTolerance, &host);
+  auto device = (*converter)->runOnDevice(set, grid, {0, 1}, &host);
   ASSERT_TRUE(device) << device.error().message;
   EXPECT_EQ((*converter)->lastSlabCount(), 3);
   const LabelVolume ref = referenceScanConvert(set, grid, {0, 1}, (*converter)->subPixelBits());
@@ -226,7 +226,7 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
   EXPECT_EQ(std::memcmp(fromDevice->data(), fromHost->data(), fromHost->size() * sizeof(CellCase)), 0);
   // Bound in place, slab by slab: a layer of 1914 bytes puts most slabs off the offset
   // alignment, so the shader skips the labels before the slab's first.
-  auto deviceOnly = (*converter)->runOnDevice(set, grid, {0, 1}, kDefaultSliceTolerance, nullptr);
+  auto deviceOnly = (*converter)->runOnDevice(set, grid, {0, 1}, nullptr);
   ASSERT_TRUE(deviceOnly);
   (*classifier)->setSlabBudget(4 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
   auto inPlace = (*classifier)->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 0, 16, deviceOnly->grid},

@@ -46,7 +46,7 @@ void toggleTriangle(SubpixelPoint a, SubpixelPoint b, SubpixelPoint c, int bits,
 }  // namespace
 
 LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                                 int subPixelBits, double sliceTolerance) {
+                                 int subPixelBits) {
   LabelVolume volume;
   volume.grid = grid;
   volume.labels.assign(grid.voxelCount(), kBackground);
@@ -58,7 +58,7 @@ LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, c
   std::vector<std::uint8_t> parity(layerSize);
   for (std::size_t f = 0; f < contours.features.size(); ++f) {
     for (const FeatureSlice& slice : contours.features[f].slices) {
-      const int k = layerOfZ(grid, slice.z, sliceTolerance);
+      const int k = grid.layerOfPlane(slice.z);
       if (k < 0) continue;
       std::fill(parity.begin(), parity.end(), 0);
       for (const Contour& c : slice.contours) {

@@ -12,6 +12,6 @@
 namespace scansurf::test {
 
 LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                                 int subPixelBits, double sliceTolerance = kDefaultSliceTolerance);
+                                 int subPixelBits);
 
 }  // namespace scansurf::test

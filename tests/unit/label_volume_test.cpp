@@ -32,7 +32,7 @@ BuildResult cpuBuild(const ContourSet& contours) {
   b.volume.grid = *grid;
   b.subPixelBits = 8;
   b.overlaps = analyzeOverlaps(contours, *grid, b.nesting,
-                               rasterizeFeatures(contours, *grid, 8, b.sliceTolerance, 1), b.sliceTolerance, {});
+                               rasterizeFeatures(contours, *grid, 8, 1), {});
   return b;
 }
 

@@ -48,7 +48,7 @@ struct Slabs {
 };
 
 RemeshReport remesh(Built& b, const RemeshOptions& options = remeshOn(), Slabs slabs = {}) {
-  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options, kDefaultSliceTolerance, slabs.threads, slabs.triangles);
+  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options, slabs.threads, slabs.triangles);
   refreshFeatures(b);
   return r;
 }

@@ -48,7 +48,6 @@ struct BuildResult {
   // The device's sub-pixel precision of scan conversion (bits), with which the writers
   // rasterize each feature's own mask on the CPU exactly as the device did.
   int subPixelBits = 8;
-  double sliceTolerance = kDefaultSliceTolerance;  // the run's slice tolerance (sliceToleranceOf, resolved)
   int threads = 1;  // CPU threads the run used (BuildOptions::threads, 0 resolved)
   // The budget check: estimated peak host memory, and the limit it was held to (bytes).
   std::uint64_t estimatedMemory = 0;

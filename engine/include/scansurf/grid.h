@@ -45,6 +45,13 @@ struct Grid {
   double spacingX = 1;
   double spacingY = 1;
   std::vector<double> layerZ;  // size nz, strictly increasing
+  // Slice z values within this of a layer's z lie on that layer's plane (input units): the
+  // run's slice tolerance, set by makeGrid; 0 = exactly. Every stage asks the grid
+  // (layerOfPlane) rather than carrying a tolerance of its own.
+  double planeTolerance = 0;
+
+  // The layer whose plane holds a slice at z (within planeTolerance), or -1.
+  int layerOfPlane(double z) const;
 
   std::size_t voxelCount() const {
     return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
@@ -62,7 +69,8 @@ struct Grid {
 // neighbouring slice spacing. Errors: options out of range, or a degenerate extent.
 Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options);
 
-// The layer whose plane is within tolerance of z, or -1.
+// The layer whose plane is within tolerance of z, or -1 (Grid::layerOfPlane with another
+// tolerance).
 int layerOfZ(const Grid& grid, double z, double tolerance);
 
 // The layer whose slab holds z: the nearest layer (ties: the lower one), so that a slice of a
