@@ -32,6 +32,8 @@ find_path(SCANSURF_NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)
 find_library(SCANSURF_NIFTIIO_LIBRARY niftiio REQUIRED)
 find_library(SCANSURF_ZNZ_LIBRARY znz REQUIRED)
 set(SCANSURF_NIFTI_LIBRARIES "${SCANSURF_NIFTIIO_LIBRARY}" "${SCANSURF_ZNZ_LIBRARY}" ZLIB::ZLIB)
+# The CPU geometry's vectors (engine/geometry/vec3.h): GLM, header-only (libglm-dev).
+find_path(SCANSURF_GLM_INCLUDE_DIR glm/vec3.hpp REQUIRED)
 if(SCANSURF_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

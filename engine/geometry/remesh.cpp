@@ -361,7 +361,7 @@ bool Remesher::split(std::uint32_t a, std::uint32_t b) {
   if (!m.found) return false;
   net_.begin(change_);
   before_.clear();
-  const Role role = junction ? Role::Curve : inPlane ? Role::Plane : Role::Sheet;
+  const VertexRole role = junction ? VertexRole::Curve : inPlane ? VertexRole::Plane : VertexRole::Sheet;
   const std::uint32_t mid = net_.addVertex(storable(m.point), role, inPlane ? net_.plane[a] : -1, change_);
   std::vector<std::uint32_t>& touched = touched_;
   touched.assign({a, b, mid});
@@ -384,17 +384,17 @@ bool Remesher::split(std::uint32_t a, std::uint32_t b) {
   return true;
 }
 
-int rank(Role r) { return r == Role::Sheet ? 0 : r == Role::Corner ? 2 : 1; }
+int rank(VertexRole r) { return r == VertexRole::Sheet ? 0 : r == VertexRole::Corner ? 2 : 1; }
 
 // u goes into v (v stays where it is).
 bool Remesher::collapse(std::uint32_t u, std::uint32_t v) {
-  const Role ru = net_.role[u], rv = net_.role[v];
-  if (ru == Role::Corner || rank(ru) > rank(rv)) return false;
+  const VertexRole ru = net_.role[u], rv = net_.role[v];
+  if (ru == VertexRole::Corner || rank(ru) > rank(rv)) return false;
   std::vector<std::uint32_t>& edgeTris = edgeTris_;
   net_.edgeTriangles(u, v, edgeTris);
   const bool junction = net_.isJunctionEdge(edgeTris);
-  if (ru == Role::Curve && !junction) return false;                  // only along its curve
-  if (ru == Role::Plane && !net_.isInPlaneEdge(u, v)) return false;  // only along its cross-section
+  if (ru == VertexRole::Curve && !junction) return false;                  // only along its curve
+  if (ru == VertexRole::Plane && !net_.isInPlaneEdge(u, v)) return false;  // only along its cross-section
   net_.neighbours(u, scratch_);
   for (std::uint32_t w : scratch_)
     if (w != v && length(v, w) > kHigh * target(v, w)) return false;
@@ -464,28 +464,28 @@ bool Remesher::relaxTo(std::uint32_t v, const Vec3& target) {
 // Tangential relaxation: toward the centroid of the neighbours along the sheet (curve and plane
 // vertices: of their two neighbours along the line), then onto the smoothed surface.
 bool Remesher::relax(std::uint32_t v) {
-  const Role r = net_.role[v];
-  if (r == Role::Corner || net_.vtris[v].empty()) return false;
+  const VertexRole r = net_.role[v];
+  if (r == VertexRole::Corner || net_.vtris[v].empty()) return false;
   net_.neighbours(v, scratch_);
   std::vector<std::uint32_t>& along = along_;
   std::vector<std::uint32_t>& edgeTris = edgeTris_;
   along.clear();
   FeatureKey key = sheetKey(net_.pair[net_.vtris[v][0]]);
   for (std::uint32_t w : scratch_) {
-    if (r == Role::Sheet) {
+    if (r == VertexRole::Sheet) {
       along.push_back(w);
       continue;
     }
     net_.edgeTriangles(v, w, edgeTris);
-    if (r == Role::Curve && net_.isJunctionEdge(edgeTris)) along.push_back(w), key = curveKey(net_, edgeTris);
-    if (r == Role::Plane && net_.isInPlaneEdge(v, w)) along.push_back(w), key = planeKey(net_.plane[v], net_.pair[edgeTris[0]]);
+    if (r == VertexRole::Curve && net_.isJunctionEdge(edgeTris)) along.push_back(w), key = curveKey(net_, edgeTris);
+    if (r == VertexRole::Plane && net_.isInPlaneEdge(v, w)) along.push_back(w), key = planeKey(net_.plane[v], net_.pair[edgeTris[0]]);
   }
   if (along.empty()) return false;
   Vec3 centroid{0, 0, 0};
   for (std::uint32_t w : along) centroid = centroid + net_.pos[w];
   const Vec3 p = net_.pos[v];
   Vec3 step = (1.0 / static_cast<double>(along.size())) * centroid - p;
-  if (r == Role::Sheet) {
+  if (r == VertexRole::Sheet) {
     const Vec3 n = fanNormal(v);
     const double nn = dot(n, n);
     if (nn > 0) step = step - (dot(step, n) / nn) * n;
@@ -504,7 +504,7 @@ bool Remesher::relax(std::uint32_t v) {
 // (centroid and edge midpoints) and the smoothed surface, which leaves the remeshed surface
 // centred on the smoothed one instead of inscribed.
 bool Remesher::fit(std::uint32_t v) {
-  if (net_.role[v] != Role::Sheet || net_.vtris[v].empty()) return false;
+  if (net_.role[v] != VertexRole::Sheet || net_.vtris[v].empty()) return false;
   Vec3 n = fanNormal(v);
   const double nn = std::sqrt(dot(n, n));
   if (nn == 0) return false;
@@ -589,7 +589,7 @@ void Remesher::gradeSizes() {
   std::vector<std::uint32_t> edgeTris;
   for (std::uint32_t v = 0; v < n; ++v) {
     // A rim vertex's edges to outside the submesh are missing: it would look like a junction.
-    if (net_.role[v] == Role::Sheet || net_.vtris[v].empty() || flagged(rim_, v) || !graded(v)) continue;
+    if (net_.role[v] == VertexRole::Sheet || net_.vtris[v].empty() || flagged(rim_, v) || !graded(v)) continue;
     net_.neighbours(v, scratch_);
     for (std::uint32_t w : scratch_) {
       net_.edgeTriangles(v, w, edgeTris);
@@ -598,7 +598,7 @@ void Remesher::gradeSizes() {
   }
   if (sagitta_ > 0)
     for (std::uint32_t v = 0; v < n; ++v)
-      if (net_.role[v] == Role::Sheet && !net_.vtris[v].empty() && graded(v)) size_[v] = std::min(size_[v], curvatureSize(v));
+      if (net_.role[v] == VertexRole::Sheet && !net_.vtris[v].empty() && graded(v)) size_[v] = std::min(size_[v], curvatureSize(v));
   // Dijkstra from every shortened vertex: size(w) <= size(v) + slope |vw|.
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
@@ -682,7 +682,7 @@ double largestDistance(const MultiLabelMesh& mesh, const ReferenceSurface& refer
     for (std::size_t t = begin; t < end; ++t) {
       const Vec3 p0 = at(t, 0), p1 = at(t, 1), p2 = at(t, 2);
       const Vec3 samples[7] = {p0, p1, p2, 0.5 * (p0 + p1), 0.5 * (p1 + p2), 0.5 * (p2 + p0), (1.0 / 3) * (p0 + p1 + p2)};
-      const FeatureKey key = sheetKey(pairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]));
+      const FeatureKey key = sheetKey(labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]));
       for (const Vec3& q : samples) {
         const Nearest r = reference.nearestNear(q, key, length);
         worst[static_cast<std::size_t>(chunk)] = std::max(worst[static_cast<std::size_t>(chunk)], r.found ? r.distance : length);

@@ -29,7 +29,7 @@ SurfaceTable::SurfaceTable(const MultiLabelMesh& mesh, const Nesting& nesting) {
     return out;
   };
   for (std::size_t t = 0; t < mesh.labels.size() / 2; ++t) {
-    const std::uint32_t key = pairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
+    const std::uint32_t key = labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
     if (uses_.count(key)) continue;
     std::vector<SurfaceUse>& uses = uses_[key];
     const int fa = featureOf(mesh.labels[2 * t]), fb = featureOf(mesh.labels[2 * t + 1]);
@@ -156,7 +156,7 @@ Network::Network(const MultiLabelMesh& mesh, const std::vector<double>& planeZ, 
       tris[t][c] = mesh.triangles[3 * t + c];
       vtris[tris[t][c]].push_back(static_cast<std::uint32_t>(t));
     }
-    pair[t] = pairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
+    pair[t] = labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
   }
   assignRoles();
   if (!broadPhase) return;
@@ -191,7 +191,7 @@ void countFeatureEdges(const Network& net, std::uint32_t v, int& junction, int& 
 
 void Network::assignRoles() {
   const std::size_t n = pos.size();
-  role.assign(n, Role::Corner);
+  role.assign(n, VertexRole::Corner);
   junctions.assign(n, 0);
   inPlane.assign(n, 0);
   Spokes spokes;
@@ -202,9 +202,9 @@ void Network::assignRoles() {
     junctions[v] = static_cast<std::uint8_t>(std::min(jc, 255));
     inPlane[v] = static_cast<std::uint8_t>(std::min(pc, 255));
     if (plane[v] >= 0)
-      role[v] = jc == 0 && pc == 2 ? Role::Plane : Role::Corner;
+      role[v] = jc == 0 && pc == 2 ? VertexRole::Plane : VertexRole::Corner;
     else
-      role[v] = jc == 0 ? Role::Sheet : jc == 2 ? Role::Curve : Role::Corner;
+      role[v] = jc == 0 ? VertexRole::Sheet : jc == 2 ? VertexRole::Curve : VertexRole::Corner;
   }
 }
 
@@ -212,7 +212,7 @@ void Network::pin(std::uint32_t v) {
   Spokes spokes;
   int jc = 0, pc = 0;
   countFeatureEdges(*this, v, jc, pc, spokes);
-  role[v] = Role::Corner;
+  role[v] = VertexRole::Corner;
   junctions[v] = static_cast<std::uint8_t>(std::min(jc, 255));
   inPlane[v] = static_cast<std::uint8_t>(std::min(pc, 255));
 }
@@ -250,13 +250,13 @@ void Network::begin(Change& change) const {
   change.addedVertex = false;
 }
 
-std::uint32_t Network::addVertex(const Vec3& p, Role r, int planeIndex, Change& change) {
+std::uint32_t Network::addVertex(const Vec3& p, VertexRole r, int planeIndex, Change& change) {
   pos.push_back(p);
   vtris.emplace_back();
   role.push_back(r);
   plane.push_back(planeIndex);
-  junctions.push_back(r == Role::Curve ? 2 : 0);
-  inPlane.push_back(r == Role::Plane ? 2 : 0);
+  junctions.push_back(r == VertexRole::Curve ? 2 : 0);
+  inPlane.push_back(r == VertexRole::Plane ? 2 : 0);
   change.addedVertex = true;
   return static_cast<std::uint32_t>(pos.size() - 1);
 }
@@ -407,10 +407,10 @@ bool roleHolds(const Network& net, std::uint32_t v, Spokes& spokes) {
   int jc = 0, pc = 0;
   countFeatureEdges(net, v, jc, pc, spokes);
   switch (net.role[v]) {
-    case Role::Sheet: return jc == 0 && pc == 0;
-    case Role::Curve: return jc == 2 && pc == 0;
-    case Role::Plane: return jc == 0 && pc == 2;
-    case Role::Corner: return jc == net.junctions[v] && pc == net.inPlane[v];
+    case VertexRole::Sheet: return jc == 0 && pc == 0;
+    case VertexRole::Curve: return jc == 2 && pc == 0;
+    case VertexRole::Plane: return jc == 0 && pc == 2;
+    case VertexRole::Corner: return jc == net.junctions[v] && pc == net.inPlane[v];
   }
   return false;
 }

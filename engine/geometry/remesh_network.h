@@ -9,33 +9,22 @@
 #include <unordered_map>
 #include <vector>
 
+#include "geometry/vec3.h"
+#include "geometry/vertex_roles.h"
 #include "scansurf/nesting.h"
 #include "scansurf/surfaces.h"
 
 namespace scansurf::remesh {
 
-using Vec3 = std::array<double, 3>;
-
-inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
+using glm::cross;
+using glm::dot;
 // Rounded to float and back: the mesh stores float, and every check runs on what is stored.
 inline Vec3 storable(const Vec3& p) {
   return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
 }
 
-// How a vertex may move and go. Sheet: anywhere on its sheet. Curve: on a junction curve
-// (exactly two junction edges), along it. Plane: on a contour plane's cross-section polyline
-// (exactly two in-plane edges), along it. Corner: stays (curve meeting points, curves crossing
-// a contour plane, polyline branch points).
-enum class Role : std::uint8_t { Sheet, Curve, Plane, Corner };
-
-// A triangle's label pair {a < b} as one number.
-inline std::uint32_t pairKey(Label a, Label b) { return a | (static_cast<std::uint32_t>(b) << 16); }
+// Vertex roles (VertexRole, geometry/vertex_roles.h): a Curve vertex has exactly two junction
+// edges, a Plane vertex exactly two in-plane edges of its cross-section polyline.
 
 // One closed feature surface (a feature in one convention) a triangle belongs to, and whether
 // the triangle is flipped to face outward in it (geometry/feature_surfaces.h).
@@ -103,10 +92,10 @@ class Network {
 
   std::vector<Vec3> pos;
   std::vector<std::array<std::uint32_t, 3>> tris;
-  std::vector<std::uint32_t> pair;  // pairKey per triangle
+  std::vector<std::uint32_t> pair;  // labelPairKey per triangle
   std::vector<char> alive;
   std::vector<std::vector<std::uint32_t>> vtris;  // live triangles per vertex
-  std::vector<Role> role;
+  std::vector<VertexRole> role;
   std::vector<int> plane;               // contour plane index, or -1
   std::vector<std::uint8_t> junctions;  // junction edges a corner must keep
   std::vector<std::uint8_t> inPlane;    // in-plane edges a corner must keep
@@ -131,7 +120,7 @@ class Network {
 
   // Edits, each recorded in `change` (begin() first).
   void begin(Change& change) const;
-  std::uint32_t addVertex(const Vec3& p, Role r, int planeIndex, Change& change);
+  std::uint32_t addVertex(const Vec3& p, VertexRole r, int planeIndex, Change& change);
   void removeTriangle(std::uint32_t t, Change& change);
   std::uint32_t addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t pairOf, Change& change);
   void move(std::uint32_t v, const Vec3& p, Change& change);

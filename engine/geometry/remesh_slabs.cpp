@@ -123,7 +123,7 @@ SubMesh extractUnit(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>
       continue;
     }
     std::sort(key.begin(), key.begin() + 3);
-    key[3] = pairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
+    key[3] = labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
     sub.fixed.push_back(key);
   }
   std::sort(sub.fixed.begin(), sub.fixed.end());

@@ -59,6 +59,8 @@
 #include <cstring>
 #include <vector>
 
+#include "geometry/vec3.h"
+#include "geometry/vertex_roles.h"
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
@@ -75,9 +77,6 @@ constexpr int kNormalPeriod = 4;     // sweeps between vertex normal updates
 constexpr int kSuperStep = 30;       // most plain sweeps' worth of smoothing in one super-step
 constexpr double kStability = 1.15;  // least ratio of a super-step's stability bound to its need
 
-enum class Role : std::uint8_t { Sheet, Curve, Fixed, Fitted };
-
-using Vec3 = std::array<double, 3>;
 // x, y, z and an unused lane: one SIMD register (GCC and Clang vector extension).
 using Float4 = float __attribute__((vector_size(16)));
 
@@ -99,10 +98,10 @@ Vec3 projectIntoCarrier(const Grid& grid, const Carrier& carrier, const Vec3& p)
   double w[4] = {0, 0, 0, 0};
   const auto dot = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   if (n == 2) {
-    w[1] = dot(d.data(), e[0]) / dot(e[0], e[0]);
+    w[1] = dot(&d[0], e[0]) / dot(e[0], e[0]);
   } else if (n == 3) {
     const double a = dot(e[0], e[0]), b = dot(e[0], e[1]), cc = dot(e[1], e[1]);
-    const double r0 = dot(d.data(), e[0]), r1 = dot(d.data(), e[1]);
+    const double r0 = dot(&d[0], e[0]), r1 = dot(&d[0], e[1]);
     const double det = a * cc - b * b;
     w[1] = (r0 * cc - r1 * b) / det;
     w[2] = (a * r1 - b * r0) / det;
@@ -113,9 +112,9 @@ Vec3 projectIntoCarrier(const Grid& grid, const Carrier& carrier, const Vec3& p)
     };
     // Columns are e0, e1, e2: det of the matrix whose rows are the transposes is the same.
     const double det = det3(e[0], e[1], e[2]);
-    w[1] = det3(d.data(), e[1], e[2]) / det;
-    w[2] = det3(e[0], d.data(), e[2]) / det;
-    w[3] = det3(e[0], e[1], d.data()) / det;
+    w[1] = det3(&d[0], e[1], e[2]) / det;
+    w[2] = det3(e[0], &d[0], e[2]) / det;
+    w[3] = det3(e[0], e[1], &d[0]) / det;
   }
   w[0] = 1;
   for (int m = 1; m < n; ++m) w[0] -= w[m];
@@ -127,15 +126,15 @@ Vec3 projectIntoCarrier(const Grid& grid, const Carrier& carrier, const Vec3& p)
   return out;
 }
 
-// Per vertex, one byte: its Role in the low bits, and for a sheet vertex whether it slides
+// Per vertex, one byte: its VertexRole in the low bits, and for a sheet vertex whether it slides
 // along its carrier edge (kOnEdge) and whether its link is not one cycle (kPinched).
 constexpr std::uint8_t kRoleMask = 3, kOnEdge = 4, kPinched = 8;
 constexpr std::uint8_t kSlides = 16;             // slides along its normal until the next refresh
 constexpr std::uint8_t kStepX = 32, kStepY = 64;  // its carrier edge runs along x, along y
-Role roleOf(std::uint8_t kind) { return static_cast<Role>(kind & kRoleMask); }
+VertexRole roleOf(std::uint8_t kind) { return static_cast<VertexRole>(kind & kRoleMask); }
 
 struct Adjacency {
-  std::vector<std::uint8_t> kind;    // Role | kOnEdge | kPinched
+  std::vector<std::uint8_t> kind;    // VertexRole | kOnEdge | kPinched
   HugeVector<std::uint32_t> start;  // size V + 1, into neighbours
   // A sheet vertex's neighbours in the order of its link cycle (each triangle (v, a, b) of v,
   // counter-clockwise, is a consecutive a, b, the last neighbour followed by the first), so
@@ -160,7 +159,7 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
     for (std::size_t t = 0; t < triangleCount; ++t)
       for (int c = 0; c < 3; ++c) triList[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
   }
-  adj.kind.assign(vertexCount, static_cast<std::uint8_t>(Role::Fixed));
+  adj.kind.assign(vertexCount, static_cast<std::uint8_t>(VertexRole::Corner));
   adj.labels.assign(2 * vertexCount, 0);
   adj.start.assign(vertexCount + 1, 0);  // counts first (at v + 1), then offsets
 
@@ -183,7 +182,7 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
     std::uint32_t firstPair = 0;
     for (std::size_t i = 0; i < tris.size(); ++i) {
       const std::uint32_t t = tris[i];
-      const std::uint32_t pair = mesh.labels[2 * t] | (static_cast<std::uint32_t>(mesh.labels[2 * t + 1]) << 16);
+      const std::uint32_t pair = labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
       if (i == 0) firstPair = pair;
       onePair &= pair == firstPair;
       for (int c = 0; c < 3; ++c)
@@ -207,7 +206,7 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
     }
     const std::uint32_t all = static_cast<std::uint32_t>(sorted.size());
     if (onePair && curve == 0 && all <= tris.size()) {
-      adj.kind[v] = static_cast<std::uint8_t>(Role::Sheet);
+      adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Sheet);
       // Order the neighbours along the link cycle from the least.
       std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
       link.clear();
@@ -241,11 +240,11 @@ Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads
       return all;
     }
     if (junctions && curve == 2 && tris.size() >= 2) {
-      adj.kind[v] = static_cast<std::uint8_t>(Role::Curve);
+      adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Curve);
       out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
       return 2;
     }
-    adj.kind[v] = static_cast<std::uint8_t>(Role::Fixed);
+    adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Corner);
     return 0;
   };
 
@@ -298,7 +297,7 @@ double clearanceCrossing(const Grid& grid, std::span<const std::uint16_t> cleara
   return a + b > 0 ? a / (a + b) : 0.5;
 }
 
-// Fitted vertices go to their contour crossing, or on interpolated volumes to where the
+// Plane vertices (contour-fitted) go to their contour crossing, or on interpolated volumes to where the
 // interpolated labels change along their edge, and stay: the surface between the contour
 // planes is then the interpolated shape itself, which relaxation inside each vertex's simplex
 // could only roughen on the finer grid (an orange-peel texture in the previews).
@@ -333,7 +332,7 @@ void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSe
     const double tc = std::clamp(t[v], kMargin, 1 - kMargin);
     const Vec3 a = cornerPosition(grid, c.corners[0]), b = cornerPosition(grid, c.corners[1]);
     for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
-    adj.kind[v] = static_cast<std::uint8_t>(Role::Fitted);
+    adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Plane);
   }
 }
 
@@ -342,19 +341,19 @@ void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSe
 SmoothingReport settleRoles(const std::vector<std::uint64_t>& keys, std::vector<std::uint8_t>& kind) {
   SmoothingReport report;
   for (std::size_t v = 0; v < kind.size(); ++v) {
-    const Role role = roleOf(kind[v]);
-    if (role == Role::Sheet || role == Role::Curve) {
+    const VertexRole role = roleOf(kind[v]);
+    if (role == VertexRole::Sheet || role == VertexRole::Curve) {
       const int count = carrierOfKey(keys[v]).count;
       if (count < 2)
-        kind[v] = static_cast<std::uint8_t>(Role::Fixed);
-      else if (role == Role::Sheet && count == 2)
+        kind[v] = static_cast<std::uint8_t>(VertexRole::Corner);
+      else if (role == VertexRole::Sheet && count == 2)
         kind[v] |= kOnEdge;
     }
     switch (roleOf(kind[v])) {
-      case Role::Sheet: ++report.sheet; break;
-      case Role::Curve: ++report.curve; break;
-      case Role::Fixed: ++report.fixed; break;
-      case Role::Fitted: ++report.fitted; break;
+      case VertexRole::Sheet: ++report.sheet; break;
+      case VertexRole::Curve: ++report.curve; break;
+      case VertexRole::Corner: ++report.fixed; break;
+      case VertexRole::Plane: ++report.fitted; break;
     }
   }
   return report;
@@ -420,7 +419,7 @@ class Relaxation {
   const float bending_, tension_;  // kBending and kTension at the options' strength
   HugeVector<Float4> cur_;        // positions before the sweep
   // After it; before it, the positions of the sweep before cur_ (a stage's second term).
-  // Fixed and fitted vertices hold the same value in both.
+  // Corner and plane vertices hold the same value in both.
   HugeVector<Float4> next_;
   // Umbrella operator U(v) = mean of neighbours - v (last lane unused); zero where a vertex has
   // none.
@@ -556,8 +555,8 @@ Float4 Relaxation::stepOf(std::size_t v) const {
 
 void Relaxation::moveVertex(std::size_t v, const Stage& stage) {
   const std::uint8_t kind = kinds_[v];
-  const Role role = roleOf(kind);
-  if (role == Role::Fixed || role == Role::Fitted) return;
+  const VertexRole role = roleOf(kind);
+  if (role == VertexRole::Corner || role == VertexRole::Plane) return;
   // With mu = 1, nu = 0 and w = 1 (a plain sweep) this is exactly p + d.
   const Float4 d = stage.w * stepOf(v);
   const Float4 p = stage.mu * cur_[v] + stage.nu * next_[v];

@@ -9,9 +9,11 @@
 #include <array>
 #include <cstdint>
 
+#include "geometry/vec3.h"
+
 namespace scansurf {
 
-using Point3 = std::array<double, 3>;
+using Point3 = Vec3;  // a point: the geometry's one 3-vector
 
 // Sign (-1, 0, 1) of the determinant | a-d ; b-d ; c-d |: positive when d lies below the plane
 // of a, b, c seen counter-clockwise from above (Shewchuk's convention).

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 
+#include "geometry/vec3.h"
 #include "gpu/check.h"
 #include "passes/shader_registry.h"
 #include "gpu/commands.h"
@@ -36,11 +37,9 @@ constexpr VkFormat kColorFormat = VK_FORMAT_R8G8B8A8_UNORM;  // values are sRGB,
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr std::uint32_t kSupersample = 2;
 
-using Vec3 = std::array<double, 3>;
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using glm::cross;
+using glm::dot;
+// a / |a| (not glm::normalize's a * inversesqrt: the camera stays the one the tests measured).
 Vec3 normalized(const Vec3& a) {
   const double l = std::sqrt(dot(a, a));
   return {a[0] / l, a[1] / l, a[2] / l};
