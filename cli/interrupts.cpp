@@ -1,3 +1,4 @@
+// scansurf CLI: interrupts leave nothing behind (see interrupts.h).
 #include "interrupts.h"
 
 #include <pthread.h>

@@ -1,3 +1,4 @@
+// scansurf CLI: the command line, parsed with CLI11 into CliOptions (see options.h).
 #include "options.h"
 
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// scansurf CLI: progress while a run works (see progress.h).
 #include "progress.h"
 
 #include <unistd.h>

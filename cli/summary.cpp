@@ -1,3 +1,4 @@
+// scansurf CLI: what a run tells the user on stdout (see summary.h).
 #include "summary.h"
 
 #include "safe_text.h"

@@ -1,3 +1,4 @@
+// scansurf: the fork-join loop of the CPU stages (see parallel.h).
 #include "core/parallel.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// scansurf: the version of the library linked (scansurf/version.h has the headers').
 #include "scansurf/version.h"
 
 namespace scansurf {

@@ -1,3 +1,4 @@
+// scansurf: one feature's surface as a standalone mesh (see compact_mesh.h).
 #include "geometry/compact_mesh.h"
 
 #include <algorithm>

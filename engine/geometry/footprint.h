@@ -1,5 +1,5 @@
 // scansurf: the memory a build will need, estimated from the contours and the grid before
-// anything large is allocated (issue 15: refuse clearly instead of bad_alloc or an OOM kill).
+// anything large is allocated, to refuse clearly instead of failing in bad_alloc or an OOM kill.
 #pragma once
 
 #include <cstdint>

@@ -1,3 +1,4 @@
+// scansurf: label volumes from each feature's own region, for the files (see label_layers.h).
 #include "geometry/label_layers.h"
 
 #include <algorithm>

@@ -1,3 +1,6 @@
+// scansurf: the medial split of incidental overlaps: each shared voxel to the feature whose
+// drawn outline is farther (exact in-plane distances to the contours), and the interface on
+// the line where the two signed outline distances are equal (see overlap_split.h).
 #include "geometry/overlap_split.h"
 
 #include "geometry/polygon.h"

@@ -1,3 +1,4 @@
+// scansurf: each feature's own slabs on the other features' planes (see own_slabs.h).
 #include "geometry/own_slabs.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// scansurf: exact CPU rasterization of one feature's contours, pixel for pixel what the GPU
+// draws (Vulkan's top-left rule at the device's sub-pixel precision; see pixel_runs.h).
 #include "geometry/pixel_runs.h"
 
 #include <algorithm>

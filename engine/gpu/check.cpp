@@ -1,3 +1,4 @@
+// scansurf gpu: VkResult failures as scansurf::Error (see check.h).
 #include "gpu/check.h"
 
 #include <filesystem>

@@ -1,3 +1,4 @@
+// scansurf gpu: one-shot command recording, submission and fences (see commands.h).
 #include "gpu/commands.h"
 
 #include "gpu/check.h"

@@ -1,3 +1,4 @@
+// scansurf gpu: instance, device choice and device of the Vulkan context (see context.h).
 #include "gpu/context.h"
 
 #include <algorithm>

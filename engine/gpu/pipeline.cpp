@@ -1,3 +1,4 @@
+// scansurf gpu: shader modules, layouts and pipelines (see pipeline.h).
 #include "gpu/pipeline.h"
 
 #include "gpu/check.h"

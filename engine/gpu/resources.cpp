@@ -1,3 +1,4 @@
+// scansurf gpu: buffers and images that own their memory (see resources.h).
 #include "gpu/resources.h"
 
 #include "gpu/check.h"

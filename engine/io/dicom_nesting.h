@@ -1,5 +1,5 @@
 // scansurf: how deeply a DICOM file nests its sequences, found without recursion, so that a
-// hostile file cannot overflow the stack of DCMTK's recursive parser (issue 15, cause 1).
+// hostile file cannot overflow the stack of DCMTK's recursive parser.
 #pragma once
 
 #include <cstdint>

@@ -1,3 +1,4 @@
+// scansurf: the binary glTF container (glTF 2.0 §4.4; see glb_container.h).
 #include "io/glb_container.h"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// scansurf: the label volumes a run writes (see run_volumes.h).
 #include "io/run_volumes.h"
 
 #include "geometry/label_layers.h"

@@ -1,3 +1,6 @@
+// scansurf passes: tetrahedral classification on the GPU (Nielson & Franke 1997; Lee et al.,
+// "Scanline Surfacing", §3.5): slab by slab, a compute shader writes a CellCase per cell that
+// holds a separating surface; see classification.h.
 #include "passes/classification.h"
 
 #include <algorithm>

@@ -14,7 +14,7 @@
 
 namespace scansurf::passes {
 
-// What of an interpolation stays on the device (issue 12): `planes`, the same labels as the
+// What of an interpolation stays on the device: `planes`, the same labels as the
 // planes volume in a buffer of 16-bit labels (ScanConverter::runOnDevice), copied there into
 // each slab instead of uploaded; `words` (at least 4 bytes per voxel of the interpolated grid)
 // receives every voxel's word, label | clearance << 16 (the contour planes' own labels on

@@ -1,3 +1,5 @@
+// scansurf passes: the offscreen preview, rendered with Vulkan graphics pipelines and read
+// back supersampled; see preview.h.
 #include "passes/preview.h"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// scansurf passes: slice scan conversion (Lee et al., "Scanline Surfacing", §3.4): triangle
+// fans with an even-odd stencil, inner features winning by depth; see scan_conversion.h.
 #include "passes/scan_conversion.h"
 
 #include <algorithm>

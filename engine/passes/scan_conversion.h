@@ -26,7 +26,7 @@ class ScanConverter {
   // Slices go to the layer whose plane holds them (Grid::layerOfPlane).
   Result<LabelVolume> run(const ContourSet& contours, const Grid& grid, const std::vector<int>& order);
 
-  // The same labels left on the device for classification (issue 12: no readback and upload
+  // The same labels left on the device for classification (no readback and upload
   // again between GPU passes): a buffer of 16-bit labels in LabelVolume's layout, usable as
   // a DeviceLabelVolume (storage and transfer usage; classified in place by
   // Classifier::runInPlace). `host`, when given, also receives them (its labels are filled).
