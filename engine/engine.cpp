@@ -31,6 +31,8 @@
 #include "passes/scan_conversion.h"
 #include "scansurf/input.h"
 #include "scansurf/vulkan_interop.h"
+#include "run_checks.h"
+#include "surface_layers.h"
 
 namespace scansurf {
 
@@ -89,10 +91,6 @@ class StageClock {
   const BuildOptions& options_;
   std::chrono::steady_clock::time_point start_;
 };
-
-std::string describeGrid(const Grid& grid) {
-  return std::to_string(grid.nx) + " x " + std::to_string(grid.ny) + " x " + std::to_string(grid.nz) + " voxels";
-}
 
 Result<void> checkNesting(const Nesting& nesting) {
   if (nesting.parent.empty()) return makeError(Errc::InvalidArgument, "extract: the nesting names no feature (Nesting::parent is empty)");
@@ -268,68 +266,6 @@ InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<
   return s;
 }
 
-// The contour set with only `layer`'s features drawn: the others keep their index (and so
-// every label) but lose their slices.
-ContourSet layerContours(const ContourSet& contours, const OverlapReport& report, int layer) {
-  ContourSet subset;
-  subset.source = contours.source;
-  subset.units = contours.units;
-  subset.order = contours.order;
-  for (std::size_t f = 0; f < contours.features.size(); ++f) {
-    const Feature& feature = contours.features[f];
-    subset.features.push_back({feature.name, feature.color, {}});
-    if (report.features[f].layer == layer) subset.features.back().slices = feature.slices;
-  }
-  return subset;
-}
-
-// Appends a layer's surfaces of its own features to `into` (vertices not shared across layers).
-// Layer 0 holds most of the surface and is moved in, not copied: the later layers (a few
-// planning volumes or marks) are then appended to it.
-void appendLayer(Surfaces& into, Surfaces&& layer, const OverlapReport& report, int index) {
-  if (index == 0) {  // its features of other layers have no triangles
-    into = std::move(layer);
-    into.mesh.keys.clear();  // per-layer lattice keys do not combine; smoothing is done
-    return;
-  }
-  const auto offset = static_cast<std::uint32_t>(into.mesh.vertexCount());
-  into.mesh.positions.insert(into.mesh.positions.end(), layer.mesh.positions.begin(), layer.mesh.positions.end());
-  const std::size_t first = into.mesh.triangles.size();
-  into.mesh.triangles.insert(into.mesh.triangles.end(), layer.mesh.triangles.begin(), layer.mesh.triangles.end());
-  for (std::size_t i = first; i < into.mesh.triangles.size(); ++i) into.mesh.triangles[i] += offset;
-  into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
-  accumulate(into.remeshing, layer.remeshing);
-  for (std::size_t f = 0; f < layer.features.size(); ++f) {
-    if (report.features[f].layer != index) continue;
-    std::vector<std::uint32_t>& to = into.features[f].triangles;
-    to.reserve(to.size() + layer.features[f].triangles.size());
-    for (std::uint32_t v : layer.features[f].triangles) to.push_back(v + offset);
-  }
-}
-
-// The part of the grid a layer's features occupy, with one background voxel around them, on
-// the same lattice: later layers (usually a few planning volumes or marks) then cost what their
-// extent costs, not the whole volume. Layer 0 keeps the whole grid (BuildResult::volume).
-Grid layerGrid(const Grid& grid, const std::vector<FeatureRegion>& regions, const OverlapReport& report, int layer) {
-  if (layer == 0) return grid;
-  int i0 = grid.nx, i1 = -1, j0 = grid.ny, j1 = -1, k0 = grid.nz, k1 = -1;
-  for (std::size_t f = 0; f < regions.size(); ++f) {
-    const FeatureRegion& r = regions[f];
-    if (report.features[f].layer != layer || r.maxRow < r.minRow || r.layers.empty()) continue;
-    i0 = std::min(i0, r.minColumn), i1 = std::max(i1, r.maxColumn), j0 = std::min(j0, r.minRow), j1 = std::max(j1, r.maxRow);
-    k0 = std::min(k0, r.layers.front()), k1 = std::max(k1, r.layers.back());
-  }
-  if (i1 < 0) return grid;
-  i0 = std::max(0, i0 - 1), j0 = std::max(0, j0 - 1), k0 = std::max(0, k0 - 1);
-  i1 = std::min(grid.nx - 1, i1 + 1), j1 = std::min(grid.ny - 1, j1 + 1), k1 = std::min(grid.nz - 1, k1 + 1);
-  Grid sub = grid;
-  sub.nx = i1 - i0 + 1, sub.ny = j1 - j0 + 1, sub.nz = k1 - k0 + 1;
-  sub.originX = grid.originX + i0 * grid.spacingX;
-  sub.originY = grid.originY + j0 * grid.spacingY;
-  sub.layerZ.assign(grid.layerZ.begin() + k0, grid.layerZ.begin() + k1 + 1);
-  return sub;
-}
-
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
 Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
                          const std::vector<FeatureRegion>& regions, const std::vector<std::vector<LabelOverride>>& split,
@@ -374,36 +310,6 @@ Result<void> checkFinite(const MultiLabelMesh& mesh) {
   return {};
 }
 
-// "950", "44 k", "3.3 M": a count for people.
-std::string formatCount(std::uint64_t n) {
-  if (n < 10000) return std::to_string(n);
-  if (n < 10000000) return std::to_string((n + 500) / 1000) + " k";
-  return std::to_string((n + 500000) / 1000000) + " M";
-}
-
-// Refuses a build that would need more host memory than the limit or more device memory than
-// the device has, before anything large is allocated: a clear error instead of bad_alloc or
-// the kernel's OOM killer.
-Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, int surfacedLayers, const BuildOptions& options,
-                               const DeviceInfo& device, BuildResult& out) {
-  const Footprint need = estimateFootprint(contours, grid, surfacedLayers,
-                                           options.remeshing.enabled ? options.remeshing.edgeLength : 0);
-  HostMemory limit{options.memoryLimit, "the limit asked for"};
-  if (limit.bytes == 0) limit = availableHostMemory();
-  out.estimatedMemory = need.hostBytes;
-  out.memoryLimit = limit.bytes;
-  const std::string what = "the surfaces of " + contours.source + " on a grid of " + describeGrid(grid);
-  if (limit.bytes > 0 && need.hostBytes > limit.bytes)
-    return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.hostBytes) + " of memory (label volume " +
-                                              formatBytes(need.labelVoxels * sizeof(Label)) + ", about " +
-                                              formatCount(need.surfaceVertices) + " surface vertices); " +
-                                              formatBytes(limit.bytes) + " may be used: " + limit.source);
-  if (device.deviceMemory > 0 && need.deviceBytes > device.deviceMemory)
-    return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.deviceBytes) +
-                                              " of device memory for one layer; the device has " + formatBytes(device.deviceMemory));
-  return {};
-}
-
 // One entry per stage name, the times of every layer added up, in first-seen order.
 void mergeStageTimes(std::vector<StageTime>& timings) {
   std::vector<StageTime> merged;
@@ -413,55 +319,6 @@ void mergeStageTimes(std::vector<StageTime>& timings) {
     else it->seconds += t.seconds;
   }
   timings = std::move(merged);
-}
-
-Unexpected badOption(const std::string& option, const std::string& allowed, double value) {
-  char got[64];
-  std::snprintf(got, sizeof got, "%g", value);
-  return makeError(Errc::InvalidArgument, "option " + option + " must be " + allowed + " (got " + got + ")");
-}
-
-// A remeshing target far off the grid's scale is refused before the run: under a quarter voxel
-// the mesh grows as 1 / length^2 (1e-6 reached 3.5 GB), beyond 16 voxels every collapse is
-// tried and fails against the surface bound (1e9 took 93 s for an unchanged mesh).
-Result<void> checkEdgeLength(const RemeshOptions& r, const Grid& grid) {
-  if (!r.enabled || r.edgeLength == 0) return {};
-  const double voxel = std::min(grid.spacingX, grid.spacingY);
-  if (r.edgeLength >= RemeshOptions::kLeastVoxels * voxel && r.edgeLength <= RemeshOptions::kMostVoxels * voxel) return {};
-  char range[96];
-  std::snprintf(range, sizeof range, "between %.3g and %.3g (%g to %g in-plane voxels of this grid)",
-                RemeshOptions::kLeastVoxels * voxel, RemeshOptions::kMostVoxels * voxel, RemeshOptions::kLeastVoxels,
-                RemeshOptions::kMostVoxels);
-  return badOption("remeshing.edgeLength", range, r.edgeLength);
-}
-
-Result<void> checkOverlapTolerance(const OverlapTolerance& t) {
-  if (!std::isfinite(t.depth) || t.depth < 0)
-    return makeError(Errc::InvalidArgument, "overlap tolerance: the depth must be a finite length, 0 (automatic) or more (got " +
-                                                std::to_string(t.depth) + ")");
-  if (!std::isfinite(t.percent) || t.percent < 0 || t.percent > 100)
-    return makeError(Errc::InvalidArgument, "overlap tolerance: the percentage must lie in [0, 100] (got " +
-                                                std::to_string(t.percent) + ")");
-  return {};
-}
-
-// One policy for bad options: refused, naming the option and what it may be; never clamped or
-// replaced by a default behind the caller's back.
-Result<void> checkOptions(const BuildOptions& o) {
-  const SmoothingOptions& s = o.smoothing;
-  if (s.enabled && !(s.strength > 0 && s.strength <= 1)) return badOption("smoothing.strength", "in (0, 1]", s.strength);
-  if (s.enabled && s.iterations < 1) return badOption("smoothing.iterations", "at least 1", s.iterations);
-  const RemeshOptions& r = o.remeshing;
-  if (r.enabled && !(std::isfinite(r.edgeLength) && r.edgeLength >= 0))
-    return badOption("remeshing.edgeLength", "0 (automatic) or a positive length", r.edgeLength);
-  if (r.enabled && r.iterations < 1) return badOption("remeshing.iterations", "at least 1", r.iterations);
-  const int f = o.interpolation.factor;
-  if (f != InterpolationOptions::kAuto && (f < 1 || f > InterpolationOptions::kMaxFactor))
-    return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
-  if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);
-  const double tol = o.grid.sliceTolerance;
-  if (!(std::isfinite(tol) && tol >= 0)) return badOption("grid.sliceTolerance", "0 (the contours' own) or a positive length", tol);
-  return checkOverlapTolerance(o.overlapTolerance);
 }
 
 // Stage 2's frame for the stage calls: errors guarded, the nesting checked, the stages timed.
@@ -552,6 +409,7 @@ std::uint64_t Engine::validationMessageCount() const { return impl_->context->va
 Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nesting& nesting, const Grid& grid,
                                         const BuildOptions& options) {
   return guarded("scan conversion on " + describeGrid(grid), [&]() -> Result<LabelVolume> {
+    SCANSURF_TRY(checkOptions(options));
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     return scanner->run(contours, grid, nesting.order);
   });
