@@ -113,10 +113,7 @@ DatasetValues valuesOf(DcmDataset& ds, const CtSeries& ct) {
   return v;
 }
 
-}  // namespace
-
-Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path, const ContourSet& contours,
-                                               const std::vector<LabelVolume>& layers, const CtSeries& ct) {
+Result<void> checkSegInputs(const std::vector<LabelVolume>& layers, const CtSeries& ct) {
   if (layers.empty()) return makeError(Errc::InvalidArgument, "DICOM SEG: no label volume");
   const Grid& g = layers.front().grid;
   for (const LabelVolume& volume : layers)
@@ -127,18 +124,25 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
     return makeError(Errc::InvalidArgument, "DICOM SEG: the reference series " + ct.directory + " has no images");
   if (ct.rows > 65535 || ct.columns > 65535)
     return makeError(Errc::InvalidInput, "DICOM SEG: the CT's images are larger than 65535 pixels");
-  SCANSURF_ASSIGN_OR_RETURN(const CtInGrid at, locateCt(g, ct));
+  return {};
+}
 
-  // Which feature has voxels on which CT slice, and how many lie beyond the CT.
-  const std::size_t featureCount = contours.features.size();
+// Which feature has voxels on which CT slice, how many in all and how many on the CT.
+struct VoxelCensus {
+  std::vector<std::vector<char>> present;  // per feature, per CT slice
+  std::vector<std::size_t> inside, total, layerOf;
+};
+
+VoxelCensus countVoxels(std::size_t featureCount, const std::vector<LabelVolume>& layers, const CtSeries& ct, const CtInGrid& at) {
   const std::size_t slices = ct.sliceZ.size();
-  std::vector<std::vector<char>> present(featureCount, std::vector<char>(slices, 0));
-  std::vector<std::size_t> inside(featureCount, 0), total(featureCount, 0), layerOf(featureCount, 0);
+  VoxelCensus n{std::vector<std::vector<char>>(featureCount, std::vector<char>(slices, 0)),
+                std::vector<std::size_t>(featureCount, 0), std::vector<std::size_t>(featureCount, 0),
+                std::vector<std::size_t>(featureCount, 0)};
   for (std::size_t layer = 0; layer < layers.size(); ++layer)
     for (Label l : layers[layer].labels)
       if (l != kBackground && static_cast<std::size_t>(l) <= featureCount) {
-        ++total[static_cast<std::size_t>(featureOfLabel(l))];
-        layerOf[static_cast<std::size_t>(featureOfLabel(l))] = layer;  // each feature is in one layer
+        ++n.total[static_cast<std::size_t>(featureOfLabel(l))];
+        n.layerOf[static_cast<std::size_t>(featureOfLabel(l))] = layer;  // each feature is in one layer
       }
   for (const LabelVolume& volume : layers)
     for (std::size_t k = 0; k < slices; ++k)
@@ -147,30 +151,33 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
           const Label l = volume.at(at.offsetX + i, at.offsetY + j, at.layer[k]);
           if (l == kBackground || static_cast<std::size_t>(l) > featureCount) continue;
           const auto f = static_cast<std::size_t>(featureOfLabel(l));
-          ++inside[f];
-          present[f][k] = 1;
+          ++n.inside[f];
+          n.present[f][k] = 1;
         }
+  return n;
+}
 
-  DicomSegSummary written;
-  std::vector<std::size_t> segmentFeatures;
-  for (std::size_t f = 0; f < featureCount; ++f) {
+// The features that get a segment (voxels on the CT's grid), with a warning for the others
+// and for voxels beyond the CT.
+std::vector<std::size_t> segmentFeaturesOf(const ContourSet& contours, const VoxelCensus& n, std::vector<std::string>& warnings) {
+  std::vector<std::size_t> features;
+  for (std::size_t f = 0; f < contours.features.size(); ++f) {
     const std::string& name = contours.features[f].name;
-    if (inside[f] == 0) {
-      written.warnings.push_back("feature \"" + name + "\" has no voxel on the CT's grid: no segment for it in the DICOM SEG");
+    if (n.inside[f] == 0) {
+      warnings.push_back("feature \"" + name + "\" has no voxel on the CT's grid: no segment for it in the DICOM SEG");
       continue;
     }
-    if (total[f] > inside[f])
-      written.warnings.push_back("feature \"" + name + "\": " + std::to_string(total[f] - inside[f]) +
-                                 " voxel(s) beyond the CT's field of view are not in the DICOM SEG");
-    segmentFeatures.push_back(f);
+    if (n.total[f] > n.inside[f])
+      warnings.push_back("feature \"" + name + "\": " + std::to_string(n.total[f] - n.inside[f]) +
+                         " voxel(s) beyond the CT's field of view are not in the DICOM SEG");
+    features.push_back(f);
   }
-  if (segmentFeatures.empty())
-    return makeError(Errc::InvalidInput, "DICOM SEG: no feature has a voxel on the CT's grid (" + ct.directory +
-                                             "); nothing to write to " + path.string());
+  return features;
+}
 
-  // The document, with patient, study and frame of reference from the first CT image.
-  SCANSURF_ASSIGN_OR_RETURN(DicomFile first, loadDicomFile(ct.files.front(), /*stopAtPixelData=*/true));
-  const DatasetValues values = valuesOf(first.dataset(), ct);
+// The document, with patient, study and frame of reference from the first CT image, and
+// scansurf as the equipment and the series.
+Result<std::unique_ptr<DcmSegmentation>> createDocument(DcmItem& firstCt, const CtSeries& ct, const DatasetValues& values) {
   const IODGeneralEquipmentModule::EquipmentInfo equipment("scansurf", "scansurf", "1", SCANSURF_VERSION_STRING);
   const ContentIdentificationMacro content("1", "SCANSURF", "scansurf label volume from planar contours", "");
   DcmSegmentation* created = nullptr;
@@ -178,18 +185,24 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
                                                             static_cast<Uint16>(ct.columns), equipment, content);
   std::unique_ptr<DcmSegmentation> seg(created);
   if (c.bad() || !seg) return dcmtkError("a binary segmentation", c);
-  if ((c = seg->importFromSourceImage(first.dataset())).bad()) return dcmtkError("the CT's patient and study", c);
+  if ((c = seg->importFromSourceImage(firstCt)).bad()) return dcmtkError("the CT's patient and study", c);
   // The import also copies the CT's General Equipment (institution, station, ...): the SEG's
   // equipment is scansurf.
   seg->getEquipment().clearData();
   if ((c = seg->setEquipmentInfo(equipment)).bad()) return dcmtkError("the equipment", c);
   seg->getSeries().setSeriesDescription("scansurf segmentation");
   seg->getSeries().setSeriesNumber(values.seriesNumber.c_str());
+  return seg;
+}
 
-  // Dimensions: segment, then slice position (PS3.3 C.8.20.2.3's recommended pair).
+// Dimensions (segment, then slice position: PS3.3 C.8.20.2.3's recommended pair) and the
+// shared functional groups: axial orientation (readCtSeries accepts no other) and the CT's
+// pixel measures.
+Result<void> addDimensionsAndSharedGroups(DcmSegmentation& seg, const CtSeries& ct, const DatasetValues& values) {
   char dimensionUid[100];
   dcmGenerateUniqueIdentifier(dimensionUid, SITE_INSTANCE_UID_ROOT);
-  IODMultiframeDimensionModule& dimensions = seg->getDimensions();
+  IODMultiframeDimensionModule& dimensions = seg.getDimensions();
+  OFCondition c;
   if ((c = dimensions.addDimensionIndex(DCM_ReferencedSegmentNumber, dimensionUid, DCM_SegmentIdentificationSequence,
                                         "ReferencedSegmentNumber"))
           .bad() ||
@@ -197,94 +210,133 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
                                         "ImagePositionPatient"))
           .bad())
     return dcmtkError("the dimension indices", c);
-
-  // Shared functional groups: axial orientation (readCtSeries accepts no other) and the CT's
-  // pixel measures.
   std::unique_ptr<FGPlaneOrientationPatient> orientation(FGPlaneOrientationPatient::createMinimal("1", "0", "0", "0", "1", "0"));
   FGPixelMeasures measures;
-  if (!orientation || (c = seg->addForAllFrames(*orientation)).bad()) return dcmtkError("the plane orientation", c);
+  if (!orientation || (c = seg.addForAllFrames(*orientation)).bad()) return dcmtkError("the plane orientation", c);
   const std::string spacing = decimalString(ct.spacingY) + "\\" + decimalString(ct.spacingX);  // row\column spacing
   if ((c = measures.setPixelSpacing(spacing.c_str())).bad() ||
-      (c = measures.setSliceThickness(values.sliceThickness.c_str())).bad() || (c = seg->addForAllFrames(measures)).bad())
+      (c = measures.setSliceThickness(values.sliceThickness.c_str())).bad() || (c = seg.addForAllFrames(measures)).bad())
     return dcmtkError("the pixel measures", c);
+  return {};
+}
 
-  // Segments.
+// One segment per feature with voxels, named and coloured; returns their segment numbers.
+Result<std::vector<Uint16>> addSegments(DcmSegmentation& seg, const ContourSet& contours, const std::vector<std::size_t>& features) {
   const std::vector<Rgb> colors = featureColors(contours);
   const CodeSequenceMacro category("85756007", "SCT", "Tissue"), type("85756007", "SCT", "Tissue");
-  std::vector<Uint16> segmentNumbers;
-  for (std::size_t f : segmentFeatures) {
-    DcmSegment* segment = nullptr;
+  std::vector<Uint16> numbers;
+  for (std::size_t f : features) {
+    DcmSegment* created = nullptr;
     const std::string label = longString(contours.features[f].name);
-    c = DcmSegment::create(segment, label.c_str(), category, type, DcmSegTypes::SAT_AUTOMATIC, "scansurf");
+    OFCondition c = DcmSegment::create(created, label.c_str(), category, type, DcmSegTypes::SAT_AUTOMATIC, "scansurf");
+    std::unique_ptr<DcmSegment> segment(created);
     if (c.bad() || !segment) return dcmtkError("segment \"" + label + "\"", c);
     double lab[3];
     IODCIELabUtil::rgb2DicomLab(lab[0], lab[1], lab[2], colors[f][0] / 255.0, colors[f][1] / 255.0, colors[f][2] / 255.0);
     Uint16 scaled[3];
     for (int i = 0; i < 3; ++i) scaled[i] = static_cast<Uint16>(std::clamp(std::lround(lab[i]), 0L, 65535L));
-    if ((c = segment->setRecommendedDisplayCIELabValue(scaled[0], scaled[1], scaled[2])).bad()) {
-      delete segment;
+    if ((c = segment->setRecommendedDisplayCIELabValue(scaled[0], scaled[1], scaled[2])).bad())
       return dcmtkError("the colour of segment \"" + label + "\"", c);
-    }
     Uint16 number = 0;
-    if ((c = seg->addSegment(segment, number)).bad()) {
-      delete segment;
-      return dcmtkError("segment \"" + label + "\"", c);
-    }
-    segmentNumbers.push_back(number);
+    if ((c = seg.addSegment(segment.get(), number)).bad()) return dcmtkError("segment \"" + label + "\"", c);
+    segment.release();  // the segmentation owns it now
+    numbers.push_back(number);
   }
+  return numbers;
+}
 
-  // Frames: per segment, each CT slice it has voxels on, in increasing z.
+// One frame's per-frame functional groups: its position, its dimension index values, and the
+// CT image it derives from; then the frame itself.
+Result<void> addFrame(DcmSegmentation& seg, std::vector<Uint8>& mask, Uint16 segmentNumber, std::size_t k,
+                      const CtSeries& ct) {
   const std::string x = decimalString(ct.originX), y = decimalString(ct.originY);
+  std::unique_ptr<FGPlanePosPatient> position(FGPlanePosPatient::createMinimal(x.c_str(), y.c_str(), decimalString(ct.sliceZ[k]).c_str()));
+  FGFrameContent frameContent;
+  ImageSOPInstanceReferenceMacro source;
+  OFCondition c;
+  if (!position || (c = frameContent.setDimensionIndexValues(segmentNumber, 0)).bad() ||
+      (c = frameContent.setDimensionIndexValues(static_cast<Uint32>(k + 1), 1)).bad() ||
+      (c = source.setReferencedSOPClassUID(ct.sopClassUids[k].c_str())).bad() ||
+      (c = source.setReferencedSOPInstanceUID(ct.sopInstanceUids[k].c_str())).bad())
+    return dcmtkError("the functional groups of a frame", c);
+  OFVector<ImageSOPInstanceReferenceMacro> sources;
+  sources.push_back(source);
+  std::unique_ptr<FGDerivationImage> derivation(
+      DcmSegmentation::createDerivationImageFG(sources, "scansurf: scan conversion of planar contours"));
+  if (!derivation) return makeError(Errc::Internal, "DICOM SEG: DCMTK refused the derivation image of a frame");
+  OFVector<FGBase*> perFrame;
+  perFrame.push_back(position.get());
+  perFrame.push_back(&frameContent);
+  perFrame.push_back(derivation.get());
+  if ((c = seg.addFrame(mask.data(), segmentNumber, perFrame)).bad()) return dcmtkError("a frame", c);
+  return {};
+}
+
+// Frames: per segment, each CT slice it has voxels on, in increasing z. Returns their count.
+Result<int> addFrames(DcmSegmentation& seg, const std::vector<LabelVolume>& layers, const VoxelCensus& n, const CtInGrid& at,
+                      const CtSeries& ct, const std::vector<std::size_t>& features, const std::vector<Uint16>& numbers) {
   std::vector<Uint8> mask(static_cast<std::size_t>(ct.rows) * static_cast<std::size_t>(ct.columns));
-  for (std::size_t s = 0; s < segmentFeatures.size(); ++s) {
-    const std::size_t f = segmentFeatures[s];
+  int frames = 0;
+  for (std::size_t s = 0; s < features.size(); ++s) {
+    const std::size_t f = features[s];
     const Label label = labelOfFeature(static_cast<int>(f));
-    const LabelVolume& volume = layers[layerOf[f]];
-    for (std::size_t k = 0; k < slices; ++k) {
-      if (!present[f][k]) continue;
+    const LabelVolume& volume = layers[n.layerOf[f]];
+    for (std::size_t k = 0; k < ct.sliceZ.size(); ++k) {
+      if (!n.present[f][k]) continue;
       for (int j = 0; j < ct.rows; ++j)
         for (int i = 0; i < ct.columns; ++i)
           mask[static_cast<std::size_t>(j) * static_cast<std::size_t>(ct.columns) + static_cast<std::size_t>(i)] =
               volume.at(at.offsetX + i, at.offsetY + j, at.layer[k]) == label ? 1 : 0;
-      std::unique_ptr<FGPlanePosPatient> position(
-          FGPlanePosPatient::createMinimal(x.c_str(), y.c_str(), decimalString(ct.sliceZ[k]).c_str()));
-      FGFrameContent frameContent;
-      ImageSOPInstanceReferenceMacro source;
-      if (!position || (c = frameContent.setDimensionIndexValues(segmentNumbers[s], 0)).bad() ||
-          (c = frameContent.setDimensionIndexValues(static_cast<Uint32>(k + 1), 1)).bad() ||
-          (c = source.setReferencedSOPClassUID(ct.sopClassUids[k].c_str())).bad() ||
-          (c = source.setReferencedSOPInstanceUID(ct.sopInstanceUids[k].c_str())).bad())
-        return dcmtkError("the functional groups of a frame", c);
-      OFVector<ImageSOPInstanceReferenceMacro> sources;
-      sources.push_back(source);
-      std::unique_ptr<FGDerivationImage> derivation(
-          DcmSegmentation::createDerivationImageFG(sources, "scansurf: scan conversion of planar contours"));
-      if (!derivation) return makeError(Errc::Internal, "DICOM SEG: DCMTK refused the derivation image of a frame");
-      OFVector<FGBase*> perFrame;
-      perFrame.push_back(position.get());
-      perFrame.push_back(&frameContent);
-      perFrame.push_back(derivation.get());
-      if ((c = seg->addFrame(mask.data(), segmentNumbers[s], perFrame)).bad()) return dcmtkError("a frame", c);
-      ++written.frames;
+      SCANSURF_TRY(addFrame(seg, mask, numbers[s], k, ct));
+      ++frames;
     }
   }
-  written.segments = static_cast<int>(segmentNumbers.size());
+  return frames;
+}
 
-  // Every CT image, in the Common Instance Reference Module's Referenced Series Sequence.
+// Every CT image, in the Common Instance Reference Module's Referenced Series Sequence.
+Result<void> addReferencedSeries(DcmSegmentation& seg, const CtSeries& ct) {
   auto series = std::make_unique<IODSeriesAndInstanceReferenceMacro::ReferencedSeriesItem>();
+  OFCondition c;
   if ((c = series->setSeriesInstanceUID(ct.seriesUid.c_str())).bad()) return dcmtkError("the CT's Series Instance UID", c);
-  for (std::size_t k = 0; k < slices; ++k)
+  for (std::size_t k = 0; k < ct.sliceZ.size(); ++k)
     if ((c = series->addReference(ct.sopClassUids[k].c_str(), ct.sopInstanceUids[k].c_str())).bad())
       return dcmtkError("the reference to " + ct.files[k], c);
-  seg->getCommonInstanceReference().getReferencedSeriesItems().push_back(series.release());
+  seg.getCommonInstanceReference().getReferencedSeriesItems().push_back(series.release());
+  return {};
+}
 
+Result<void> saveSegmentation(DcmSegmentation& seg, const std::filesystem::path& path) {
   DcmFileFormat file;
-  if ((c = seg->writeDataset(*file.getDataset())).bad()) return dcmtkError("the Segmentation", c);
-  SCANSURF_TRY(writeThroughTemporaryPath(path, ".dcm", [&](const std::filesystem::path& temp) -> Result<void> {
+  if (const OFCondition c = seg.writeDataset(*file.getDataset()); c.bad()) return dcmtkError("the Segmentation", c);
+  return writeThroughTemporaryPath(path, ".dcm", [&](const std::filesystem::path& temp) -> Result<void> {
     const OFCondition saved = file.saveFile(temp.c_str(), EXS_LittleEndianExplicit);
     if (saved.bad()) return makeError(Errc::Io, "cannot write '" + path.string() + "': " + saved.text());
     return {};
-  }));
+  });
+}
+
+}  // namespace
+
+Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path, const ContourSet& contours,
+                                               const std::vector<LabelVolume>& layers, const CtSeries& ct) {
+  SCANSURF_TRY(checkSegInputs(layers, ct));
+  SCANSURF_ASSIGN_OR_RETURN(const CtInGrid at, locateCt(layers.front().grid, ct));
+  const VoxelCensus census = countVoxels(contours.features.size(), layers, ct, at);
+  DicomSegSummary written;
+  const std::vector<std::size_t> features = segmentFeaturesOf(contours, census, written.warnings);
+  if (features.empty())
+    return makeError(Errc::InvalidInput, "DICOM SEG: no feature has a voxel on the CT's grid (" + ct.directory +
+                                             "); nothing to write to " + path.string());
+  SCANSURF_ASSIGN_OR_RETURN(DicomFile first, loadDicomFile(ct.files.front(), /*stopAtPixelData=*/true));
+  const DatasetValues values = valuesOf(first.dataset(), ct);
+  SCANSURF_ASSIGN_OR_RETURN(std::unique_ptr<DcmSegmentation> seg, createDocument(first.dataset(), ct, values));
+  SCANSURF_TRY(addDimensionsAndSharedGroups(*seg, ct, values));
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<Uint16> numbers, addSegments(*seg, contours, features));
+  SCANSURF_ASSIGN_OR_RETURN(written.frames, addFrames(*seg, layers, census, at, ct, features, numbers));
+  written.segments = static_cast<int>(numbers.size());
+  SCANSURF_TRY(addReferencedSeries(*seg, ct));
+  SCANSURF_TRY(saveSegmentation(*seg, path));
   return written;
 }
 
