@@ -147,129 +147,153 @@ struct Adjacency {
   std::vector<std::array<std::uint32_t, 3>> pinchedLinks;
 };
 
-Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads) {
+// Each vertex's triangles, as offsets (size V + 1) into one list.
+struct IncidentTriangles {
+  HugeVector<std::uint32_t> start, list;
+};
+
+IncidentTriangles incidentTriangles(const MultiLabelMesh& mesh) {
   const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
-  Adjacency adj;
-  // Incident triangles per vertex, only while building.
-  HugeVector<std::uint32_t> triStart(vertexCount + 1, 0), triList(3 * triangleCount);
-  for (std::uint32_t v : mesh.triangles) ++triStart[v + 1];
-  for (std::size_t v = 0; v < vertexCount; ++v) triStart[v + 1] += triStart[v];
-  {
-    HugeVector<std::uint32_t> fill(triStart.begin(), triStart.end() - 1);
-    for (std::size_t t = 0; t < triangleCount; ++t)
-      for (int c = 0; c < 3; ++c) triList[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
+  IncidentTriangles in{HugeVector<std::uint32_t>(vertexCount + 1, 0), HugeVector<std::uint32_t>(3 * triangleCount)};
+  for (std::uint32_t v : mesh.triangles) ++in.start[v + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) in.start[v + 1] += in.start[v];
+  HugeVector<std::uint32_t> fill(in.start.begin(), in.start.end() - 1);
+  for (std::size_t t = 0; t < triangleCount; ++t)
+    for (int c = 0; c < 3; ++c) in.list[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
+  return in;
+}
+
+// One thread's working lists while classifying vertices.
+struct ClassifyScratch {
+  std::vector<std::uint32_t> tris;                              // v's triangles
+  std::vector<std::uint32_t> sorted;                            // v's neighbours, ascending
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (neighbour, label pair)
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> link;   // (a, b) of each triangle (v, a, b)
+  std::vector<std::array<std::uint32_t, 3>> pinched;
+};
+
+// v's edges with their triangles' label pairs, sorted, in scratch.edges; whether all its
+// triangles are of one pair.
+bool collectEdges(const MultiLabelMesh& mesh, std::size_t v, ClassifyScratch& scratch) {
+  scratch.edges.clear();
+  bool onePair = true;
+  std::uint32_t firstPair = 0;
+  for (std::size_t i = 0; i < scratch.tris.size(); ++i) {
+    const std::uint32_t t = scratch.tris[i];
+    const std::uint32_t pair = labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
+    if (i == 0) firstPair = pair;
+    onePair &= pair == firstPair;
+    for (int c = 0; c < 3; ++c)
+      if (mesh.triangles[3 * t + c] != v) scratch.edges.push_back({mesh.triangles[3 * t + c], pair});
   }
+  std::sort(scratch.edges.begin(), scratch.edges.end());
+  return onePair;
+}
+
+// v's distinct neighbours (ascending, in scratch.sorted) and its junction edges: an edge not
+// shared by exactly two triangles of one pair. Returns how many, the first two kept.
+std::uint32_t junctionNeighbours(ClassifyScratch& scratch, std::uint32_t first[2]) {
+  const auto& edges = scratch.edges;
+  scratch.sorted.clear();
+  std::uint32_t curve = 0;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t e = i;
+    while (e < edges.size() && edges[e].first == edges[i].first) ++e;
+    scratch.sorted.push_back(edges[i].first);
+    if (e - i != 2 || edges[i].second != edges[e - 1].second) {
+      if (curve < 2) first[curve] = edges[i].first;
+      ++curve;
+    }
+    i = e;
+  }
+  return curve;
+}
+
+// A sheet vertex's neighbours in the order of its link cycle from the least, into out; false
+// when its link is not one cycle (pinched).
+bool orderLinkCycle(const MultiLabelMesh& mesh, std::size_t v, ClassifyScratch& scratch, std::uint32_t* out) {
+  auto& link = scratch.link;
+  link.clear();
+  for (std::uint32_t t : scratch.tris) {
+    const std::uint32_t* c3 = &mesh.triangles[3 * t];
+    const int c = c3[0] == v ? 0 : c3[1] == v ? 1 : 2;
+    link.push_back({c3[(c + 1) % 3], c3[(c + 2) % 3]});
+  }
+  std::sort(link.begin(), link.end());
+  const std::uint32_t* first = scratch.sorted.data();
+  const auto all = static_cast<std::uint32_t>(scratch.sorted.size());
+  bool cycle = link.size() == all;
+  for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == first[i];  // each neighbour once a start
+  if (!cycle) return false;
+  std::uint32_t steps = 0, a = first[0];
+  do {
+    scratch.edges[steps].first = a;  // reuse as the ordered list
+    const std::size_t i = static_cast<std::size_t>(std::lower_bound(first, first + all, a) - first);
+    a = link[i].second;
+    ++steps;
+  } while (a != first[0] && steps < all && std::binary_search(first, first + all, a));
+  if (a != first[0] || steps != all) return false;
+  for (std::uint32_t i = 0; i < all; ++i) out[i] = scratch.edges[i].first;
+  return true;
+}
+
+// Classifies v (its kind byte) and writes its neighbours to out, which may be v's own range of
+// the incident triangle list: a sheet vertex has one neighbour per triangle (each of its edges
+// has two), a curve vertex two and at least three triangles. Returns their count.
+std::uint32_t classifyVertex(const MultiLabelMesh& mesh, std::size_t v, bool junctions, ClassifyScratch& scratch,
+                             std::uint32_t* out, std::uint8_t& kind) {
+  const bool onePair = collectEdges(mesh, v, scratch);
+  std::uint32_t curveNeighbours[2] = {0, 0};
+  const std::uint32_t curve = junctionNeighbours(scratch, curveNeighbours);
+  const auto all = static_cast<std::uint32_t>(scratch.sorted.size());
+  if (onePair && curve == 0 && all <= scratch.tris.size()) {
+    kind = static_cast<std::uint8_t>(VertexRole::Sheet);
+    if (!orderLinkCycle(mesh, v, scratch, out)) {
+      kind |= kPinched;
+      std::copy(scratch.sorted.begin(), scratch.sorted.end(), out);
+      for (const auto& [a, b] : scratch.link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
+    }
+    return all;
+  }
+  if (junctions && curve == 2 && scratch.tris.size() >= 2) {
+    kind = static_cast<std::uint8_t>(VertexRole::Curve);
+    out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
+    return 2;
+  }
+  kind = static_cast<std::uint8_t>(VertexRole::Corner);
+  return 0;
+}
+
+Adjacency buildAdjacency(const MultiLabelMesh& mesh, bool junctions, int threads) {
+  const std::size_t vertexCount = mesh.vertexCount();
+  Adjacency adj;
+  IncidentTriangles in = incidentTriangles(mesh);
   adj.kind.assign(vertexCount, static_cast<std::uint8_t>(VertexRole::Corner));
   adj.labels.assign(2 * vertexCount, 0);
   adj.start.assign(vertexCount + 1, 0);  // counts first (at v + 1), then offsets
-
-  struct Scratch {
-    std::vector<std::uint32_t> tris;                              // v's triangles
-    std::vector<std::uint32_t> sorted;                            // v's neighbours, ascending
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (neighbour, label pair)
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> link;   // (a, b) of each triangle (v, a, b)
-    std::vector<std::array<std::uint32_t, 3>> pinched;
-  };
-  // Classifies v and writes its neighbours to out, which may be v's own range of triList: a
-  // sheet vertex has one neighbour per triangle (each of its edges has two), a curve vertex two
-  // and at least three triangles. Returns their count.
-  const auto classify = [&](std::size_t v, Scratch& scratch, std::uint32_t* out) -> std::uint32_t {
-    std::vector<std::uint32_t>& tris = scratch.tris;
-    tris.assign(triList.begin() + triStart[v], triList.begin() + triStart[v + 1]);
-    std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges = scratch.edges;
-    edges.clear();
-    bool onePair = true;
-    std::uint32_t firstPair = 0;
-    for (std::size_t i = 0; i < tris.size(); ++i) {
-      const std::uint32_t t = tris[i];
-      const std::uint32_t pair = labelPairKey(mesh.labels[2 * t], mesh.labels[2 * t + 1]);
-      if (i == 0) firstPair = pair;
-      onePair &= pair == firstPair;
-      for (int c = 0; c < 3; ++c)
-        if (mesh.triangles[3 * t + c] != v) edges.push_back({mesh.triangles[3 * t + c], pair});
-    }
-    std::sort(edges.begin(), edges.end());
-    std::vector<std::uint32_t>& sorted = scratch.sorted;
-    sorted.clear();
-    std::uint32_t curve = 0;
-    std::uint32_t curveNeighbours[2] = {0, 0};
-    for (std::size_t i = 0; i < edges.size();) {
-      std::size_t e = i;
-      while (e < edges.size() && edges[e].first == edges[i].first) ++e;
-      const bool junctionEdge = e - i != 2 || edges[i].second != edges[e - 1].second;
-      sorted.push_back(edges[i].first);
-      if (junctionEdge) {
-        if (curve < 2) curveNeighbours[curve] = edges[i].first;
-        ++curve;
-      }
-      i = e;
-    }
-    const std::uint32_t all = static_cast<std::uint32_t>(sorted.size());
-    if (onePair && curve == 0 && all <= tris.size()) {
-      adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Sheet);
-      // Order the neighbours along the link cycle from the least.
-      std::vector<std::pair<std::uint32_t, std::uint32_t>>& link = scratch.link;
-      link.clear();
-      for (std::uint32_t t : tris) {
-        const std::uint32_t* c3 = &mesh.triangles[3 * t];
-        const int c = c3[0] == v ? 0 : c3[1] == v ? 1 : 2;
-        link.push_back({c3[(c + 1) % 3], c3[(c + 2) % 3]});
-      }
-      std::sort(link.begin(), link.end());
-      const std::uint32_t* first = sorted.data();
-      bool cycle = link.size() == all;
-      for (std::size_t i = 0; cycle && i < all; ++i) cycle = link[i].first == first[i];  // each neighbour once a start
-      std::uint32_t steps = 0;
-      if (cycle) {
-        std::uint32_t a = first[0];
-        do {
-          edges[steps].first = a;  // reuse as the ordered list
-          const std::size_t i = static_cast<std::size_t>(std::lower_bound(first, first + all, a) - first);
-          a = link[i].second;
-          ++steps;
-        } while (a != first[0] && steps < all && std::binary_search(first, first + all, a));
-        cycle = a == first[0] && steps == all;
-      }
-      if (cycle) {
-        for (std::uint32_t i = 0; i < all; ++i) out[i] = edges[i].first;
-      } else {
-        adj.kind[v] |= kPinched;
-        std::copy(sorted.begin(), sorted.end(), out);
-        for (const auto& [a, b] : link) scratch.pinched.push_back({static_cast<std::uint32_t>(v), a, b});
-      }
-      return all;
-    }
-    if (junctions && curve == 2 && tris.size() >= 2) {
-      adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Curve);
-      out[0] = curveNeighbours[0], out[1] = curveNeighbours[1];
-      return 2;
-    }
-    adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Corner);
-    return 0;
-  };
-
-  // One pass writes each vertex's neighbours over its own triangles in triList; they then
-  // close up from the front, and triList becomes the neighbour list.
+  // One pass writes each vertex's neighbours over its own triangles in the list; they then
+  // close up from the front, and the list becomes the neighbour list.
   std::vector<std::vector<std::array<std::uint32_t, 3>>> pinched(static_cast<std::size_t>(chunkCount(vertexCount, threads)));
   parallelChunks(vertexCount, threads, [&](int chunk, std::size_t begin, std::size_t end) {
-    Scratch scratch;
+    ClassifyScratch scratch;
     for (std::size_t v = begin; v < end; ++v) {
-      if (triStart[v] == triStart[v + 1]) continue;
-      const std::uint32_t t = triList[triStart[v]];
+      if (in.start[v] == in.start[v + 1]) continue;
+      const std::uint32_t t = in.list[in.start[v]];
       adj.labels[2 * v] = mesh.labels[2 * t];
       adj.labels[2 * v + 1] = mesh.labels[2 * t + 1];
-      adj.start[v + 1] = classify(v, scratch, triList.data() + triStart[v]);
+      scratch.tris.assign(in.list.begin() + in.start[v], in.list.begin() + in.start[v + 1]);
+      adj.start[v + 1] = classifyVertex(mesh, v, junctions, scratch, in.list.data() + in.start[v], adj.kind[v]);
     }
     pinched[static_cast<std::size_t>(chunk)] = std::move(scratch.pinched);
   });
   for (std::size_t v = 0; v < vertexCount; ++v) {
     const std::uint32_t count = adj.start[v + 1];
     adj.start[v + 1] += adj.start[v];
-    if (count && adj.start[v] != triStart[v])  // start[v] <= triStart[v]: ranges may overlap
-      std::memmove(triList.data() + adj.start[v], triList.data() + triStart[v], count * sizeof(std::uint32_t));
+    if (count && adj.start[v] != in.start[v])  // start[v] <= in.start[v]: ranges may overlap
+      std::memmove(in.list.data() + adj.start[v], in.list.data() + in.start[v], count * sizeof(std::uint32_t));
   }
-  triList.resize(adj.start.back());
-  adj.neighbours = std::move(triList);
+  in.list.resize(adj.start.back());
+  adj.neighbours = std::move(in.list);
   for (const auto& p : pinched) adj.pinchedLinks.insert(adj.pinchedLinks.end(), p.begin(), p.end());
   return adj;
 }
