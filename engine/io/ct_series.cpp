@@ -37,9 +37,8 @@ Result<double> getDouble(DcmDataset& ds, const DcmTagKey& tag, unsigned long pos
   return static_cast<double>(v);
 }
 
-}  // namespace
-
-Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
+// The files of the folder, sorted by name.
+Result<std::vector<std::filesystem::path>> filesOf(const std::filesystem::path& directory) {
   const std::string dir = directory.string();
   std::error_code ec;
   if (!std::filesystem::is_directory(directory, ec))
@@ -49,11 +48,66 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
     if (entry.is_regular_file()) paths.push_back(entry.path());
   if (ec) return makeError(Errc::Io, dir + ": cannot list the directory: " + ec.message());
   std::sort(paths.begin(), paths.end());
+  return paths;
+}
 
+// Only axial images with rows along +x and columns along +y.
+Result<void> checkAxial(DcmDataset& ds, const std::string& file) {
+  double orientation[6];
+  for (unsigned long i = 0; i < 6; ++i) {
+    SCANSURF_ASSIGN_OR_RETURN(orientation[i],
+                              getDouble(ds, DCM_ImageOrientationPatient, i, file, "Image Orientation (Patient) (0020,0037)"));
+  }
+  static constexpr double kAxial[6] = {1, 0, 0, 0, 1, 0};
+  for (int i = 0; i < 6; ++i)
+    if (std::abs(orientation[i] - kAxial[i]) > kGeometryTolerance) {
+      std::string values;
+      for (int k = 0; k < 6; ++k) values += (k ? "\\" : "") + formatNumber(orientation[k]);
+      return invalid(file + ": Image Orientation (Patient) is " + values +
+                     "; only axial images with rows along +x and columns along +y (1\\0\\0\\0\\1\\0) are supported");
+    }
+  return {};
+}
+
+// One image's identity and geometry, checked.
+Result<Image> imageOf(DcmDataset& ds, const std::filesystem::path& path) {
+  Image image;
+  image.file = path.string();
+  const std::string& file = image.file;
+  OFString text;
+  if (ds.findAndGetOFString(DCM_SeriesInstanceUID, text).good()) image.seriesUid = text.c_str();
+  if (ds.findAndGetOFString(DCM_FrameOfReferenceUID, text).good()) image.frameUid = text.c_str();
+  if (ds.findAndGetOFString(DCM_Modality, text).good()) image.modality = text.c_str();
+  if (ds.findAndGetOFString(DCM_SOPClassUID, text).good()) image.sopClassUid = text.c_str();
+  if (ds.findAndGetOFString(DCM_SOPInstanceUID, text).good()) image.sopInstanceUid = text.c_str();
+  if (image.sopInstanceUid.empty()) return invalid(file + ": missing SOP Instance UID (0008,0018)");
+  Uint16 rows = 0, columns = 0;
+  if (ds.findAndGetUint16(DCM_Rows, rows).bad() || rows == 0) return invalid(file + ": missing Rows (0028,0010)");
+  if (ds.findAndGetUint16(DCM_Columns, columns).bad() || columns == 0)
+    return invalid(file + ": missing Columns (0028,0011)");
+  image.rows = rows;
+  image.columns = columns;
+  for (unsigned long i = 0; i < 3; ++i) {
+    SCANSURF_ASSIGN_OR_RETURN(image.position[i],
+                              getDouble(ds, DCM_ImagePositionPatient, i, file, "Image Position (Patient) (0020,0032)"));
+    if (std::abs(image.position[i]) > kMaxCoordinate)
+      return invalid(file + ": Image Position (Patient) (0020,0032) value " + formatNumber(image.position[i]) +
+                     " is beyond " + formatNumber(kMaxCoordinate) + " mm from the origin");
+  }
+  for (unsigned long i = 0; i < 2; ++i) {
+    SCANSURF_ASSIGN_OR_RETURN(image.spacing[i], getDouble(ds, DCM_PixelSpacing, i, file, "Pixel Spacing (0028,0030)"));
+    if (!(image.spacing[i] > 0)) return invalid(file + ": Pixel Spacing (0028,0030) is not positive");
+  }
+  SCANSURF_TRY(checkAxial(ds, file));
+  return image;
+}
+
+// The images of the folder: files that start like DICOM and carry a position in space (not an
+// RTSTRUCT beside them); other files are passed over unparsed (a 1 GiB file of zeros cost
+// DCMTK a minute of empty elements).
+Result<std::vector<Image>> imagesOf(const std::vector<std::filesystem::path>& paths) {
   std::vector<Image> images;
   for (const auto& path : paths) {
-    // A file that does not start like DICOM is not parsed at all (a 1 GiB file of zeros cost
-    // DCMTK a minute of empty elements).
     if (!hasDicomPreamble(path) && !looksLikeDicomDataSet(path)) continue;
     auto dicom = loadDicomFile(path, /*stopAtPixelData=*/true);
     if (!dicom) {
@@ -61,58 +115,21 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
       return std::move(dicom).takeError();
     }
     DcmDataset& ds = dicom->dataset();
-    // Only images that carry a position in space belong to the series (not an RTSTRUCT beside it).
     if (!ds.tagExists(DCM_ImagePositionPatient) && !ds.tagExists(DCM_PixelData)) continue;
-    Image image;
-    image.file = path.string();
-    const std::string& file = image.file;
-    OFString text;
-    if (ds.findAndGetOFString(DCM_SeriesInstanceUID, text).good()) image.seriesUid = text.c_str();
-    if (ds.findAndGetOFString(DCM_FrameOfReferenceUID, text).good()) image.frameUid = text.c_str();
-    if (ds.findAndGetOFString(DCM_Modality, text).good()) image.modality = text.c_str();
-    if (ds.findAndGetOFString(DCM_SOPClassUID, text).good()) image.sopClassUid = text.c_str();
-    if (ds.findAndGetOFString(DCM_SOPInstanceUID, text).good()) image.sopInstanceUid = text.c_str();
-    if (image.sopInstanceUid.empty()) return invalid(file + ": missing SOP Instance UID (0008,0018)");
-    Uint16 rows = 0, columns = 0;
-    if (ds.findAndGetUint16(DCM_Rows, rows).bad() || rows == 0) return invalid(file + ": missing Rows (0028,0010)");
-    if (ds.findAndGetUint16(DCM_Columns, columns).bad() || columns == 0)
-      return invalid(file + ": missing Columns (0028,0011)");
-    image.rows = rows;
-    image.columns = columns;
-    for (unsigned long i = 0; i < 3; ++i) {
-      SCANSURF_ASSIGN_OR_RETURN(image.position[i],
-                                getDouble(ds, DCM_ImagePositionPatient, i, file, "Image Position (Patient) (0020,0032)"));
-      if (std::abs(image.position[i]) > kMaxCoordinate)
-        return invalid(file + ": Image Position (Patient) (0020,0032) value " + formatNumber(image.position[i]) +
-                       " is beyond " + formatNumber(kMaxCoordinate) + " mm from the origin");
-    }
-    for (unsigned long i = 0; i < 2; ++i) {
-      SCANSURF_ASSIGN_OR_RETURN(image.spacing[i], getDouble(ds, DCM_PixelSpacing, i, file, "Pixel Spacing (0028,0030)"));
-      if (!(image.spacing[i] > 0)) return invalid(file + ": Pixel Spacing (0028,0030) is not positive");
-    }
-    double orientation[6];
-    for (unsigned long i = 0; i < 6; ++i) {
-      SCANSURF_ASSIGN_OR_RETURN(orientation[i],
-                                getDouble(ds, DCM_ImageOrientationPatient, i, file, "Image Orientation (Patient) (0020,0037)"));
-    }
-    static constexpr double kAxial[6] = {1, 0, 0, 0, 1, 0};
-    for (int i = 0; i < 6; ++i)
-      if (std::abs(orientation[i] - kAxial[i]) > kGeometryTolerance) {
-        std::string values;
-        for (int k = 0; k < 6; ++k) values += (k ? "\\" : "") + formatNumber(orientation[k]);
-        return invalid(file + ": Image Orientation (Patient) is " + values +
-                       "; only axial images with rows along +x and columns along +y (1\\0\\0\\0\\1\\0) are supported");
-      }
+    SCANSURF_ASSIGN_OR_RETURN(Image image, imageOf(ds, path));
     images.push_back(std::move(image));
   }
-  if (images.empty()) return invalid(dir + ": no DICOM images (files with Image Position (Patient)) in the directory");
+  return images;
+}
 
+// One series, one lattice: the same size, spacing and x, y position in every image.
+Result<void> checkOneLattice(const std::vector<Image>& images, const std::string& dir) {
   const Image& first = images.front();
+  auto differs = [](double a, double b) { return std::abs(a - b) > kGeometryTolerance; };
   for (const Image& image : images) {
     if (image.seriesUid != first.seriesUid)
       return invalid(dir + ": holds more than one series (" + first.seriesUid + " in " + first.file + ", " +
                      image.seriesUid + " in " + image.file + "); give a folder with one series");
-    auto differs = [](double a, double b) { return std::abs(a - b) > kGeometryTolerance; };
     if (image.rows != first.rows || image.columns != first.columns)
       return invalid(image.file + ": " + std::to_string(image.columns) + " x " + std::to_string(image.rows) +
                      " pixels, unlike " + first.file + " (" + std::to_string(first.columns) + " x " +
@@ -125,8 +142,12 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
                      formatNumber(first.position[0]) + ", " + formatNumber(first.position[1]) +
                      "); the slices must stack straight");
   }
-  std::stable_sort(images.begin(), images.end(),
-                   [](const Image& a, const Image& b) { return a.position[2] < b.position[2]; });
+  return {};
+}
+
+// Sorted by z, no two at one z, no SOP Instance UID twice.
+Result<void> stackSlices(std::vector<Image>& images) {
+  std::stable_sort(images.begin(), images.end(), [](const Image& a, const Image& b) { return a.position[2] < b.position[2]; });
   for (std::size_t i = 1; i < images.size(); ++i)
     if (images[i].position[2] - images[i - 1].position[2] <= kGeometryTolerance)
       return invalid(images[i].file + ": at z=" + formatNumber(images[i].position[2]) + " like " + images[i - 1].file);
@@ -134,7 +155,11 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
   for (const Image& image : images)
     if (const auto [at, added] = byUid.emplace(image.sopInstanceUid, &image); !added)
       return invalid(image.file + ": SOP Instance UID " + image.sopInstanceUid + " is also that of " + at->second->file);
+  return {};
+}
 
+CtSeries seriesOf(const std::vector<Image>& images, const std::string& dir) {
+  const Image& first = images.front();
   CtSeries ct;
   ct.directory = dir;
   ct.seriesUid = first.seriesUid;
@@ -153,6 +178,18 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
     ct.sopInstanceUids.push_back(image.sopInstanceUid);
   }
   return ct;
+}
+
+}  // namespace
+
+Result<CtSeries> readCtSeries(const std::filesystem::path& directory) {
+  const std::string dir = directory.string();
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<std::filesystem::path> paths, filesOf(directory));
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<Image> images, imagesOf(paths));
+  if (images.empty()) return invalid(dir + ": no DICOM images (files with Image Position (Patient)) in the directory");
+  SCANSURF_TRY(checkOneLattice(images, dir));
+  SCANSURF_TRY(stackSlices(images));
+  return seriesOf(images, dir);
 }
 
 GridReference gridReferenceOf(const CtSeries& ct) {
