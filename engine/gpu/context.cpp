@@ -120,6 +120,36 @@ bool hasLayer(const char* name) {
   return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
+// The user's selector (an index or part of a name), else the best device type that can run
+// scansurf; the error lists every device and why each was passed over.
+Result<VkPhysicalDevice> choosePhysicalDevice(VkInstance instance, const std::string& selector) {
+  std::uint32_t count = 0;
+  SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+  if (count == 0)
+    return makeError(Errc::NoDevice, "no Vulkan device found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
+  std::vector<VkPhysicalDevice> devices(count);
+  SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+  std::string report;
+  int chosen = -1, bestRank = -1;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(devices[i], &props);
+    const std::string why = rejection(devices[i]);
+    report += "\n  [" + std::to_string(i) + "] " + props.deviceName + " (" + typeName(props.deviceType) + ")" +
+              (why.empty() ? "" : ": unusable, " + why);
+    const bool matches = selector.empty() || (selectorIsIndex(selector) ? selector == std::to_string(i)
+                                                                        : lower(props.deviceName).find(lower(selector)) != std::string::npos);
+    if (!matches || !why.empty() || typeRank(props.deviceType) <= bestRank) continue;
+    bestRank = typeRank(props.deviceType);
+    chosen = static_cast<int>(i);
+  }
+  if (chosen < 0)
+    return makeError(Errc::NoDevice, (selector.empty() ? std::string("no usable Vulkan device")
+                                                       : "no usable Vulkan device matches \"" + selector + "\"") +
+                                         "; devices:" + report);
+  return devices[static_cast<std::size_t>(chosen)];
+}
+
 }  // namespace
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -136,26 +166,22 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(VkDebugUtilsMessageSeverit
   return VK_FALSE;
 }
 
-Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
-  std::unique_ptr<Context> ctx(new Context());
-  ctx->onValidationMessage_ = options.onValidationMessage;
-  const bool validation = options.validation || envFlag("SCANSURF_VALIDATION");
-  if (validation && !hasLayer(kValidationLayer))
-    return makeError(Errc::NoDevice, std::string("validation requested but ") + kValidationLayer +
-                                         " is not installed (Debian: vulkan-validationlayers)");
+VkDebugUtilsMessengerCreateInfoEXT Context::messengerInfo() {
+  VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = &Context::debugCallback;
+  info.pUserData = this;
+  return info;
+}
 
+Result<void> Context::createInstance(bool validation) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "scansurf";
   app.pEngineName = "scansurf";
   app.apiVersion = VK_API_VERSION_1_3;
-
-  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  messengerInfo.pfnUserCallback = &Context::debugCallback;
-  messengerInfo.pUserData = ctx.get();
-
+  const VkDebugUtilsMessengerCreateInfoEXT messenger = messengerInfo();
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
   if (validation) {
@@ -168,70 +194,37 @@ Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
   instanceInfo.ppEnabledLayerNames = layers.data();
   instanceInfo.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   instanceInfo.ppEnabledExtensionNames = extensions.data();
-  if (validation) instanceInfo.pNext = &messengerInfo;  // also reports on instance creation
-
+  if (validation) instanceInfo.pNext = &messenger;  // also reports on instance creation
   VkInstance instance = VK_NULL_HANDLE;
   const VkResult created = vkCreateInstance(&instanceInfo, nullptr, &instance);
   if (created == VK_ERROR_INCOMPATIBLE_DRIVER)
     return makeError(Errc::NoDevice, "no Vulkan driver found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
   SCANSURF_VK_TRY(created);
-  ctx->ownedInstance_ = Owned<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
-  ctx->instance_ = instance;
+  ownedInstance_ = Owned<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
+  instance_ = instance;
+  return validation ? createMessenger() : Result<void>{};
+}
 
-  if (validation) {
-    auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-    auto destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-    if (!createMessenger || !destroyMessenger) return makeError(Errc::Vulkan, "VK_EXT_debug_utils is not available");
-    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-    SCANSURF_VK_TRY(createMessenger(instance, &messengerInfo, nullptr, &messenger));
-    ctx->messenger_ = Owned<VkDebugUtilsMessengerEXT>(
-        messenger, [instance, destroyMessenger](VkDebugUtilsMessengerEXT m) { destroyMessenger(instance, m, nullptr); });
-  }
+Result<void> Context::createMessenger() {
+  VkInstance instance = instance_;
+  auto createFn = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+  auto destroyFn =
+      reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+  if (!createFn || !destroyFn) return makeError(Errc::Vulkan, "VK_EXT_debug_utils is not available");
+  const VkDebugUtilsMessengerCreateInfoEXT info = messengerInfo();
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  SCANSURF_VK_TRY(createFn(instance, &info, nullptr, &messenger));
+  messenger_ = Owned<VkDebugUtilsMessengerEXT>(messenger,
+                                              [instance, destroyFn](VkDebugUtilsMessengerEXT m) { destroyFn(instance, m, nullptr); });
+  return {};
+}
 
-  // Choose the device: the user's selector, else the best type that can run scansurf.
-  std::uint32_t count = 0;
-  SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, nullptr));
-  if (count == 0)
-    return makeError(Errc::NoDevice, "no Vulkan device found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
-  std::vector<VkPhysicalDevice> devices(count);
-  SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
-
-  std::string selector = options.device;
-  if (selector.empty())
-    if (const char* env = std::getenv("SCANSURF_DEVICE")) selector = env;
-
-  std::string report;
-  int chosen = -1;
-  int bestRank = -1;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(devices[i], &props);
-    const std::string why = rejection(devices[i]);
-    report += "\n  [" + std::to_string(i) + "] " + props.deviceName + " (" + typeName(props.deviceType) + ")" +
-              (why.empty() ? "" : ": unusable, " + why);
-    bool matches = true;
-    if (!selector.empty()) {
-      matches = selectorIsIndex(selector) ? selector == std::to_string(i)
-                                          : lower(props.deviceName).find(lower(selector)) != std::string::npos;
-    }
-    if (!matches || !why.empty()) continue;
-    if (typeRank(props.deviceType) > bestRank) {
-      bestRank = typeRank(props.deviceType);
-      chosen = static_cast<int>(i);
-    }
-  }
-  if (chosen < 0)
-    return makeError(Errc::NoDevice, (selector.empty() ? std::string("no usable Vulkan device")
-                                                       : "no usable Vulkan device matches \"" + selector + "\"") +
-                                         "; devices:" + report);
-  ctx->physicalDevice_ = devices[static_cast<std::size_t>(chosen)];
-  ctx->queueFamily_ = static_cast<std::uint32_t>(graphicsComputeFamily(ctx->physicalDevice_));
-
+Result<void> Context::createDevice(VkPhysicalDevice physicalDevice) {
+  physicalDevice_ = physicalDevice;
+  queueFamily_ = static_cast<std::uint32_t>(graphicsComputeFamily(physicalDevice_));
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-  queueInfo.queueFamilyIndex = ctx->queueFamily_;
+  queueInfo.queueFamilyIndex = queueFamily_;
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -242,10 +235,26 @@ Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
   VkDevice device = VK_NULL_HANDLE;
-  SCANSURF_VK_TRY(vkCreateDevice(ctx->physicalDevice_, &deviceInfo, nullptr, &device));
-  ctx->ownedDevice_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
-  ctx->device_ = device;
-  vkGetDeviceQueue(device, ctx->queueFamily_, 0, &ctx->queue_);
+  SCANSURF_VK_TRY(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device));
+  ownedDevice_ = Owned<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+  device_ = device;
+  vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
+  return {};
+}
+
+Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
+  std::unique_ptr<Context> ctx(new Context());
+  ctx->onValidationMessage_ = options.onValidationMessage;
+  const bool validation = options.validation || envFlag("SCANSURF_VALIDATION");
+  if (validation && !hasLayer(kValidationLayer))
+    return makeError(Errc::NoDevice, std::string("validation requested but ") + kValidationLayer +
+                                         " is not installed (Debian: vulkan-validationlayers)");
+  SCANSURF_TRY(ctx->createInstance(validation));
+  std::string selector = options.device;
+  if (selector.empty())
+    if (const char* env = std::getenv("SCANSURF_DEVICE")) selector = env;
+  SCANSURF_ASSIGN_OR_RETURN(VkPhysicalDevice physical, choosePhysicalDevice(ctx->instance_, selector));
+  SCANSURF_TRY(ctx->createDevice(physical));
   SCANSURF_TRY(ctx->finishSetup());
   return ctx;
 }

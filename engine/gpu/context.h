@@ -45,6 +45,12 @@ class Context {
  private:
   Context() = default;
   Result<void> finishSetup();
+  // create()'s steps, as vk-bootstrap splits them: the instance (with the validation layer and
+  // its messenger when asked), then the logical device and queue on the chosen physical device.
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo();
+  Result<void> createInstance(bool validation);
+  Result<void> createMessenger();
+  Result<void> createDevice(VkPhysicalDevice physicalDevice);
   static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                       VkDebugUtilsMessageTypeFlagsEXT types,
                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
