@@ -324,62 +324,57 @@ bool looksLikeReconstructXml(const fs::path& path) {
   return false;
 }
 
-Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const ReconstructOptions& options) {
-  const std::string given = path.string();
-  pugi::xml_document doc;
-  SCANSURF_TRY(loadXml(path, doc));
-  const std::string rootName = doc.document_element().name();
-  const fs::path dir = path.parent_path();
-  const std::string filename = path.filename().string();
+namespace {
 
-  ReconstructSeries out;
-  out.contours.source = given;
-  std::vector<std::string> warnings;
-  std::string units;
-  std::vector<fs::path> files;
+// Which series the given file opens (a series file, or a section file and the series beside
+// it) and, for a section file read alone, its file list.
+Result<void> identifySeries(const fs::path& path, const std::string& rootName, ReconstructSeries& out, std::vector<fs::path>& files,
+                            std::vector<std::string>& warnings) {
+  const std::string given = path.string();
   if (rootName == "Series") {
     out.seriesFile = path;
     out.name = path.stem().string();
-  } else if (rootName == "Section") {
-    if (const auto series = seriesOfSectionFile(filename)) {
-      out.name = *series;
-      const fs::path ser = dir / (*series + ".ser");
-      std::error_code ec;
-      if (fs::is_regular_file(ser, ec)) out.seriesFile = ser;
-    } else {
-      out.name = path.stem().string();
-      files = {path};  // not named NAME.<number>: this section alone
-      warnings.push_back(given + ": a section file not named SERIES.<number>: read alone, without its series");
-    }
-    if (out.seriesFile.empty())
-      warnings.push_back(given + ": no series file " + out.name +
-                         ".ser beside it: units microns and zMidSection off "
-                         "(Reconstruct's defaults)");
-  } else {
+    return {};
+  }
+  if (rootName != "Section")
     return invalid(given + ": XML with root element <" + rootName +
                    ">, not a Reconstruct series (<Series>) or section (<Section>)");
+  if (const auto series = seriesOfSectionFile(path.filename().string())) {
+    out.name = *series;
+    const fs::path ser = path.parent_path() / (*series + ".ser");
+    std::error_code ec;
+    if (fs::is_regular_file(ser, ec)) out.seriesFile = ser;
+  } else {
+    out.name = path.stem().string();
+    files = {path};  // not named NAME.<number>: this section alone
+    warnings.push_back(given + ": a section file not named SERIES.<number>: read alone, without its series");
   }
+  if (out.seriesFile.empty())
+    warnings.push_back(given + ": no series file " + out.name +
+                       ".ser beside it: units microns and zMidSection off "
+                       "(Reconstruct's defaults)");
+  return {};
+}
 
-  if (!out.seriesFile.empty()) {
-    pugi::xml_document seriesDoc;
-    if (out.seriesFile == path) {
-      seriesDoc.reset(doc);
-    } else {
-      SCANSURF_TRY(loadXml(out.seriesFile, seriesDoc));
-    }
-    const pugi::xml_node series = seriesDoc.document_element();
-    if (std::string_view(series.name()) != "Series")
-      return invalid(out.seriesFile.string() + ": not a Reconstruct series file (root element <" + series.name() + ">)");
-    units = series.attribute("units").value();
-    out.zMidSection = parseBool(series.attribute("zMidSection"), false);
+// The series file's units and zMidSection (the given document when it is the series file).
+Result<std::string> readSeriesSettings(const fs::path& path, const pugi::xml_document& doc, ReconstructSeries& out) {
+  if (out.seriesFile.empty()) return std::string();
+  pugi::xml_document seriesDoc;
+  if (out.seriesFile == path) {
+    seriesDoc.reset(doc);
+  } else {
+    SCANSURF_TRY(loadXml(out.seriesFile, seriesDoc));
   }
-  if (files.empty()) {
-    SCANSURF_ASSIGN_OR_RETURN(files, sectionFiles(dir, out.name));
-    if (files.empty())
-      return invalid(given + ": no section files " + out.name + ".<number> beside it in " +
-                     (dir.empty() ? std::string(".") : dir.string()));
-  }
+  const pugi::xml_node series = seriesDoc.document_element();
+  if (std::string_view(series.name()) != "Series")
+    return invalid(out.seriesFile.string() + ": not a Reconstruct series file (root element <" + series.name() + ">)");
+  out.zMidSection = parseBool(series.attribute("zMidSection"), false);
+  return std::string(series.attribute("units").value());
+}
 
+// Every section, sorted by index (no index twice), each at Reconstruct's section depth
+// (SectionsInfo::ZDistance: section 0 stays out of the sum).
+Result<std::vector<Section>> readSections(const std::vector<fs::path>& files, ReconstructSeries& out) {
   std::vector<Section> sections;
   for (const fs::path& f : files) {
     SCANSURF_ASSIGN_OR_RETURN(Section s, readSection(f));
@@ -390,7 +385,6 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
     if (sections[i].index == sections[i - 1].index)
       return invalid(sections[i].path.string() + ": section index " + std::to_string(sections[i].index) + " is also " +
                      sections[i - 1].path.string() + "'s");
-  // Reconstruct's section depth (SectionsInfo::ZDistance): section 0 stays out of the sum.
   double below = 0;
   for (Section& s : sections) {
     if (s.index == 0) continue;
@@ -400,8 +394,13 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
   out.sections = static_cast<int>(sections.size());
   out.firstIndex = sections.front().index;
   out.lastIndex = sections.back().index;
+  return sections;
+}
 
-  // Objects by name (std::map: sorted, as Reconstruct's object list).
+// Objects by name (sorted, as Reconstruct's object list), their closed traces gathered over
+// the sections; open traces counted and said.
+std::vector<RawObject> collectObjects(std::vector<Section>& sections, const std::string& seriesLabel,
+                                      std::vector<std::string>& warnings) {
   struct Collected {
     RawObject object;
     std::optional<Rgb> openColor;
@@ -420,7 +419,6 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
       c.object.closed.push_back(ObjectContour{s.z, std::move(t.points)});
     }
   std::vector<RawObject> objects;
-  const std::string seriesLabel = out.seriesFile.empty() ? given : out.seriesFile.string();
   for (auto& [name, c] : byName) {
     c.object.info.name = name;
     c.object.info.number = static_cast<int>(objects.size()) + 1;
@@ -431,18 +429,45 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
                          (c.object.closed.empty() ? " (it has no closed trace)" : "") + "; only closed traces are surfaced");
     objects.push_back(std::move(c.object));
   }
+  return objects;
+}
 
+std::string seriesNote(const ReconstructSeries& out) {
+  int surfaced = 0;
+  for (const ObjectInfo& o : out.objects) surfaced += o.feature >= 0;
+  return "Reconstruct series \"" + out.name + "\": " + std::to_string(out.sections) + " sections (index " +
+         std::to_string(out.firstIndex) + ".." + std::to_string(out.lastIndex) + "), " + std::to_string(out.objects.size()) +
+         " objects, " + std::to_string(surfaced) + " surfaced; units " + out.contours.units +
+         "; z = depth through the section thicknesses (" + (out.zMidSection ? "section middles" : "section tops") + ")";
+}
+
+}  // namespace
+
+Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const ReconstructOptions& options) {
+  const std::string given = path.string();
+  pugi::xml_document doc;
+  SCANSURF_TRY(loadXml(path, doc));
+  ReconstructSeries out;
+  out.contours.source = given;
+  std::vector<std::string> warnings;
+  std::vector<fs::path> files;
+  SCANSURF_TRY(identifySeries(path, doc.document_element().name(), out, files, warnings));
+  SCANSURF_ASSIGN_OR_RETURN(const std::string units, readSeriesSettings(path, doc, out));
+  const fs::path dir = path.parent_path();
+  if (files.empty()) {
+    SCANSURF_ASSIGN_OR_RETURN(files, sectionFiles(dir, out.name));
+    if (files.empty())
+      return invalid(given + ": no section files " + out.name + ".<number> beside it in " +
+                     (dir.empty() ? std::string(".") : dir.string()));
+  }
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<Section> sections, readSections(files, out));
+  std::vector<RawObject> objects =
+      collectObjects(sections, out.seriesFile.empty() ? given : out.seriesFile.string(), warnings);
   out.contours.units = unitsOf(units);
   out.contours.warnings = warnings;
   SCANSURF_ASSIGN_OR_RETURN(out.objects,
                             buildObjectFeatures(objects, {options.objectPatterns, options.requireFeatures}, out.contours));
-  int surfaced = 0;
-  for (const ObjectInfo& o : out.objects) surfaced += o.feature >= 0;
-  out.contours.notes.push_back("Reconstruct series \"" + out.name + "\": " + std::to_string(out.sections) + " sections (index " +
-                               std::to_string(out.firstIndex) + ".." + std::to_string(out.lastIndex) + "), " +
-                               std::to_string(out.objects.size()) + " objects, " + std::to_string(surfaced) +
-                               " surfaced; units " + out.contours.units + "; z = depth through the section thicknesses (" +
-                               (out.zMidSection ? "section middles" : "section tops") + ")");
+  out.contours.notes.push_back(seriesNote(out));
   return out;
 }
 
