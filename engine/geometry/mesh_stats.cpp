@@ -59,16 +59,10 @@ bool singleFan(std::span<const std::array<std::uint32_t, 2>> link, std::vector<s
   return true;
 }
 
-}  // namespace
-
-MeshStats computeMeshStats(std::span<const float> positions, std::span<const std::uint32_t> triangles) {
-  MeshStats stats;
-  const std::size_t t = triangles.size() / 3;
-  const std::size_t n = positions.size() / 3;
-  stats.triangles = t;
-
+// Area and enclosed volume (signed tetrahedra against the origin: p0 . (p1 x p2) / 6).
+void measure(std::span<const float> positions, std::span<const std::uint32_t> triangles, MeshStats& stats) {
   double area = 0, volume = 0;
-  for (std::size_t f = 0; f < t; ++f) {
+  for (std::size_t f = 0; f < triangles.size() / 3; ++f) {
     std::array<std::array<double, 3>, 3> p{};
     for (int c = 0; c < 3; ++c)
       for (int a = 0; a < 3; ++a) p[c][a] = positions[3 * triangles[3 * f + c] + a];
@@ -76,16 +70,25 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
     const std::array<double, 3> v = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
     const std::array<double, 3> cr = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     area += 0.5 * std::sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
-    // Signed tetrahedron volume against the origin: p0 . (p1 x p2) / 6.
     volume += (p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
                p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0])) /
               6.0;
   }
   stats.area = area;
   stats.volume = volume;
+}
 
-  // Edges: closed when every undirected edge has two uses, oriented when no directed edge
-  // repeats (for a closed mesh: each edge once in each direction).
+// What the edges say: closed when every undirected edge has two uses, oriented when no
+// directed edge repeats (for a closed mesh: each edge once in each direction); the triangles'
+// components (joined across edges) and one triangle per undirected edge.
+struct EdgeCensus {
+  bool closed = true, oriented = true;
+  UnionFind components;
+  std::vector<std::uint32_t> edgeTriangle;
+};
+
+EdgeCensus censusOfEdges(std::span<const std::uint32_t> triangles) {
+  const std::size_t t = triangles.size() / 3;
   std::vector<HalfEdge> edges;
   edges.reserve(3 * t);
   bool degenerate = false;
@@ -98,81 +101,87 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
     }
   }
   std::sort(edges.begin(), edges.end());
-  bool closed = !degenerate, oriented = !degenerate;
-  UnionFind components(t);
+  EdgeCensus census{!degenerate, !degenerate, UnionFind(t), {}};
   std::size_t begin = 0;
-  std::vector<std::uint32_t> edgeComponentTriangle;  // one triangle per undirected edge
   while (begin < edges.size()) {
     std::size_t end = begin + 1;
     while (end < edges.size() && edges[end].key == edges[begin].key) ++end;
-    if (end - begin != 2) closed = false;
+    if (end - begin != 2) census.closed = false;
     for (std::size_t i = begin + 1; i < end; ++i) {
-      if (edges[i].forward == edges[i - 1].forward) oriented = false;
-      components.unite(edges[begin].triangle, edges[i].triangle);
+      if (edges[i].forward == edges[i - 1].forward) census.oriented = false;
+      census.components.unite(edges[begin].triangle, edges[i].triangle);
     }
-    edgeComponentTriangle.push_back(edges[begin].triangle);
+    census.edgeTriangle.push_back(edges[begin].triangle);
     begin = end;
   }
-  std::vector<HalfEdge>().swap(edges);
+  return census;
+}
 
-  // Euler characteristic per component: V counts (component, vertex) pairs.
-  std::vector<std::uint32_t> root(t);
-  for (std::size_t f = 0; f < t; ++f) root[f] = components.find(static_cast<std::uint32_t>(f));
+// Components and genus from the Euler characteristic of each component (V counts
+// (component, vertex) pairs).
+void countTopology(std::span<const std::uint32_t> triangles, EdgeCensus& census, MeshStats& stats) {
+  const std::size_t t = triangles.size() / 3;
   std::vector<std::uint32_t> componentOf(t, 0);
   int componentCount = 0;
-  {
-    std::vector<int> index(t, -1);
-    for (std::size_t f = 0; f < t; ++f) {
-      if (index[root[f]] < 0) index[root[f]] = componentCount++;
-      componentOf[f] = static_cast<std::uint32_t>(index[root[f]]);
-    }
+  std::vector<int> index(t, -1);
+  for (std::size_t f = 0; f < t; ++f) {
+    const std::uint32_t root = census.components.find(static_cast<std::uint32_t>(f));
+    if (index[root] < 0) index[root] = componentCount++;
+    componentOf[f] = static_cast<std::uint32_t>(index[root]);
   }
   std::vector<long long> chi(static_cast<std::size_t>(componentCount), 0);
   for (std::size_t f = 0; f < t; ++f) chi[componentOf[f]] += 1;
-  for (std::uint32_t f : edgeComponentTriangle) chi[componentOf[f]] -= 1;
+  for (std::uint32_t f : census.edgeTriangle) chi[componentOf[f]] -= 1;
   std::vector<std::uint64_t> componentVertices;
   componentVertices.reserve(3 * t);
   for (std::size_t f = 0; f < t; ++f)
-    for (int c = 0; c < 3; ++c)
-      componentVertices.push_back(std::uint64_t{componentOf[f]} << 32 | triangles[3 * f + c]);
+    for (int c = 0; c < 3; ++c) componentVertices.push_back(std::uint64_t{componentOf[f]} << 32 | triangles[3 * f + c]);
   std::sort(componentVertices.begin(), componentVertices.end());
   componentVertices.erase(std::unique(componentVertices.begin(), componentVertices.end()), componentVertices.end());
   for (std::uint64_t cv : componentVertices) chi[cv >> 32] += 1;
-  // The surface's own vertices, sorted: everything below costs what the surface costs, not
-  // the whole shared mesh (thousands of small features share one mesh).
-  std::vector<std::uint32_t> vertices(triangles.begin(), triangles.end());
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  stats.vertices = static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), n) - vertices.begin());
-  auto local = [&](std::uint32_t v) {
-    return static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
-  };
   stats.components = componentCount;
   long long genus = 0;
   for (long long c : chi) genus += (2 - c) / 2;
   stats.genus = static_cast<int>(genus);
+}
 
-  // Manifold: closed, and every vertex's link (the edges opposite it) is one connected fan.
-  bool manifold = closed;
-  if (manifold) {
-    const std::size_t m = vertices.size();
-    std::vector<std::uint32_t> start(m + 1, 0);
-    for (std::uint32_t v : triangles) ++start[local(v) + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<std::array<std::uint32_t, 2>> link(3 * t);
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t f = 0; f < t; ++f)
-      for (int c = 0; c < 3; ++c)
-        link[fill[local(triangles[3 * f + c])]++] = {triangles[3 * f + (c + 1) % 3], triangles[3 * f + (c + 2) % 3]};
-    std::vector<std::uint32_t> scratch;
-    for (std::size_t v = 0; v < m && manifold; ++v) {
-      if (start[v] == start[v + 1]) continue;
-      manifold = singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch);
-    }
-  }
-  stats.closed = closed;
-  stats.oriented = oriented;
-  stats.manifold = manifold;
+// Every vertex's link (the edges opposite it) is one connected fan. `vertices`: the surface's
+// own, sorted, so that this costs what the surface costs, not the whole shared mesh.
+bool everyLinkOneFan(std::span<const std::uint32_t> triangles, const std::vector<std::uint32_t>& vertices) {
+  auto local = [&](std::uint32_t v) {
+    return static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
+  };
+  const std::size_t t = triangles.size() / 3, m = vertices.size();
+  std::vector<std::uint32_t> start(m + 1, 0);
+  for (std::uint32_t v : triangles) ++start[local(v) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::array<std::uint32_t, 2>> link(3 * t);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t f = 0; f < t; ++f)
+    for (int c = 0; c < 3; ++c)
+      link[fill[local(triangles[3 * f + c])]++] = {triangles[3 * f + (c + 1) % 3], triangles[3 * f + (c + 2) % 3]};
+  std::vector<std::uint32_t> scratch;
+  for (std::size_t v = 0; v < m; ++v)
+    if (start[v] != start[v + 1] && !singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch))
+      return false;
+  return true;
+}
+
+}  // namespace
+
+MeshStats computeMeshStats(std::span<const float> positions, std::span<const std::uint32_t> triangles) {
+  MeshStats stats;
+  stats.triangles = triangles.size() / 3;
+  measure(positions, triangles, stats);
+  EdgeCensus census = censusOfEdges(triangles);
+  countTopology(triangles, census, stats);
+  std::vector<std::uint32_t> vertices(triangles.begin(), triangles.end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  stats.vertices = static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), positions.size() / 3) - vertices.begin());
+  stats.closed = census.closed;
+  stats.oriented = census.oriented;
+  stats.manifold = census.closed && everyLinkOneFan(triangles, vertices);
   return stats;
 }
 
