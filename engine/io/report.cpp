@@ -122,35 +122,23 @@ nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, dou
   return out;
 }
 
-}  // namespace
+nlohmann::ordered_json gridJson(const Grid& g) {
+  return {{"size", {g.nx, g.ny, g.nz}},
+          {"origin", {g.originX, g.originY, g.layerZ.empty() ? 0.0 : g.layerZ.front()}},
+          {"spacing_xy", {g.spacingX, g.spacingY}},
+          {"layer_z", g.layerZ}};
+}
 
-Result<void> writeReport(const std::filesystem::path& path, const RunReport& report) {
+nlohmann::ordered_json interpolationJson(const InterpolationSummary& in) {
+  return {{"used", in.used()},
+          {"plane_layers", in.planeLayers},
+          {"surfaced_layers", in.surfacedLayers},
+          {"layers_per_gap", {in.minFactor, in.maxFactor}},
+          {"caps", in.caps == CapShape::Flat ? "flat" : "round"}};
+}
+
+nlohmann::ordered_json featuresJson(const RunReport& report) {
   using nlohmann::ordered_json;
-  ordered_json j;
-  j["format"] = "scansurf-report";
-  j["version"] = 1;
-  j["generator"] = report.generator.empty() ? std::string("scansurf ") + version() : report.generator;
-  j["input"] = report.input;
-  j["units"] = report.units;
-  ordered_json params = ordered_json::object();
-  for (const auto& parameter : report.parameters)
-    std::visit([&](const auto& v) { params[parameter.first] = v; }, parameter.second);
-  j["parameters"] = params;
-  j["device"] = {{"name", report.deviceName}, {"type", report.deviceType}, {"driver", report.driver}};
-  const Grid& g = report.grid;
-  j["grid"] = {{"size", {g.nx, g.ny, g.nz}},
-               {"origin", {g.originX, g.originY, g.layerZ.empty() ? 0.0 : g.layerZ.front()}},
-               {"spacing_xy", {g.spacingX, g.spacingY}},
-               {"layer_z", g.layerZ}};
-  j["nesting"] = {{"order", report.nestingOrder}, {"from_input", report.userOrder}};
-  j["memory"] = {{"estimated_bytes", report.estimatedMemory}, {"limit_bytes", report.memoryLimit}};
-  const InterpolationSummary& in = report.interpolation;
-  j["interpolation"] = {{"used", in.used()},
-                        {"plane_layers", in.planeLayers},
-                        {"surfaced_layers", in.surfacedLayers},
-                        {"layers_per_gap", {in.minFactor, in.maxFactor}},
-                        {"caps", in.caps == CapShape::Flat ? "flat" : "round"}};
-  j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
   ordered_json features = ordered_json::array();
   for (const ReportFeature& f : report.features) {
     const MeshStats& s = f.stats;
@@ -176,16 +164,20 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
                         {"overlaps", overlapsJson(f.overlaps)},
                         {"files", f.files}});
   }
-  j["features"] = features;
-  j["overlaps"] = {{"mode", report.overlapMode}, {"layers", report.layers}, {"mask_layers", report.maskLayers}};
+  return features;
+}
+
+nlohmann::ordered_json overlapsSectionJson(const RunReport& report) {
+  using nlohmann::ordered_json;
+  ordered_json j = {{"mode", report.overlapMode}, {"layers", report.layers}, {"mask_layers", report.maskLayers}};
   ordered_json losses = ordered_json::array();
   for (const RunReport::Loss& l : report.losses)
     losses.push_back({{"feature", l.feature}, {"to", l.to}, {"volume", l.volume}, {"percent_of_contour_volume", l.percentOfContour},
                       {"nested", l.nested}});
-  j["overlaps"]["losses"] = losses;
+  j["losses"] = losses;
   const OverlapTolerance& t = report.overlapTolerance;
-  j["overlaps"]["tolerance"] = {{"enabled", t.enabled}, {"depth", report.overlapDepthLimit}, {"depth_automatic", t.depth <= 0},
-                                {"percent_of_smaller", t.percent}};
+  j["tolerance"] = {{"enabled", t.enabled}, {"depth", report.overlapDepthLimit}, {"depth_automatic", t.depth <= 0},
+                    {"percent_of_smaller", t.percent}};
   ordered_json pairs = ordered_json::array();
   for (const RunReport::Overlap& o : report.partialOverlaps)
     pairs.push_back({{"a", o.a},
@@ -196,19 +188,48 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
                      {"verdict", o.incidental ? "incidental" : "real"},
                      {"given_up", {{"a", o.givenUpByA}, {"b", o.givenUpByB}}},
                      {"given_up_percent_of_contour_volume", {{"a", o.givenUpPercentA}, {"b", o.givenUpPercentB}}}});
-  j["overlaps"]["partial"] = pairs;
-  if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
-  ordered_json timings = ordered_json::array();
-  double total = 0;
+  j["partial"] = pairs;
+  return j;
+}
+
+nlohmann::ordered_json timingsJson(const RunReport& report, double& total) {
+  nlohmann::ordered_json timings = nlohmann::ordered_json::array();
+  total = 0;
   for (const auto& [stage, seconds] : report.timings) {
     timings.push_back({{"stage", stage}, {"seconds", seconds}});
     total += seconds;
   }
-  j["timings"] = timings;
+  return timings;
+}
+
+}  // namespace
+
+Result<void> writeReport(const std::filesystem::path& path, const RunReport& report) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["format"] = "scansurf-report";
+  j["version"] = 1;
+  j["generator"] = report.generator.empty() ? std::string("scansurf ") + version() : report.generator;
+  j["input"] = report.input;
+  j["units"] = report.units;
+  ordered_json params = ordered_json::object();
+  for (const auto& parameter : report.parameters)
+    std::visit([&](const auto& v) { params[parameter.first] = v; }, parameter.second);
+  j["parameters"] = params;
+  j["device"] = {{"name", report.deviceName}, {"type", report.deviceType}, {"driver", report.driver}};
+  j["grid"] = gridJson(report.grid);
+  j["nesting"] = {{"order", report.nestingOrder}, {"from_input", report.userOrder}};
+  j["memory"] = {{"estimated_bytes", report.estimatedMemory}, {"limit_bytes", report.memoryLimit}};
+  j["interpolation"] = interpolationJson(report.interpolation);
+  j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
+  j["features"] = featuresJson(report);
+  j["overlaps"] = overlapsSectionJson(report);
+  if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
+  double total = 0;
+  j["timings"] = timingsJson(report, total);
   j["total_seconds"] = total;
   j["warnings"] = report.warnings;
   j["outputs"] = report.outputs;
-
   // Names are bytes from the input (an ROI name may be Latin-1): invalid UTF-8 is replaced.
   const std::string text = j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
   return writeFileAtomically(path, text.data(), text.size());
