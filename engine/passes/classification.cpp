@@ -189,6 +189,26 @@ Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& vo
   return classify(source);
 }
 
+void Classifier::recordSlab(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter,
+                            int first, int layers, std::size_t capacity, std::uint32_t labelOffset) const {
+  const Grid& grid = source.grid;
+  fillSlab(cmd, source, labels, first, layers);
+  vkCmdFillBuffer(cmd, counter.handle(), 0, 8, 0);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->pipeline.get());
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
+  const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
+                                  static_cast<std::uint32_t>(layers),  static_cast<std::uint32_t>(first),
+                                  static_cast<std::uint32_t>(capacity), source.bits, labelOffset,
+                                  source.upperIsData ? 1u : 0u};
+  vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+  vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
+                (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
+
 Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& grid = source.grid;
@@ -222,22 +242,7 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     }
     const std::uint32_t labelOffset = inPlace ? bindSlabInPlace(ctx, state_->set, source, first, layers) : 0;
     SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
-    VkCommandBuffer cmd = commands.cmd();
-    fillSlab(cmd, source, labels, first, layers);
-    vkCmdFillBuffer(cmd, counter.handle(), 0, 8, 0);
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
-    const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
-                                    static_cast<std::uint32_t>(layers),  static_cast<std::uint32_t>(first),
-                                    static_cast<std::uint32_t>(capacity), source.bits, labelOffset,
-                                    source.upperIsData ? 1u : 0u};
-    vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
-                  (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));
-    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    recordSlab(commands.cmd(), source, labels, counter, first, layers, capacity, labelOffset);
     SCANSURF_TRY(commands.submitAndWait());
     SCANSURF_TRY(counter.invalidate());
     std::uint32_t counts[2] = {0, 0};

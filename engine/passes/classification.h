@@ -12,6 +12,10 @@
 #include "scansurf/label_volume.h"
 #include "scansurf/vulkan_interop.h"
 
+namespace scansurf::gpu {
+class Buffer;
+}  // namespace scansurf::gpu
+
 namespace scansurf::passes {
 
 class Classifier {
@@ -40,6 +44,9 @@ class Classifier {
 
  private:
   Result<std::vector<CellCase>> classify(const Source& source);
+  // Records one slab's pass: its labels into place, the counter cleared, the dispatch.
+  void recordSlab(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter, int first,
+                  int layers, std::size_t capacity, std::uint32_t labelOffset) const;
   Result<Source> deviceSource(const DeviceLabelVolume& volume) const;
   explicit Classifier(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
