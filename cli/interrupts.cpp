@@ -12,8 +12,8 @@
 namespace scansurf::cli {
 namespace {
 
-std::mutex gMutex;                     // held while a commit moves files
-OutputStaging* gStaging = nullptr;     // the run's staged outputs, if any
+std::mutex gMutex;                  // held while a commit moves files
+OutputStaging* gStaging = nullptr;  // the run's staged outputs, if any
 
 sigset_t interruptSignals() {
   sigset_t set;

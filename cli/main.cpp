@@ -33,15 +33,20 @@ int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 // its own words; a command-line user reads the flag that set it.
 std::string inFlags(std::string message) {
   static constexpr std::pair<const char*, const char*> kFlags[] = {
-      {"option remeshing.edgeLength ", "option --edge-length "}, {"option smoothing.strength ", "option --smooth-strength "},
-      {"option smoothing.iterations ", "option --smooth-iterations "}, {"option threads ", "option --threads "},
+      {"option remeshing.edgeLength ", "option --edge-length "},
+      {"option smoothing.strength ", "option --smooth-strength "},
+      {"option smoothing.iterations ", "option --smooth-iterations "},
+      {"option threads ", "option --threads "},
       {"option interpolation.factor ", "option --interpolate "}};
   for (const auto& [field, flag] : kFlags)
     if (message.rfind(field, 0) == 0) return flag + message.substr(std::char_traits<char>::length(field));
   static constexpr std::pair<const char*, const char*> kPhrases[] = {
-      {"the ROI pattern \"", "--roi \""},          {"the object pattern \"", "--object \""},
-      {"with an ROI pattern", "with --roi"},        {"with an object pattern", "with --object"},
-      {"turn interpolation off", "use --interpolate off"}, {"(a reference series)", "(--reference CT_DIR)"},
+      {"the ROI pattern \"", "--roi \""},
+      {"the object pattern \"", "--object \""},
+      {"with an ROI pattern", "with --roi"},
+      {"with an object pattern", "with --object"},
+      {"turn interpolation off", "use --interpolate off"},
+      {"(a reference series)", "(--reference CT_DIR)"},
       {"(the reference is the folder of a CT series)", "(--reference takes the folder of a CT series)"}};
   for (const auto& [phrase, flag] : kPhrases)
     if (const auto at = message.find(phrase); at != std::string::npos)
@@ -59,9 +64,12 @@ int fail(const Error& error) {
 // overwrite the contours with the report).
 Result<void> refuseInputAsOutput(const OutputPlan& plan, const cli::CliOptions& o) {
   std::error_code ec;
-  const std::pair<const char*, fs::path> targets[] = {{"-o", plan.glbFile},        {"-o", plan.dir},
-                                                      {"--report", plan.report},   {"--preview", plan.preview},
-                                                      {"--label-volume", plan.labelVolume}, {"--dicom-seg", plan.dicomSeg}};
+  const std::pair<const char*, fs::path> targets[] = {{"-o", plan.glbFile},
+                                                      {"-o", plan.dir},
+                                                      {"--report", plan.report},
+                                                      {"--preview", plan.preview},
+                                                      {"--label-volume", plan.labelVolume},
+                                                      {"--dicom-seg", plan.dicomSeg}};
   for (const auto& [option, target] : targets)
     if (!target.empty() && fs::exists(target, ec) && fs::equivalent(target, o.input, ec))
       return makeError(Errc::InvalidArgument,
@@ -75,7 +83,8 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
   OutputPlan plan;
   const std::string ext = fs::path(o.output).extension().string();
   if (ext == ".glb" || ext == ".GLB") {
-    if (!o.formats.empty()) return makeError(Errc::InvalidArgument, "--format needs an output directory, not the file " + o.output);
+    if (!o.formats.empty())
+      return makeError(Errc::InvalidArgument, "--format needs an output directory, not the file " + o.output);
     plan.glbFile = o.output;
   } else {
     plan.dir = o.output;
@@ -181,7 +190,8 @@ int run(const cli::CliOptions& o) {
     auto listed = cli::printObjectList(o.input, o.read.objectPatterns);
     return listed ? 0 : fail(listed.error());
   }
-  if (o.output.empty()) return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois, --list-objects or --list-overlaps)"});
+  if (o.output.empty())
+    return fail({Errc::InvalidArgument, "-o/--output is required (or use --list-rois, --list-objects or --list-overlaps)"});
   // Every output is checked before the work, so a typo does not cost a whole run.
   auto plan = planOutputs(o);
   if (!plan) return fail(plan.error());
@@ -211,7 +221,8 @@ int run(const cli::CliOptions& o) {
   // Each feature's statistics, once, for the report and the summary (when either is wanted).
   std::vector<MeshStats> stats;
   if (!o.quiet || !o.report.empty())
-    for (const FeatureSurface& f : result.surfaces.features) stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
+    for (const FeatureSurface& f : result.surfaces.features)
+      stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
 
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
@@ -228,9 +239,9 @@ int run(const cli::CliOptions& o) {
     std::vector<fs::path> outputs = staging.targets();
     outputs.push_back(o.report);
     const RunReport report = makeReport(*contours, result, built->engine.device(),
-                                        {o.input, cli::reportParameters(o, result), laps.timings, files->files, outputs},
-                                        stats);
-    if (auto ok = staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); }); !ok) return fail(ok.error());
+                                        {o.input, cli::reportParameters(o, result), laps.timings, files->files, outputs}, stats);
+    if (auto ok = staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); }); !ok)
+      return fail(ok.error());
   }
   // With --validation, a validation message means the device's results are suspect: write nothing.
   if (const auto messages = built->engine.validationMessageCount(); messages > 0)
@@ -241,7 +252,8 @@ int run(const cli::CliOptions& o) {
 
   std::fflush(stdout);  // warnings after what was already printed
   for (const std::string& w : result.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", cli::printable(w).c_str());
-  if (!o.quiet) cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
+  if (!o.quiet)
+    cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
   return 0;
 }
 

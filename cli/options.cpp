@@ -52,8 +52,10 @@ std::optional<std::uint64_t> parseMemorySize(const std::string& text) {
     if (unit.size() > std::strlen(suffix) && unit.ends_with(suffix)) unit.resize(unit.size() - std::strlen(suffix));
   const std::string units = "KMGT";
   double scale = 1;
-  if (unit.size() == 1 && units.find(unit[0]) != std::string::npos) scale = std::ldexp(1.0, 10 * (1 + static_cast<int>(units.find(unit[0]))));
-  else if (!unit.empty() && unit != "B") return std::nullopt;
+  if (unit.size() == 1 && units.find(unit[0]) != std::string::npos)
+    scale = std::ldexp(1.0, 10 * (1 + static_cast<int>(units.find(unit[0]))));
+  else if (!unit.empty() && unit != "B")
+    return std::nullopt;
   const double bytes = number * scale;
   if (bytes < 1 || bytes > std::ldexp(1.0, 60)) return std::nullopt;
   return static_cast<std::uint64_t>(bytes);
@@ -100,12 +102,14 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                  "(.ser or one of its section files), IMOD model (.mod)")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option("-o,--output", o.output,
-                 "output directory (created if missing) or NAME.glb; required unless --list-rois, --list-objects or --list-overlaps");
-  auto* voxel = app.add_option("--voxel-size", o.build.grid.voxelSize,
-                               "in-plane pixel size, input units (default: the reference CT's with --reference, else 256 pixels along "
-                               "the longer side of every structure in the file, selected or not)")
-                    ->check(numberIn(0, 1e9, true, "a positive, finite number"));
+  app.add_option(
+      "-o,--output", o.output,
+      "output directory (created if missing) or NAME.glb; required unless --list-rois, --list-objects or --list-overlaps");
+  auto* voxel =
+      app.add_option("--voxel-size", o.build.grid.voxelSize,
+                     "in-plane pixel size, input units (default: the reference CT's with --reference, else 256 pixels along "
+                     "the longer side of every structure in the file, selected or not)")
+          ->check(numberIn(0, 1e9, true, "a positive, finite number"));
   app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border")
       ->expected(2)
       ->check(CLI::Range(3, 1 << 20))
@@ -136,13 +140,16 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                "list the pairs of structures that share voxels (shared volume, depth, verdict) without surfacing, and exit");
   app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
-  app.add_option("--threads", o.build.threads, "CPU threads for assembly and smoothing (default and at most: the machine's cores)")
+  app.add_option("--threads", o.build.threads,
+                 "CPU threads for assembly and smoothing (default and at most: the machine's cores)")
       ->check(CLI::Range(0, 1024));
   app.add_option("--max-memory", f.maxMemory,
                  "host memory the run may use, e.g. 8G or 512M (default: what the machine has available); a run that "
                  "would need more is refused before it starts (exit 9)")
       ->check(CLI::Validator(
-          [](std::string& text) { return parseMemorySize(text) ? std::string() : "'" + text + "' is not a memory size such as 8G or 512M"; },
+          [](std::string& text) {
+            return parseMemorySize(text) ? std::string() : "'" + text + "' is not a memory size such as 8G or 512M";
+          },
           "SIZE"));
   app.add_flag("-q,--quiet", o.quiet, "print errors and warnings only");
   app.add_flag("--json-progress", o.jsonProgress, "progress as JSON lines on stderr, for scripts");
@@ -151,7 +158,9 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
 void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
   SmoothingOptions& s = o.build.smoothing;
   app.add_flag("--no-smooth", f.noSmooth, "write the raw (staircase) separating surfaces, without smoothing");
-  app.add_option("--smooth-iterations", s.iterations, "how much to smooth, in plain relaxation sweeps (run as fewer super-steps)")->check(CLI::Range(1, 100000))->capture_default_str();
+  app.add_option("--smooth-iterations", s.iterations, "how much to smooth, in plain relaxation sweeps (run as fewer super-steps)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   app.add_option("--smooth-strength", s.strength, "step of each smoothing sweep, in (0, 1]")
       ->check(numberIn(0, 1, true, "a number in (0, 1]"))
       ->capture_default_str();
@@ -175,7 +184,9 @@ void addInterpolation(CLI::App& app, Flags& f) {
                  "gaps of 3 pixels or more, the volume kept under 96 M voxels), off, or N (N-1 layers in every gap, "
                  "N up to 16)")
       ->check(CLI::Validator(
-          [](std::string& text) { return parseInterpolation(text) ? std::string() : "'" + text + "' is not auto, off or 1 to 16"; },
+          [](std::string& text) {
+            return parseInterpolation(text) ? std::string() : "'" + text + "' is not auto, off or 1 to 16";
+          },
           "auto|off|N"))
       ->capture_default_str();
   app.add_option("--caps", f.caps,
@@ -199,7 +210,8 @@ void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
 }
 
 void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
-  app.add_option("--roi", o.read.roiPatterns, "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
+  app.add_option("--roi", o.read.roiPatterns,
+                 "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
       ->expected(1)
       ->take_all();
   app.add_flag("--list-rois", o.listRois, "RTSTRUCT: list the file's ROIs and exit");
@@ -208,12 +220,14 @@ void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
 
 void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
   DracoOptions& draco = o.scene.dracoOptions;
-  app.add_option("--format", o.formats, "per-feature formats in OUTDIR: ply (default, with multilabel.ply), drc, obj, stl, "
-                                        "glb (one scene OUTDIR/<input name>.glb); comma-separated")
+  app.add_option("--format", o.formats,
+                 "per-feature formats in OUTDIR: ply (default, with multilabel.ply), drc, obj, stl, "
+                 "glb (one scene OUTDIR/<input name>.glb); comma-separated")
       ->delimiter(',');
   app.add_flag("--no-draco", f.noDraco, "GLB without KHR_draco_mesh_compression (plain float accessors)");
-  app.add_option("--gltf-frame", f.gltfFrame, "GLB coordinates: gltf (a root node turns patient LPS into glTF's y-up "
-                                              "metres) or patient (raw input coordinates)")
+  app.add_option("--gltf-frame", f.gltfFrame,
+                 "GLB coordinates: gltf (a root node turns patient LPS into glTF's y-up "
+                 "metres) or patient (raw input coordinates)")
       ->check(CLI::IsMember({"gltf", "patient"}))
       ->capture_default_str();
   app.add_option("--draco-bits", draco.quantizationBits, "Draco position quantization bits (default: error below 1/25 voxel)")
@@ -312,14 +326,14 @@ std::vector<std::pair<std::string, ReportValue>> reportParameters(const CliOptio
           {"voxel_size_y", grid.spacingY},
           {"grid_nx", integer(grid.nx)},
           {"grid_ny", integer(grid.ny)},
-          {"grid_source", b.grid.voxelSize > 0                ? "voxel size"
-                          : b.grid.nx > 0                       ? "pixel counts"
-                          : !o.read.referenceSeries.empty()     ? "reference CT"
-                                                                : "default (256 pixels along the longer side)"},
+          {"grid_source", b.grid.voxelSize > 0              ? "voxel size"
+                          : b.grid.nx > 0                   ? "pixel counts"
+                          : !o.read.referenceSeries.empty() ? "reference CT"
+                                                            : "default (256 pixels along the longer side)"},
           {"threads", integer(built.threads)},
           {"interpolation", b.interpolation.factor == InterpolationOptions::kAuto ? std::string("auto")
-                            : b.interpolation.factor == 1                           ? std::string("off")
-                                                                                    : std::to_string(b.interpolation.factor)},
+                            : b.interpolation.factor == 1                         ? std::string("off")
+                                                                                  : std::to_string(b.interpolation.factor)},
           {"layers_per_gap_min", integer(built.interpolation.minFactor)},
           {"layers_per_gap_max", integer(built.interpolation.maxFactor)},
           {"caps", b.interpolation.caps == CapShape::Flat ? "flat" : "round"},

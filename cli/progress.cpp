@@ -21,9 +21,7 @@ Progress::Progress(ProgressMode mode, std::FILE* out) : mode_(mode), out_(out), 
 
 Progress::~Progress() { clearLine(); }
 
-double Progress::elapsed() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
+double Progress::elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
 void Progress::clearLine() {
   if (lineShown_) std::fputs("\r\033[K", out_), std::fflush(out_);

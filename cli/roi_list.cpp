@@ -40,8 +40,8 @@ Result<void> printRoiList(const std::string& path, const std::vector<std::string
     if (contours.empty()) contours = "none";
     const std::string range = total > 0 ? formatZ(roi.zMin) + " .. " + formatZ(roi.zMax) : "-";
     std::printf("  %6d  %-24s %-12s %-28s %6d  %-20s %s\n", roi.number, printable(roi.name).c_str(),
-                roi.interpretedType.empty() ? std::string("-").c_str() : printable(roi.interpretedType).c_str(), contours.c_str(), roi.slices, range.c_str(),
-                roi.selected ? (roi.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
+                roi.interpretedType.empty() ? std::string("-").c_str() : printable(roi.interpretedType).c_str(), contours.c_str(),
+                roi.slices, range.c_str(), roi.selected ? (roi.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
   }
   return {};
 }
@@ -55,13 +55,13 @@ Result<void> printObjectList(const std::string& path, const std::vector<std::str
   SCANSURF_ASSIGN_OR_RETURN(const ObjectListing listing, listObjects(path, objectPatterns));
   for (const std::string& w : listing.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", printable(w).c_str());
   const char* planes = listing.format == InputFormat::ReconstructSeries ? "sections" : "slices";
-  std::printf("%s: %s, %zu objects (x, y, z in %s)\n", path.c_str(), printable(listing.description).c_str(), listing.objects.size(),
-              printable(listing.units).c_str());
+  std::printf("%s: %s, %zu objects (x, y, z in %s)\n", path.c_str(), printable(listing.description).c_str(),
+              listing.objects.size(), printable(listing.units).c_str());
   std::printf("  %6s  %-24s %9s %9s %9s  %-20s %s\n", "number", "name", "contours", "skipped", planes, "z range", "selected");
   for (const ObjectInfo& object : listing.objects) {
     const std::string range = object.slices > 0 ? formatZ(object.zMin) + " .. " + formatZ(object.zMax) : "-";
-    std::printf("  %6d  %-24s %9d %9d %9d  %-20s %s\n", object.number, printable(object.name).c_str(), object.contours, object.skipped,
-                object.slices, range.c_str(),
+    std::printf("  %6d  %-24s %9d %9d %9d  %-20s %s\n", object.number, printable(object.name).c_str(), object.contours,
+                object.skipped, object.slices, range.c_str(),
                 object.selected ? (object.feature >= 0 ? "yes" : "yes (nothing to surface)") : "no");
   }
   return {};

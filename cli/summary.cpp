@@ -54,9 +54,11 @@ double percentOfSmaller(const OverlapReport& report, const SharedVolume& s) {
 
 // "0.09 % of rectum": the shared volume against the smaller structure's own volume.
 std::string shareOfSmaller(const OverlapReport& report, const SharedVolume& s, const std::vector<std::string>& names) {
-  const bool aSmaller = report.features[static_cast<std::size_t>(s.a)].ownVolume <= report.features[static_cast<std::size_t>(s.b)].ownVolume;
+  const bool aSmaller =
+      report.features[static_cast<std::size_t>(s.a)].ownVolume <= report.features[static_cast<std::size_t>(s.b)].ownVolume;
   char text[160];
-  std::snprintf(text, sizeof text, "%.2f %% of %s", percentOfSmaller(report, s), names[static_cast<std::size_t>(aSmaller ? s.a : s.b)].c_str());
+  std::snprintf(text, sizeof text, "%.2f %% of %s", percentOfSmaller(report, s),
+                names[static_cast<std::size_t>(aSmaller ? s.a : s.b)].c_str());
   return text;
 }
 
@@ -77,21 +79,22 @@ void printOverlaps(const ContourSet& set, const OverlapReport& report) {
   for (const SharedVolume& s : report.partialOverlaps()) {
     const std::string share = shareOfSmaller(report, s, names);
     if (s.incidental && report.mode == OverlapMode::Layers)
-      std::printf("overlap: %s and %s share %s %s3 (%s, at most %s %s deep): incidental, split between them (%s gave up %s "
-                  "%s3, %s %s %s3)\n",
-                  name(s.a), name(s.b), formatVolume(s.volume).c_str(), units, share.c_str(), formatVolume(s.depth).c_str(),
-                  units, name(s.a), formatVolume(s.givenUpByA).c_str(), units, name(s.b), formatVolume(s.givenUpByB).c_str(),
-                  units);
+      std::printf(
+          "overlap: %s and %s share %s %s3 (%s, at most %s %s deep): incidental, split between them (%s gave up %s "
+          "%s3, %s %s %s3)\n",
+          name(s.a), name(s.b), formatVolume(s.volume).c_str(), units, share.c_str(), formatVolume(s.depth).c_str(), units,
+          name(s.a), formatVolume(s.givenUpByA).c_str(), units, name(s.b), formatVolume(s.givenUpByB).c_str(), units);
     else
       std::printf("overlap: %s and %s share %s %s3 (%s): %s\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
-                  share.c_str(), report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
+                  share.c_str(),
+                  report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
   }
   for (const VolumeLoss& l : report.losses) {
     if (l.nested) continue;  // a container's shell around what it holds: the convention, not a loss
     const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
     std::printf("partition: %s lost %s %s3 (%.2f %% of its contour volume) to %s\n", name(l.feature),
-                formatVolume(l.volume).c_str(), units,
-                contour > 0 ? 100.0 * l.volume / contour : 0.0, l.to >= 0 ? name(l.to) : "background");
+                formatVolume(l.volume).c_str(), units, contour > 0 ? 100.0 * l.volume / contour : 0.0,
+                l.to >= 0 ? name(l.to) : "background");
   }
 }
 
@@ -101,10 +104,11 @@ void printOverlapList(const ContourSet& set, const OverlapReport& report, double
   const std::vector<std::string> names = printableNames(set);
   const std::string units = printable(set.units);
   if (report.tolerance.enabled)
-    std::printf("%s: %zu features; a partial overlap is incidental when every shared voxel lies within %s %s of the nearer "
-                "outline and it is at most %s %% of the smaller feature\n",
-                printable(set.source).c_str(), set.features.size(), formatVolume(depthLimit).c_str(), units.c_str(),
-                formatVolume(report.tolerance.percent).c_str());
+    std::printf(
+        "%s: %zu features; a partial overlap is incidental when every shared voxel lies within %s %s of the nearer "
+        "outline and it is at most %s %% of the smaller feature\n",
+        printable(set.source).c_str(), set.features.size(), formatVolume(depthLimit).c_str(), units.c_str(),
+        formatVolume(report.tolerance.percent).c_str());
   else
     std::printf("%s: %zu features; overlap tolerance off: every partial overlap is real\n", printable(set.source).c_str(),
                 set.features.size());
@@ -148,11 +152,12 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   }
   printOverlaps(set, built.overlaps);
   if (const RemeshReport& r = built.surfaces.remeshing; r.ran)
-    std::printf("remeshing (edge length %g %s): %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> "
-                "%.1f, mean %.1f -> %.1f; at most %.3g %s from the smoothed surface%s\n",
-                r.edgeLength, printable(set.units).c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min,
-                r.anglesAfter.min, r.anglesBefore.p5, r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance,
-                printable(set.units).c_str(), slabsNote(r).c_str());
+    std::printf(
+        "remeshing (edge length %g %s): %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> "
+        "%.1f, mean %.1f -> %.1f; at most %.3g %s from the smoothed surface%s\n",
+        r.edgeLength, printable(set.units).c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min, r.anglesAfter.min,
+        r.anglesBefore.p5, r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance, printable(set.units).c_str(),
+        slabsNote(r).c_str());
   double total = 0;
   std::printf("time:");
   for (const StageTime& t : facts.timings) {

@@ -17,8 +17,8 @@
 #include "geometry/footprint.h"
 #include "geometry/interpolated_volume.h"
 #include "geometry/overlap_split.h"
-#include "geometry/own_slabs.h"
 #include "geometry/overlaps.h"
+#include "geometry/own_slabs.h"
 #include "geometry/remesh.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
@@ -29,9 +29,9 @@
 #include "passes/interpolation.h"
 #include "passes/preview.h"
 #include "passes/scan_conversion.h"
+#include "run_checks.h"
 #include "scansurf/input.h"
 #include "scansurf/vulkan_interop.h"
-#include "run_checks.h"
 #include "surface_layers.h"
 
 namespace scansurf {
@@ -93,7 +93,8 @@ class StageClock {
 };
 
 Result<void> checkNesting(const Nesting& nesting) {
-  if (nesting.parent.empty()) return makeError(Errc::InvalidArgument, "extract: the nesting names no feature (Nesting::parent is empty)");
+  if (nesting.parent.empty())
+    return makeError(Errc::InvalidArgument, "extract: the nesting names no feature (Nesting::parent is empty)");
   if (nesting.parent.size() > static_cast<std::size_t>(kMaxFeatures))
     return makeError(Errc::InvalidArgument, "extract: more than " + std::to_string(kMaxFeatures) + " features");
   return {};
@@ -113,8 +114,7 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {
-    surfaces.remeshing =
-        remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.threads);
+    surfaces.remeshing = remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.threads);
     clock.lap("remeshing");
   }
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
@@ -148,8 +148,8 @@ Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const
 Result<std::vector<CellCase>> classifyOwnBuffer(EngineState& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
                                                 bool upperIsData, StageClock& clock) {
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
-  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
-                            classifier->runInPlace(DeviceLabelVolume{buffer.handle(), 0, bits, grid}, buffer.size(), upperIsData));
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->runInPlace(DeviceLabelVolume{buffer.handle(), 0, bits, grid},
+                                                                                buffer.size(), upperIsData));
   buffer = gpu::Buffer{};
   clock.lap("classification");
   return cells;
@@ -177,9 +177,10 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
       contours ? planeEdgeCrossings(planes, *contours, options.threads, medial)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer words, gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,
-                                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                                   gpu::MemoryDomain::Device));
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Buffer words,
+      gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Device));
   SCANSURF_ASSIGN_OR_RETURN(InterpolatedVolume fine,
                             interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads,
                                               {device ? &device->buffer : nullptr, &words}));
@@ -212,8 +213,8 @@ Result<Surfaces> surfacesOfPlanes(EngineState& impl, const LabelVolume& planes,
 // come to the host too when `toHost` or when interpolating (the edge crossings of the planes
 // are a CPU stage). `planes` always gets the grid.
 Result<passes::ScanConverter::DeviceLabels> scanPlanes(passes::ScanConverter& scanner, const ContourSet& contours,
-                                                       const Grid& grid, const std::vector<int>& order,
-                                                       bool interpolating, bool toHost, LabelVolume& planes) {
+                                                       const Grid& grid, const std::vector<int>& order, bool interpolating,
+                                                       bool toHost, LabelVolume& planes) {
   planes.grid = grid;
   return scanner.runOnDevice(contours, grid, order, toHost || interpolating ? &planes : nullptr);
 }
@@ -240,8 +241,8 @@ Result<void> patchDeviceLabels(const gpu::Context& ctx, const gpu::Buffer& label
 // Scan conversion of one layer with the medial split of its incidental overlaps written in
 // (overlap_split.h), on the device and in the host copy when there is one.
 Result<passes::ScanConverter::DeviceLabels> scanAndSplit(EngineState& impl, const ContourSet& contours, const Grid& wholeGrid,
-                                                         const Grid& grid, const std::vector<int>& order,
-                                                         bool interpolating, bool toHost, const std::vector<LabelOverride>& split,
+                                                         const Grid& grid, const std::vector<int>& order, bool interpolating,
+                                                         bool toHost, const std::vector<LabelOverride>& split,
                                                          LabelVolume& planes) {
   SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
   SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, order, interpolating, toHost, planes));
@@ -278,12 +279,12 @@ Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Gr
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     const std::vector<int> subFactors = factorsOf(sub, grid, factors);
     LabelVolume volume;
-    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(impl, subset, grid, sub, out.nesting.order,
-                                                        interpolates(subFactors), layer == 0 && options.keepLabelVolume,
-                                                        split[static_cast<std::size_t>(layer)], volume));
+    SCANSURF_ASSIGN_OR_RETURN(
+        auto device, scanAndSplit(impl, subset, grid, sub, out.nesting.order, interpolates(subFactors),
+                                  layer == 0 && options.keepLabelVolume, split[static_cast<std::size_t>(layer)], volume));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, std::move(device), &subset, out.nesting,
-                                                                  options, subFactors, clock, &medial));
+    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, std::move(device), &subset, out.nesting, options,
+                                                                  subFactors, clock, &medial));
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -315,8 +316,10 @@ void mergeStageTimes(std::vector<StageTime>& timings) {
   std::vector<StageTime> merged;
   for (const StageTime& t : timings) {
     auto it = std::find_if(merged.begin(), merged.end(), [&](const StageTime& m) { return m.stage == t.stage; });
-    if (it == merged.end()) merged.push_back(t);
-    else it->seconds += t.seconds;
+    if (it == merged.end())
+      merged.push_back(t);
+    else
+      it->seconds += t.seconds;
   }
   timings = std::move(merged);
 }
@@ -334,7 +337,6 @@ Result<Surfaces> extractFrom(const Grid& grid, const Nesting& nesting, const Bui
 }
 
 const std::vector<LabelOverride> kNoSplit;
-
 
 // The overlap analysis with its verdicts; in Layers mode also the medial split of the
 // incidental pairs (per surface layer) and what each side gave up. Partition mode keeps one layer.
@@ -425,9 +427,8 @@ Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesti
 
 Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
-    return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock);
-  });
+  return extractFrom(volume.grid, nesting, options,
+                     [&](StageClock& clock) { return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock); });
 }
 
 Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const PreviewOptions& options) {
@@ -464,14 +465,13 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     std::vector<std::vector<LabelOverride>> split;
     out.overlaps = overlapAnalysis(contours, grid, out.nesting, regions, options, split);
     // The partition mode gives shared voxels by priority: its interfaces stay as they were.
-    const MedialCrossings medial = options.overlaps == OverlapMode::Layers ? MedialCrossings(contours, grid, out.overlaps)
-                                                                           : MedialCrossings();
+    const MedialCrossings medial =
+        options.overlaps == OverlapMode::Layers ? MedialCrossings(contours, grid, out.overlaps) : MedialCrossings();
     clock.lap("overlap analysis");
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
-      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order,
-                                                          interpolates(factors), toHost, split.empty() ? kNoSplit : split[0],
-                                                          out.volume));
+      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order, interpolates(factors),
+                                                          toHost, split.empty() ? kNoSplit : split[0], out.volume));
       clock.lap("scan conversion");
       SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, std::move(device), &contours, out.nesting,
                                                                options, factors, clock, &medial));
@@ -499,8 +499,7 @@ Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, c
     const ContourSet& contours = filled ? *filled : input;
     const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
-    const std::vector<FeatureRegion> regions =
-        rasterizeFeatures(contours, grid, scanner->subPixelBits(), options.threads);
+    const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, scanner->subPixelBits(), options.threads);
     std::vector<std::vector<LabelOverride>> split;
     return overlapAnalysis(contours, grid, nesting, regions, options, split);
   });

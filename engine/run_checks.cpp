@@ -21,8 +21,8 @@ Result<void> checkOverlapTolerance(const OverlapTolerance& t) {
     return makeError(Errc::InvalidArgument, "overlap tolerance: the depth must be a finite length, 0 (automatic) or more (got " +
                                                 std::to_string(t.depth) + ")");
   if (!std::isfinite(t.percent) || t.percent < 0 || t.percent > 100)
-    return makeError(Errc::InvalidArgument, "overlap tolerance: the percentage must lie in [0, 100] (got " +
-                                                std::to_string(t.percent) + ")");
+    return makeError(Errc::InvalidArgument,
+                     "overlap tolerance: the percentage must lie in [0, 100] (got " + std::to_string(t.percent) + ")");
   return {};
 }
 
@@ -68,7 +68,8 @@ Result<void> checkOptions(const BuildOptions& o) {
     return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
   if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);
   const double tol = o.grid.sliceTolerance;
-  if (!(std::isfinite(tol) && tol >= 0)) return badOption("grid.sliceTolerance", "0 (the contours' own) or a positive length", tol);
+  if (!(std::isfinite(tol) && tol >= 0))
+    return badOption("grid.sliceTolerance", "0 (the contours' own) or a positive length", tol);
   return checkOverlapTolerance(o.overlapTolerance);
 }
 
@@ -77,8 +78,8 @@ Result<void> checkOptions(const BuildOptions& o) {
 // the kernel's OOM killer.
 Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, int surfacedLayers, const BuildOptions& options,
                                const DeviceInfo& device, BuildResult& out) {
-  const Footprint need = estimateFootprint(contours, grid, surfacedLayers,
-                                           options.remeshing.enabled ? options.remeshing.edgeLength : 0);
+  const Footprint need =
+      estimateFootprint(contours, grid, surfacedLayers, options.remeshing.enabled ? options.remeshing.edgeLength : 0);
   HostMemory limit{options.memoryLimit, "the limit asked for"};
   if (limit.bytes == 0) limit = availableHostMemory();
   out.estimatedMemory = need.hostBytes;
@@ -91,7 +92,8 @@ Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, int
                                               formatBytes(limit.bytes) + " may be used: " + limit.source);
   if (device.deviceMemory > 0 && need.deviceBytes > device.deviceMemory)
     return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.deviceBytes) +
-                                              " of device memory for one layer; the device has " + formatBytes(device.deviceMemory));
+                                              " of device memory for one layer; the device has " +
+                                              formatBytes(device.deviceMemory));
   return {};
 }
 

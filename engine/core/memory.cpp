@@ -78,7 +78,11 @@ std::string formatBytes(std::uint64_t bytes) {
   int unit = 0;
   while (value >= 1024 && unit < 6) value /= 1024, ++unit;
   char text[32];
-  std::snprintf(text, sizeof text, unit == 0 || value >= 100 ? "%.0f %s" : value >= 10 ? "%.1f %s" : "%.2f %s", value, kUnits[unit]);
+  std::snprintf(text, sizeof text,
+                unit == 0 || value >= 100 ? "%.0f %s"
+                : value >= 10             ? "%.1f %s"
+                                          : "%.2f %s",
+                value, kUnits[unit]);
   return text;
 }
 

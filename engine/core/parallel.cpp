@@ -25,8 +25,7 @@ int chunkCount(std::size_t count, int threads) {
   return static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(count, static_cast<std::size_t>(threads))));
 }
 
-void parallelChunks(std::size_t count, int threads,
-                    const std::function<void(int, std::size_t, std::size_t)>& body) {
+void parallelChunks(std::size_t count, int threads, const std::function<void(int, std::size_t, std::size_t)>& body) {
   const int chunks = chunkCount(count, threads);
   auto bounds = [&](int c) { return count * static_cast<std::size_t>(c) / static_cast<std::size_t>(chunks); };
   if (chunks == 1) {

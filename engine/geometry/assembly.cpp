@@ -74,8 +74,7 @@ void addOriented(std::vector<LocalTriangle>& out, Vec3i a, Vec3i b, Vec3i c, int
   const Vec3i n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
   const Vec3i pf = cornerPosition(from);
   const Vec3i pt = cornerPosition(to);
-  const long long side = static_cast<long long>(n[0]) * (pt[0] - pf[0]) +
-                         static_cast<long long>(n[1]) * (pt[1] - pf[1]) +
+  const long long side = static_cast<long long>(n[0]) * (pt[0] - pf[0]) + static_cast<long long>(n[1]) * (pt[1] - pf[1]) +
                          static_cast<long long>(n[2]) * (pt[2] - pf[2]);
   // The triangle's plane strictly separates the two corners, so side is never 0.
   LocalTriangle t;
@@ -85,8 +84,7 @@ void addOriented(std::vector<LocalTriangle>& out, Vec3i a, Vec3i b, Vec3i c, int
   out.push_back(t);
 }
 
-void addTetCase(std::vector<LocalTriangle>& out, const std::array<int, 4>& tet, const std::array<int, 4>& group,
-                int groups) {
+void addTetCase(std::vector<LocalTriangle>& out, const std::array<int, 4>& tet, const std::array<int, 4>& group, int groups) {
   if (groups == 2) {
     std::array<int, 4> in{}, rest{};
     int nIn = 0, nRest = 0;
@@ -103,8 +101,7 @@ void addTetCase(std::vector<LocalTriangle>& out, const std::array<int, 4>& tet, 
     const bool loneIn = nIn == 1;
     const int lone = loneIn ? in[0] : rest[0];
     const std::array<int, 4>& others = loneIn ? rest : in;
-    addOriented(out, average({lone, others[0]}), average({lone, others[1]}), average({lone, others[2]}), lone,
-                others[0]);
+    addOriented(out, average({lone, others[0]}), average({lone, others[1]}), average({lone, others[2]}), lone, others[0]);
     return;
   }
   // Three or more labels: each face's boundary curve coned to the tet centroid.

@@ -6,16 +6,16 @@
 #include <cstdint>
 #include <vector>
 
-#include "scansurf/label_volume.h"
 #include "cell_case.h"  // shaders/shared
+#include "scansurf/label_volume.h"
 
 namespace scansurf {
 
 using CellCase = shared::CellCase;
 
 // Corner c of a cell as (dx, dy, dz) offsets.
-inline constexpr std::array<std::array<int, 3>, 8> kCellCorners = {{
-    {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
+inline constexpr std::array<std::array<int, 3>, 8> kCellCorners = {
+    {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
 
 // The four corners of each of the six tetrahedra (Freudenthal): 0, then one axis step after
 // another in the order of a permutation of (x, y, z), ending at 7. Same order as classify.comp.

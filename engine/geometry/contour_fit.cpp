@@ -35,8 +35,7 @@ Carrier carrierOfKey(std::uint64_t key) {
   }
   out.count = n;
   for (int m = 0; m < n; ++m)
-    for (int a = 0; a < 3; ++a)
-      out.corners[m][a] = static_cast<int>(c[a] / 12) + (m >= n - steps[a] ? 1 : 0);
+    for (int a = 0; a < 3; ++a) out.corners[m][a] = static_cast<int>(c[a] / 12) + (m >= n - steps[a] ? 1 : 0);
   return out;
 }
 
@@ -99,8 +98,12 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
           for (std::size_t i = 0; i < c.points.size(); ++i) {
             const Point2& p = c.points[i];
             const Point2& q = c.points[(i + 1) % c.points.size()];
-            Segment s{0, feature, (p.x - grid.originX) / grid.spacingX, (p.y - grid.originY) / grid.spacingY,
-                      (q.x - grid.originX) / grid.spacingX, (q.y - grid.originY) / grid.spacingY};
+            Segment s{0,
+                      feature,
+                      (p.x - grid.originX) / grid.spacingX,
+                      (p.y - grid.originY) / grid.spacingY,
+                      (q.x - grid.originX) / grid.spacingX,
+                      (q.y - grid.originY) / grid.spacingY};
             cells.clear();
             appendTouchedCells(s.u0, s.v0, s.u1, s.v1, grid.nx, grid.ny, cells);
             for (const std::uint64_t cell : cells) {
@@ -114,7 +117,8 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
         const Carrier c = carrierOfKey(keys[v]);
         if (c.count != 2) continue;  // face centroids on the plane are junction points
         const int la = vertexLabels[2 * v], lb = vertexLabels[2 * v + 1];
-        const std::uint64_t cell = static_cast<std::uint64_t>(c.corners[0][0]) | (static_cast<std::uint64_t>(c.corners[0][1]) << 32);
+        const std::uint64_t cell =
+            static_cast<std::uint64_t>(c.corners[0][0]) | (static_cast<std::uint64_t>(c.corners[0][1]) << 32);
         const auto range = std::equal_range(segments.begin(), segments.end(), Segment{cell, 0, 0, 0, 0, 0},
                                             [](const Segment& a, const Segment& b) { return a.cell < b.cell; });
         double best = -1;
@@ -122,7 +126,8 @@ std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& cont
           if (s->feature + 1 != la && s->feature + 1 != lb) continue;
           double tc = 0;
           if (crossing(c.corners[0][0], c.corners[0][1], c.corners[1][0], c.corners[1][1], *s, tc) &&
-              (best < 0 || std::abs(tc - 0.5) < std::abs(best - 0.5) || (std::abs(tc - 0.5) == std::abs(best - 0.5) && tc < best)))
+              (best < 0 || std::abs(tc - 0.5) < std::abs(best - 0.5) ||
+               (std::abs(tc - 0.5) == std::abs(best - 0.5) && tc < best)))
             best = tc;
         }
         t[v] = best;
@@ -149,7 +154,8 @@ void appendTouchedCells(double u0, double v0, double u1, double v1, int nx, int 
     const double va = v0 + t0 * dv, vb = v0 + t1 * dv;
     const long long cjLo = std::max(0LL, static_cast<long long>(std::ceil(std::min(va, vb) - kSlack)) - 1);
     const long long cjHi = std::min<long long>(ny - 1, static_cast<long long>(std::floor(std::max(va, vb) + kSlack)));
-    for (long long cj = cjLo; cj <= cjHi; ++cj) cells.push_back(static_cast<std::uint64_t>(ci) | (static_cast<std::uint64_t>(cj) << 32));
+    for (long long cj = cjLo; cj <= cjHi; ++cj)
+      cells.push_back(static_cast<std::uint64_t>(ci) | (static_cast<std::uint64_t>(cj) << 32));
   }
 }
 

@@ -28,18 +28,21 @@ void collectHits(const Grid& g, const std::vector<const FeatureSlice*>& slices, 
         if (v0 != v1)
           for (long long j = std::max(0LL, static_cast<long long>(std::ceil(std::min(v0, v1))));
                j <= std::min<long long>(g.ny - 1, static_cast<long long>(std::floor(std::max(v0, v1)))); ++j)
-            rows[static_cast<std::size_t>(j)].push_back({u0 + (static_cast<double>(j) - v0) / (v1 - v0) * (u1 - u0), features[s]});
+            rows[static_cast<std::size_t>(j)].push_back(
+                {u0 + (static_cast<double>(j) - v0) / (v1 - v0) * (u1 - u0), features[s]});
         if (u0 != u1)
           for (long long i2 = std::max(0LL, static_cast<long long>(std::ceil(std::min(u0, u1))));
                i2 <= std::min<long long>(g.nx - 1, static_cast<long long>(std::floor(std::max(u0, u1)))); ++i2)
-            columns[static_cast<std::size_t>(i2)].push_back({v0 + (static_cast<double>(i2) - u0) / (u1 - u0) * (v1 - v0), features[s]});
+            columns[static_cast<std::size_t>(i2)].push_back(
+                {v0 + (static_cast<double>(i2) - u0) / (u1 - u0) * (v1 - v0), features[s]});
       }
 }
 
 // For one grid line of n voxels with labels label(i): the crossing byte of each edge (i, i+1).
 template <typename LabelAt, typename Store>
 void crossLine(std::vector<Hit>& hits, int n, LabelAt label, Store store) {
-  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.at < b.at || (a.at == b.at && a.feature < b.feature); });
+  std::sort(hits.begin(), hits.end(),
+            [](const Hit& a, const Hit& b) { return a.at < b.at || (a.at == b.at && a.feature < b.feature); });
   std::size_t h = 0;
   for (int i = 0; i + 1 < n; ++i) {
     while (h < hits.size() && hits[h].at < i) ++h;
@@ -79,8 +82,8 @@ void medialEdges(const LabelVolume& volume, int k, const MedialCrossings& medial
 
 }  // namespace
 
-std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours,
-                                              int threads, const MedialCrossings* medial) {
+std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours, int threads,
+                                              const MedialCrossings* medial) {
   const Grid& g = volume.grid;
   std::vector<std::uint16_t> out(volume.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   std::vector<std::vector<const FeatureSlice*>> slices(static_cast<std::size_t>(g.nz));
@@ -101,15 +104,19 @@ std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const C
       collectHits(g, slices[k], features[k], rows, columns);
       const int layer = static_cast<int>(k);
       for (int j = 0; j < g.ny; ++j)
-        crossLine(rows[static_cast<std::size_t>(j)], g.nx, [&](int i) { return volume.at(i, j, layer); }, [&](int i, std::uint8_t t) {
-          std::uint16_t& w = out[g.index(i, j, layer)];
-          w = static_cast<std::uint16_t>((w & 0xFF00u) | t);
-        });
+        crossLine(
+            rows[static_cast<std::size_t>(j)], g.nx, [&](int i) { return volume.at(i, j, layer); },
+            [&](int i, std::uint8_t t) {
+              std::uint16_t& w = out[g.index(i, j, layer)];
+              w = static_cast<std::uint16_t>((w & 0xFF00u) | t);
+            });
       for (int i = 0; i < g.nx; ++i)
-        crossLine(columns[static_cast<std::size_t>(i)], g.ny, [&](int j) { return volume.at(i, j, layer); }, [&](int j, std::uint8_t t) {
-          std::uint16_t& w = out[g.index(i, j, layer)];
-          w = static_cast<std::uint16_t>((w & 0x00FFu) | (t << 8));
-        });
+        crossLine(
+            columns[static_cast<std::size_t>(i)], g.ny, [&](int j) { return volume.at(i, j, layer); },
+            [&](int j, std::uint8_t t) {
+              std::uint16_t& w = out[g.index(i, j, layer)];
+              w = static_cast<std::uint16_t>((w & 0x00FFu) | (t << 8));
+            });
       if (medial && !medial->empty()) medialEdges(volume, layer, *medial, out);
     }
   });

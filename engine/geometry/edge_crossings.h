@@ -20,6 +20,7 @@ namespace scansurf {
 // medial line (geometry/overlap_split.h), as contour fitting places it.
 inline constexpr std::uint8_t kMidEdge = 128;
 class MedialCrossings;
-std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours, int threads, const MedialCrossings* medial = nullptr);
+std::vector<std::uint16_t> planeEdgeCrossings(const LabelVolume& volume, const ContourSet& contours, int threads,
+                                              const MedialCrossings* medial = nullptr);
 
 }  // namespace scansurf

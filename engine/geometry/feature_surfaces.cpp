@@ -15,8 +15,8 @@ void appendTriangle(FeatureSurface& s, const std::uint32_t* t, bool flip) {
 
 }  // namespace
 
-std::vector<FeatureSurface> extractFeatureSurfaces(const MultiLabelMesh& mesh, int featureCount,
-                                                   const Nesting& nesting, SurfaceConvention convention) {
+std::vector<FeatureSurface> extractFeatureSurfaces(const MultiLabelMesh& mesh, int featureCount, const Nesting& nesting,
+                                                   SurfaceConvention convention) {
   std::vector<FeatureSurface> surfaces(static_cast<std::size_t>(std::max(featureCount, 0)));
   for (int f = 0; f < featureCount; ++f) surfaces[static_cast<std::size_t>(f)].feature = f;
   auto featureOf = [&](Label label) {

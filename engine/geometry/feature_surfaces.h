@@ -16,7 +16,7 @@ namespace scansurf {
 // with exactly one side's feature in E, flipped where that side is the larger label.
 // Labels of features >= featureCount count as outside every set. A feature with no voxels
 // (and, for Enclosing, no nested features with voxels) gets an empty surface.
-std::vector<FeatureSurface> extractFeatureSurfaces(const MultiLabelMesh& mesh, int featureCount,
-                                                   const Nesting& nesting, SurfaceConvention convention);
+std::vector<FeatureSurface> extractFeatureSurfaces(const MultiLabelMesh& mesh, int featureCount, const Nesting& nesting,
+                                                   SurfaceConvention convention);
 
 }  // namespace scansurf

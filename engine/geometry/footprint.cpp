@@ -96,7 +96,8 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   // with interpolation, its volume of 32-bit label | clearance words.
   const double words = finer > 1 ? 4.0 * static_cast<double>(plane) * layers : 0.0;
   const double deviceVolumes = static_cast<double>(f.labelVoxels) * sizeof(Label) + words;
-  f.deviceBytes = std::max(kSlabBudget, plane * kDeviceBytesPerPixel) + static_cast<std::uint64_t>(std::min(deviceVolumes, 1.8e19));
+  f.deviceBytes =
+      std::max(kSlabBudget, plane * kDeviceBytesPerPixel) + static_cast<std::uint64_t>(std::min(deviceVolumes, 1.8e19));
   return f;
 }
 

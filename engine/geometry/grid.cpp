@@ -3,8 +3,8 @@
 // centres 1 and n-2 frame the contours' bounding box, with a background pixel on each side.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "geometry/polygon.h"
@@ -55,8 +55,8 @@ Result<Axis> axisFromSpacing(double lo, double hi, double s, const char* name) {
   // The small allowance keeps an extent that is a whole number of pixels from gaining one.
   const double steps = std::max(0.0, std::ceil(extent / s - 1e-9));
   if (!(steps + 3 <= kMaxPixelsPerSide))
-    return badOption(std::string("a voxel size of ") + formatNumber(s) + " gives more than " +
-                     std::to_string(kMaxPixelsPerSide) + " pixels along " + name);
+    return badOption(std::string("a voxel size of ") + formatNumber(s) + " gives more than " + std::to_string(kMaxPixelsPerSide) +
+                     " pixels along " + name);
   Axis axis;
   axis.n = static_cast<int>(steps) + 3;
   axis.spacing = s;
@@ -97,12 +97,12 @@ Result<Axis> axisOnFileLattice(double lo, double hi, double fileLo, double fileH
 Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
   if (n < 4) return badOption(std::string("n") + name + " = " + std::to_string(n) + ": need at least 4 pixels");
   if (n > kMaxPixelsPerSide)
-    return badOption(std::string("n") + name + " = " + std::to_string(n) + ": more than " +
-                     std::to_string(kMaxPixelsPerSide) + " pixels");
+    return badOption(std::string("n") + name + " = " + std::to_string(n) + ": more than " + std::to_string(kMaxPixelsPerSide) +
+                     " pixels");
   const double extent = hi - lo;
   if (!(extent > 0))
-    return makeError(Errc::InvalidInput, std::string("the contours have no extent along ") + name +
-                                             ", so n" + name + " cannot set the pixel size; use a voxel size");
+    return makeError(Errc::InvalidInput, std::string("the contours have no extent along ") + name + ", so n" + name +
+                                             " cannot set the pixel size; use a voxel size");
   Axis axis;
   axis.n = n;
   axis.spacing = extent / (n - 3);
@@ -122,8 +122,8 @@ Result<std::vector<double>> contourPlanesOn(const ContourSet& contours, const Gr
     for (const FeatureSlice& s : f.slices) {
       const int k = layerOfZ(probe, s.z, tol);
       if (k < 0)
-        return makeError(Errc::InvalidInput, contours.source + ": feature \"" + f.name + "\", slice z=" +
-                                                 formatNumber(s.z) + " is not on a slice of the reference grid");
+        return makeError(Errc::InvalidInput, contours.source + ": feature \"" + f.name + "\", slice z=" + formatNumber(s.z) +
+                                                 " is not on a slice of the reference grid");
       used[static_cast<std::size_t>(k)] = 1;
     }
   std::vector<double> planes;
@@ -212,9 +212,9 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
     SCANSURF_ASSIGN_OR_RETURN(ay, axisFromCount(box.minY, box.maxY, options.ny, "y"));
   } else if (!haveSize && contours.fileExtent) {
     SCANSURF_ASSIGN_OR_RETURN(ax, axisOnFileLattice(box.minX, box.maxX, contours.fileExtent->minX, contours.fileExtent->maxX,
-                                                     defaultSpacing(*contours.fileExtent), "x"));
+                                                    defaultSpacing(*contours.fileExtent), "x"));
     SCANSURF_ASSIGN_OR_RETURN(ay, axisOnFileLattice(box.minY, box.maxY, contours.fileExtent->minY, contours.fileExtent->maxY,
-                                                     defaultSpacing(*contours.fileExtent), "y"));
+                                                    defaultSpacing(*contours.fileExtent), "y"));
   } else {
     double s = options.voxelSize;
     if (!haveSize) {
@@ -235,17 +235,17 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
 // surface of a few distinct positions, or none (contours 1e-200 units wide came out with
 // volume 0; at 9.9e6 units with 0.25-unit pixels a PLY held 11 distinct x), so it is refused.
 Result<void> checkFloatPrecision(const ContourSet& contours, const Grid& g) {
-  const double far = std::max({std::abs(g.originX), std::abs(g.originX + (g.nx - 1) * g.spacingX), std::abs(g.originY),
-                               std::abs(g.originY + (g.ny - 1) * g.spacingY), std::abs(g.layerZ.front()),
-                               std::abs(g.layerZ.back())});
+  const double far =
+      std::max({std::abs(g.originX), std::abs(g.originX + (g.nx - 1) * g.spacingX), std::abs(g.originY),
+                std::abs(g.originY + (g.ny - 1) * g.spacingY), std::abs(g.layerZ.front()), std::abs(g.layerZ.back())});
   double step = std::min(g.spacingX, g.spacingY);
   for (std::size_t k = 1; k < g.layerZ.size(); ++k) step = std::min(step, g.layerZ[k] - g.layerZ[k - 1]);
   const double resolved = std::max(far * 0x1p-24, 1e-30);  // 1e-30: well within float32's normal range
   if (step >= 16 * resolved) return {};
-  return makeError(Errc::InvalidInput,
-                   contours.source + ": the grid's steps of " + formatNumber(step) + " " + contours.units +
-                       " at coordinates up to " + formatNumber(far) + " are finer than float32 surface vertices resolve there (" +
-                       formatNumber(resolved) + "); move the contours nearer the origin or choose coarser pixels");
+  return makeError(Errc::InvalidInput, contours.source + ": the grid's steps of " + formatNumber(step) + " " + contours.units +
+                                           " at coordinates up to " + formatNumber(far) +
+                                           " are finer than float32 surface vertices resolve there (" + formatNumber(resolved) +
+                                           "); move the contours nearer the origin or choose coarser pixels");
 }
 
 }  // namespace

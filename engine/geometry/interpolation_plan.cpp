@@ -3,8 +3,8 @@
 #include "geometry/interpolation_plan.h"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/parallel.h"
@@ -21,7 +21,8 @@ std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptio
     const double n = std::round((grid.layerZ[k + 1] - grid.layerZ[k]) / pixel);
     // Below three pixels a gap gains nothing measurable (sphere at 1 mm pixels and 2 mm slices:
     // 0.044 mm interpolated, 0.040 mm not) and would cost the larger volume.
-    wanted[k] = n < InterpolationOptions::kAutoMinimum ? 1 : static_cast<int>(std::min(n, double{InterpolationOptions::kMaxFactor}));
+    wanted[k] =
+        n < InterpolationOptions::kAutoMinimum ? 1 : static_cast<int>(std::min(n, double{InterpolationOptions::kMaxFactor}));
   }
   // Lower the largest factors until the volume fits the limit; below kAutoMinimum, none.
   const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
@@ -51,8 +52,7 @@ Grid interpolatedGrid(const Grid& grid, const std::vector<int>& factors) {
   fine.layerZ.clear();
   for (std::size_t k = 0; k < factors.size(); ++k)
     for (int m = 0; m < factors[k]; ++m)
-      fine.layerZ.push_back(m == 0 ? grid.layerZ[k]
-                                   : grid.layerZ[k] + (grid.layerZ[k + 1] - grid.layerZ[k]) * m / factors[k]);
+      fine.layerZ.push_back(m == 0 ? grid.layerZ[k] : grid.layerZ[k] + (grid.layerZ[k + 1] - grid.layerZ[k]) * m / factors[k]);
   if (!grid.layerZ.empty()) fine.layerZ.push_back(grid.layerZ.back());
   fine.nz = static_cast<int>(fine.layerZ.size());
   return fine;
@@ -61,7 +61,8 @@ Grid interpolatedGrid(const Grid& grid, const std::vector<int>& factors) {
 Result<DistanceWeights> distanceWeights(const Grid& grid) {
   const double s = std::min(grid.spacingX, grid.spacingY);
   const bool square = std::abs(grid.spacingX - grid.spacingY) <= 1e-9 * std::max(grid.spacingX, grid.spacingY);
-  const double rx = square ? 1.0 : (grid.spacingX / s) * (grid.spacingX / s), ry = square ? 1.0 : (grid.spacingY / s) * (grid.spacingY / s);
+  const double rx = square ? 1.0 : (grid.spacingX / s) * (grid.spacingX / s),
+               ry = square ? 1.0 : (grid.spacingY / s) * (grid.spacingY / s);
   // Every distance along a line is at most `side` pixels; every squared term must stay below 2^30.
   const double side = std::max(grid.nx, grid.ny) + 1.0;
   for (std::int32_t k = square ? 1 : 64; k >= 1; k /= 2)
@@ -75,8 +76,8 @@ Result<DistanceWeights> distanceWeights(const Grid& grid) {
       if (std::max(w.x, w.y) * std::pow(unit * side, 2.0) < static_cast<double>(1 << 30)) return w;
     }
   return makeError(Errc::InvalidArgument, "interpolation: pixels of " + std::to_string(grid.spacingX) + " x " +
-                                              std::to_string(grid.spacingY) + " on a grid of " + std::to_string(grid.nx) +
-                                              " x " + std::to_string(grid.ny) +
+                                              std::to_string(grid.spacingY) + " on a grid of " + std::to_string(grid.nx) + " x " +
+                                              std::to_string(grid.ny) +
                                               " are too elongated for exact distances; turn interpolation off");
 }
 
@@ -115,7 +116,8 @@ std::vector<LabelCensus> censusOfLayer(const LabelVolume& volume, int k, std::ve
       include(found[static_cast<std::size_t>(slot[l])], x, y);
       include(found[0], x, y);
     }
-  for (const LabelCensus& c : found) if (c.label != kBackground) slot[c.label] = -1;
+  for (const LabelCensus& c : found)
+    if (c.label != kBackground) slot[c.label] = -1;
   std::sort(found.begin() + 1, found.end(), [](const LabelCensus& a, const LabelCensus& b) { return a.label < b.label; });
   if (found[0].count == 0) found.clear();
   return found;
@@ -128,7 +130,9 @@ const LabelCensus* find(const std::vector<LabelCensus>& layer, Label label) {
 
 struct Box {
   int x0, y0, x1, y1;
-  void add(const LabelCensus& c) { x0 = std::min(x0, c.x0), y0 = std::min(y0, c.y0), x1 = std::max(x1, c.x1), y1 = std::max(y1, c.y1); }
+  void add(const LabelCensus& c) {
+    x0 = std::min(x0, c.x0), y0 = std::min(y0, c.y0), x1 = std::max(x1, c.x1), y1 = std::max(y1, c.y1);
+  }
 };
 
 // The window of label's field on layer k: its pixels on k and both neighbours, with a margin.
@@ -222,8 +226,10 @@ class SlabPlanner {
         if (!overlap[label]) {
           const LabelCensus& ca = *find(a, label);
           const LabelCensus& cb = *find(b, label);
-          e.shiftX = roundHalfAway(static_cast<double>(cb.sumX) / static_cast<double>(cb.count) - static_cast<double>(ca.sumX) / static_cast<double>(ca.count));
-          e.shiftY = roundHalfAway(static_cast<double>(cb.sumY) / static_cast<double>(cb.count) - static_cast<double>(ca.sumY) / static_cast<double>(ca.count));
+          e.shiftX = roundHalfAway(static_cast<double>(cb.sumX) / static_cast<double>(cb.count) -
+                                   static_cast<double>(ca.sumX) / static_cast<double>(ca.count));
+          e.shiftY = roundHalfAway(static_cast<double>(cb.sumY) / static_cast<double>(cb.count) -
+                                   static_cast<double>(ca.sumY) / static_cast<double>(ca.count));
         }
       }
       slab_.entries.push_back(e);

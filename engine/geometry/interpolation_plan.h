@@ -27,15 +27,15 @@
 //  - the voxel takes the label of smallest value (ties: the smaller label) if that value or
 //    the union's is negative, else background. Its clearance is how far its value is from
 //    losing the label (to the runner-up label or to the background), which places the surface
-//    vertex between two voxels of different labels (clearance-weighted, as marching cubes). The union keeps abutting features together
-//    where each alone would pull back (no background gap opens between them), and a feature
-//    nested in another stays inside it (its distance is never below its container's).
+//    vertex between two voxels of different labels (clearance-weighted, as marching cubes). The union keeps abutting features
+//    together where each alone would pull back (no background gap opens between them), and a feature nested in another stays
+//    inside it (its distance is never below its container's).
 // A label only competes in a window around its pixels on its plane and both neighbours
 // (kWindowMargin pixels around): elsewhere its value is kFarAway.
 #pragma once
 
-#include <cstddef>
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -71,7 +71,7 @@ Result<DistanceWeights> distanceWeights(const Grid& grid);
 inline constexpr int kTileSize = 16;
 inline constexpr int kWindowMargin = 4;
 inline constexpr std::int32_t kFarAway = 1 << 28;
-inline constexpr int kRefineBand = 2;  // pixels from the boundary where segments refine distances
+inline constexpr int kRefineBand = 2;                 // pixels from the boundary where segments refine distances
 inline constexpr std::int32_t kMovingTile = 1 << 30;  // tile flag: a label that shifts (in its count)
 
 // Two pixels of the larger spacing in 1/16 of the smaller: how far from its label's boundary a

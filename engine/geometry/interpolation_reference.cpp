@@ -66,22 +66,26 @@ std::int32_t refinedDistance2(int x, int y, int w, int h, std::int32_t unit, std
       px[3] = ox + unit, py[3] = oy + at(cx + 1, cy, 8);
       auto join = [&](int i, int j) { d2 = std::min(d2, segmentDistance2(px[i], py[i], px[j], py[j])); };
       if (cut[0] && cut[1] && cut[2] && cut[3]) {
-        if (a) join(0, 2), join(1, 3);  // a and d inside: cut their corners off
-        else join(0, 3), join(1, 2);
+        if (a)
+          join(0, 2), join(1, 3);  // a and d inside: cut their corners off
+        else
+          join(0, 3), join(1, 2);
       } else {
         int first = -1;
         for (int i = 0; i < 4; ++i)
           if (cut[i]) {
-            if (first < 0) first = i;
-            else join(first, i);
+            if (first < 0)
+              first = i;
+            else
+              join(first, i);
           }
       }
     }
   return d2;
 }
 
-void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, int plane, const shared::DistanceField& f,
-                    const DistanceWeights& weights, std::int32_t* values) {
+void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, int plane,
+                    const shared::DistanceField& f, const DistanceWeights& weights, std::int32_t* values) {
   const Grid& g = volume.grid;
   const std::size_t w = static_cast<std::size_t>(f.w), area = w * static_cast<std::size_t>(f.h);
   const std::int32_t unit = weights.unit, far = farDistance(g, weights);
@@ -93,11 +97,13 @@ void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>&
   std::vector<std::int32_t> gx(area), gy(area), d2x(area), d2y(area), v(std::max(w, static_cast<std::size_t>(f.h))),
       z(std::max(w, static_cast<std::size_t>(f.h)) + 1), line(std::max(w, static_cast<std::size_t>(f.h)));
   for (int y = 0; y < f.h; ++y)
-    lineDistances(f.w, unit, far, [&](int x) { return inside(x, y) != inside(x + 1, y); }, [&](int x) { return crossing(x, y, 0); },
-                  gx.data() + y * w, 1);
+    lineDistances(
+        f.w, unit, far, [&](int x) { return inside(x, y) != inside(x + 1, y); }, [&](int x) { return crossing(x, y, 0); },
+        gx.data() + y * w, 1);
   for (int x = 0; x < f.w; ++x)
-    lineDistances(f.h, unit, far, [&](int y) { return inside(x, y) != inside(x, y + 1); }, [&](int y) { return crossing(x, y, 8); },
-                  gy.data() + x, w);
+    lineDistances(
+        f.h, unit, far, [&](int y) { return inside(x, y) != inside(x, y + 1); }, [&](int y) { return crossing(x, y, 8); },
+        gy.data() + x, w);
   for (int x = 0; x < f.w; ++x) {
     lowerEnvelope(gx.data() + x, w, f.h, weights.x, weights.y * unit * unit, v.data(), z.data(), line.data());
     for (int y = 0; y < f.h; ++y) d2x[x + w * static_cast<std::size_t>(y)] = line[static_cast<std::size_t>(y)];
@@ -109,7 +115,8 @@ void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>&
       const std::size_t at = x + w * static_cast<std::size_t>(y);
       std::int32_t d2 = std::min(d2x[at], d2y[at]);
       if (weights.x == 1 && weights.y == 1)
-        d2 = refinedDistance2(x, y, f.w, f.h, unit, d2, inside, [&](int cx, int cy, int shift) { return crossing(cx, cy, shift); });
+        d2 = refinedDistance2(x, y, f.w, f.h, unit, d2, inside,
+                              [&](int cx, int cy, int shift) { return crossing(cx, cy, shift); });
       const std::int32_t d = fixedDistance(d2, weights.fixedScale);
       values[at] = inside(x, y) ? -d : d;
     }
@@ -182,9 +189,12 @@ struct Sampler {
       if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
       bool wins = true;
       const std::int32_t v = value(e, m, pair.factor, x, y, wins);
-      if (e.label == kBackground) united = v;
-      else if (wins && v < best) second = best, best = v, winner = static_cast<Label>(e.label);
-      else if (v < second) second = v;
+      if (e.label == kBackground)
+        united = v;
+      else if (wins && v < best)
+        second = best, best = v, winner = static_cast<Label>(e.label);
+      else if (v < second)
+        second = v;
       if (wins && v < 0 && capped(e) && (extrudedLabel == kBackground || v < extruded))
         extruded = v, extrudedLabel = static_cast<Label>(e.label);
       if (wins && v >= 0 && capped(e)) capMargin = std::min(capMargin, v);  // how far a cap is from taking the voxel
@@ -205,14 +215,20 @@ struct Sampler {
 
 void lowerEnvelope(const std::int32_t* g, std::size_t stride, int n, std::int32_t weightRow, std::int32_t weightColumn,
                    std::int32_t* v, std::int32_t* z, std::int32_t* out) {
-  auto height = [&](std::int32_t q) { return weightRow * g[static_cast<std::size_t>(q) * stride] * g[static_cast<std::size_t>(q) * stride]; };
+  auto height = [&](std::int32_t q) {
+    return weightRow * g[static_cast<std::size_t>(q) * stride] * g[static_cast<std::size_t>(q) * stride];
+  };
   int k = 0;
   v[0] = 0, z[0] = INT_MIN, z[1] = INT_MAX;
   for (std::int32_t q = 1; q < n; ++q) {
     for (;;) {
       const std::int32_t p = v[k];
-      const std::int32_t s = floorDiv((height(q) + weightColumn * q * q) - (height(p) + weightColumn * p * p), 2 * weightColumn * (q - p));
-      if (s <= z[k]) { --k; continue; }
+      const std::int32_t s =
+          floorDiv((height(q) + weightColumn * q * q) - (height(p) + weightColumn * p * p), 2 * weightColumn * (q - p));
+      if (s <= z[k]) {
+        --k;
+        continue;
+      }
       ++k, v[k] = q, z[k] = s, z[k + 1] = INT_MAX;
       break;
     }
@@ -244,14 +260,14 @@ SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<
     const shared::DistanceField& f = slab.fields[i];
     fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset);
   }
-  out.capErosions = capErosionTable(slab, [&](int field) {
-    return out.values.data() + slab.fields[static_cast<std::size_t>(field)].offset;
-  });
+  out.capErosions =
+      capErosionTable(slab, [&](int field) { return out.values.data() + slab.fields[static_cast<std::size_t>(field)].offset; });
   return out;
 }
 
 std::vector<std::uint32_t> interpolateSlabReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                                    const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps) {
+                                                    const InterpolationSlab& slab, const DistanceWeights& weights,
+                                                    CapShape caps) {
   const Grid& g = volume.grid;
   const SlabFields fields = distanceFieldsReference(volume, crossings, slab, weights);
   const Sampler sampler{volume, slab, fields, caps, deepDistance(g)};

@@ -11,7 +11,7 @@
 namespace scansurf {
 
 struct SlabFields {
-  std::vector<std::int32_t> values;  // InterpolationSlab::fieldValues
+  std::vector<std::int32_t> values;       // InterpolationSlab::fieldValues
   std::vector<std::int32_t> capErosions;  // the slab's cap table (capErosionTable)
 };
 

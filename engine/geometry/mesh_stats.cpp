@@ -30,9 +30,9 @@ class UnionFind {
 };
 
 struct HalfEdge {
-  std::uint64_t key;   // min << 32 | max
+  std::uint64_t key;  // min << 32 | max
   std::uint32_t triangle;
-  bool forward;        // min -> max in the triangle's winding
+  bool forward;  // min -> max in the triangle's winding
   bool operator<(const HalfEdge& o) const {
     if (key != o.key) return key < o.key;
     if (forward != o.forward) return forward < o.forward;
@@ -162,8 +162,7 @@ bool everyLinkOneFan(std::span<const std::uint32_t> triangles, const std::vector
       link[fill[local(triangles[3 * f + c])]++] = {triangles[3 * f + (c + 1) % 3], triangles[3 * f + (c + 2) % 3]};
   std::vector<std::uint32_t> scratch;
   for (std::size_t v = 0; v < m; ++v)
-    if (start[v] != start[v + 1] && !singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch))
-      return false;
+    if (start[v] != start[v + 1] && !singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch)) return false;
   return true;
 }
 
@@ -178,7 +177,8 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
   std::vector<std::uint32_t> vertices(triangles.begin(), triangles.end());
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  stats.vertices = static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), positions.size() / 3) - vertices.begin());
+  stats.vertices =
+      static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), positions.size() / 3) - vertices.begin());
   stats.closed = census.closed;
   stats.oriented = census.oriented;
   stats.manifold = census.closed && everyLinkOneFan(triangles, vertices);

@@ -15,7 +15,7 @@ namespace scansurf {
 namespace {
 
 struct FeatureInfo {
-  Box2 box;                      // over all slices
+  Box2 box;  // over all slices
   double zMin = 0, zMax = 0;
   std::vector<double> z;         // slice planes, sorted (validated input)
   std::vector<Box2> sliceBoxes;  // per slice
@@ -49,15 +49,14 @@ int sliceAt(const FeatureInfo& info, double z) {
 // Whether every contour point of `inner` lies in `outer`'s region on every slice of inner.
 // Points on the outer boundary count as inside, so a feature drawn along its container's edge,
 // or identical to it, is contained.
-bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature& inner,
-              const FeatureInfo& innerInfo) {
+bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature& inner, const FeatureInfo& innerInfo) {
   if (inner.slices.empty()) return false;
   if (!outerInfo.box.contains(innerInfo.box)) return false;
   if (innerInfo.zMin < outerInfo.zMin - outerInfo.tolerance || innerInfo.zMax > outerInfo.zMax + outerInfo.tolerance)
     return false;
   const Box2& box = outerInfo.box;
-  const double boundaryTolerance = 1e-9 * std::max({1.0, box.width(), box.height(), std::abs(box.minX),
-                                                    std::abs(box.minY), std::abs(box.maxX), std::abs(box.maxY)});
+  const double boundaryTolerance = 1e-9 * std::max({1.0, box.width(), box.height(), std::abs(box.minX), std::abs(box.minY),
+                                                    std::abs(box.maxX), std::abs(box.maxY)});
   for (std::size_t s = 0; s < inner.slices.size(); ++s) {
     const int o = sliceAt(outerInfo, inner.slices[s].z);
     if (o < 0) return false;
@@ -84,9 +83,7 @@ Nesting computeNesting(const ContourSet& contours, double requestedTolerance) {
   // A total order on (area, index): a container must rank above what it contains. This breaks
   // mutual containment of identical features by index and keeps the relation acyclic even for
   // shapes where point containment alone is not.
-  auto ranksAbove = [&](int a, int b) {
-    return info[a].area != info[b].area ? info[a].area > info[b].area : a > b;
-  };
+  auto ranksAbove = [&](int a, int b) { return info[a].area != info[b].area ? info[a].area > info[b].area : a > b; };
   std::vector<int> byRank(n);
   std::iota(byRank.begin(), byRank.end(), 0);
   std::sort(byRank.begin(), byRank.end(), [&](int a, int b) { return ranksAbove(a, b); });
@@ -96,9 +93,8 @@ Nesting computeNesting(const ContourSet& contours, double requestedTolerance) {
   // Candidates sorted by box minX let each feature skip boxes that cannot hold it.
   std::vector<int> byMinX(n);
   std::iota(byMinX.begin(), byMinX.end(), 0);
-  std::sort(byMinX.begin(), byMinX.end(), [&](int a, int b) {
-    return info[a].box.minX != info[b].box.minX ? info[a].box.minX < info[b].box.minX : a < b;
-  });
+  std::sort(byMinX.begin(), byMinX.end(),
+            [&](int a, int b) { return info[a].box.minX != info[b].box.minX ? info[a].box.minX < info[b].box.minX : a < b; });
   // Containment is taken as transitive: candidates are tested smallest first, and once g is
   // found to contain f, every container of g contains f without a test of its own. Features are
   // visited largest first, so containers[g] is complete when f needs it. Deeply nested sets
@@ -142,8 +138,7 @@ Nesting computeNesting(const ContourSet& contours, double requestedTolerance) {
   } else {
     nesting.order.resize(n);
     std::iota(nesting.order.begin(), nesting.order.end(), 0);
-    std::stable_sort(nesting.order.begin(), nesting.order.end(),
-                     [&](int a, int b) { return depth[a] > depth[b]; });
+    std::stable_sort(nesting.order.begin(), nesting.order.end(), [&](int a, int b) { return depth[a] > depth[b]; });
   }
   return nesting;
 }

@@ -38,8 +38,10 @@ class OutlineIndex {
       std::vector<std::size_t> at(first_.begin(), first_.end() - 1);
       for (const Segment& s : segments)
         for (int r = rowOf(std::min(s.a.y, s.b.y)); r <= rowOf(std::max(s.a.y, s.b.y)); ++r) {
-          if (pass == 0) ++first_[static_cast<std::size_t>(r) + 1];
-          else filed_[at[static_cast<std::size_t>(r)]++] = s;
+          if (pass == 0)
+            ++first_[static_cast<std::size_t>(r) + 1];
+          else
+            filed_[at[static_cast<std::size_t>(r)]++] = s;
         }
       if (pass == 0) {
         for (std::size_t r = 1; r < first_.size(); ++r) first_[r] += first_[r - 1];
@@ -101,8 +103,10 @@ class Outlines {
   const OutlineIndex& of(int feature, int layer) {
     auto it = built_.find({feature, layer});
     if (it == built_.end())
-      it = built_.emplace(std::pair{feature, layer}, OutlineIndex(contours_.features[static_cast<std::size_t>(feature)], grid_,
-                                                                  layer)).first;
+      it = built_
+               .emplace(std::pair{feature, layer},
+                        OutlineIndex(contours_.features[static_cast<std::size_t>(feature)], grid_, layer))
+               .first;
     return it->second;
   }
   Point2 centre(int i, int j) const { return {grid_.originX + i * grid_.spacingX, grid_.originY + j * grid_.spacingY}; }
@@ -134,15 +138,16 @@ std::optional<double> depthWithin(const SharedVolume& pair, const std::vector<Fe
                                   double limit) {
   double depth = 0;
   bool within = true;
-  forEachSharedVoxel(regions[static_cast<std::size_t>(pair.a)], regions[static_cast<std::size_t>(pair.b)], [&](int k, int row, int column) {
-    const Point2 p = outlines.centre(column, row);
-    const double toA = outlines.of(pair.a, k).distance(p, row, limit);
-    const double toB = outlines.of(pair.b, k).distance(p, row, std::min(toA, limit));
-    const double nearer = std::min(toA, toB);
-    within = nearer <= limit;
-    if (within) depth = std::max(depth, nearer);
-    return within;
-  });
+  forEachSharedVoxel(regions[static_cast<std::size_t>(pair.a)], regions[static_cast<std::size_t>(pair.b)],
+                     [&](int k, int row, int column) {
+                       const Point2 p = outlines.centre(column, row);
+                       const double toA = outlines.of(pair.a, k).distance(p, row, limit);
+                       const double toB = outlines.of(pair.b, k).distance(p, row, std::min(toA, limit));
+                       const double nearer = std::min(toA, toB);
+                       within = nearer <= limit;
+                       if (within) depth = std::max(depth, nearer);
+                       return within;
+                     });
   if (!within) return std::nullopt;
   return depth;
 }
@@ -205,7 +210,8 @@ struct VoxelSplit {
     // convention); the others compete.
     std::vector<int> rivals;
     for (int f : holding)
-      if (std::none_of(holding.begin(), holding.end(), [&](int g) { return g != f && isInside(nesting, g, f); })) rivals.push_back(f);
+      if (std::none_of(holding.begin(), holding.end(), [&](int g) { return g != f && isInside(nesting, g, f); }))
+        rivals.push_back(f);
     if (rivals.size() < 2 || std::find(rivals.begin(), rivals.end(), painted) == rivals.end()) return;
     const Point2 p = outlines.centre(column, row);
     int owner = -1;
@@ -256,8 +262,7 @@ void judgeOverlaps(const ContourSet& contours, const Grid& grid, const std::vect
 }
 
 std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet& contours, const Grid& grid,
-                                                                const Nesting& nesting,
-                                                                const std::vector<FeatureRegion>& regions,
+                                                                const Nesting& nesting, const std::vector<FeatureRegion>& regions,
                                                                 OverlapReport& report) {
   std::vector<std::vector<LabelOverride>> overrides(static_cast<std::size_t>(report.layers));
   // The shared voxels of incidental pairs per surface layer, once each (a voxel three
@@ -266,10 +271,11 @@ std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet
   for (const SharedVolume& s : report.shared) {
     const int layer = report.features[static_cast<std::size_t>(s.a)].layer;
     if (!s.incidental || report.features[static_cast<std::size_t>(s.b)].layer != layer) continue;
-    forEachSharedVoxel(regions[static_cast<std::size_t>(s.a)], regions[static_cast<std::size_t>(s.b)], [&](int k, int row, int column) {
-      voxels[static_cast<std::size_t>(layer)].emplace_back(k, row, column);
-      return true;
-    });
+    forEachSharedVoxel(regions[static_cast<std::size_t>(s.a)], regions[static_cast<std::size_t>(s.b)],
+                       [&](int k, int row, int column) {
+                         voxels[static_cast<std::size_t>(layer)].emplace_back(k, row, column);
+                         return true;
+                       });
   }
   std::vector<int> rank(regions.size(), 0);
   for (std::size_t p = 0; p < nesting.order.size(); ++p) rank[static_cast<std::size_t>(nesting.order[p])] = static_cast<int>(p);
@@ -315,7 +321,8 @@ MedialCrossings::~MedialCrossings() = default;
 MedialCrossings::MedialCrossings(const ContourSet& contours, const Grid& grid, const OverlapReport& report) {
   auto state = std::make_unique<State>(contours, grid);
   for (const SharedVolume& s : report.shared) {
-    if (!s.incidental || report.features[static_cast<std::size_t>(s.a)].layer != report.features[static_cast<std::size_t>(s.b)].layer)
+    if (!s.incidental ||
+        report.features[static_cast<std::size_t>(s.a)].layer != report.features[static_cast<std::size_t>(s.b)].layer)
       continue;
     state->pairs.insert({labelOfFeature(s.a), labelOfFeature(s.b)});
     for (int f : {s.a, s.b})  // built now: read by several threads later

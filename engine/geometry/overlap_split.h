@@ -33,8 +33,7 @@ struct LabelOverride {
 // voxel also inside a feature nested in one of the pair keeps the inner feature; ties go by
 // priority. Fills SharedVolume::givenUpByA / givenUpByB. Deterministic.
 std::vector<std::vector<LabelOverride>> splitIncidentalOverlaps(const ContourSet& contours, const Grid& grid,
-                                                                const Nesting& nesting,
-                                                                const std::vector<FeatureRegion>& regions,
+                                                                const Nesting& nesting, const std::vector<FeatureRegion>& regions,
                                                                 OverlapReport& report);
 
 // Where the shared surface of an incidental pair crosses an in-plane grid edge of a contour

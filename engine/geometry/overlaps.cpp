@@ -70,7 +70,9 @@ bool regionsTouch(const FeatureRegion& a, const FeatureRegion& b) {
   return false;
 }
 
-double slab(const Grid& grid, int k) { return 0.5 * (grid.layerZ[static_cast<std::size_t>(k + 1)] - grid.layerZ[static_cast<std::size_t>(k - 1)]); }
+double slab(const Grid& grid, int k) {
+  return 0.5 * (grid.layerZ[static_cast<std::size_t>(k + 1)] - grid.layerZ[static_cast<std::size_t>(k - 1)]);
+}
 
 FeatureVolumes volumesOf(const Feature& feature, const FeatureRegion& region, const Grid& grid) {
   FeatureVolumes v;
@@ -153,7 +155,8 @@ std::pair<std::vector<int>, int> dsatur(const std::vector<int>& component, Colou
     // Affinity neighbours' colours first, then ascending: the first one no neighbour has.
     int chosen = -1;
     for (int u : colouring.affinity[static_cast<std::size_t>(v)])
-      if (int c = colouring.colour[static_cast<std::size_t>(u)]; chosen < 0 && c >= 0 && c <= colours && !taken(best, c)) chosen = c;
+      if (int c = colouring.colour[static_cast<std::size_t>(u)]; chosen < 0 && c >= 0 && c <= colours && !taken(best, c))
+        chosen = c;
     for (int c = 0; chosen < 0; ++c)
       if (!taken(best, c)) chosen = c;
     colouring.colour[static_cast<std::size_t>(v)] = chosen;
@@ -188,8 +191,7 @@ std::vector<std::vector<int>> components(int n, const std::vector<std::vector<in
 
 }  // namespace
 
-std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits,
-                                             int threads) {
+std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const Grid& grid, int subPixelBits, int threads) {
   std::vector<FeatureRegion> regions(contours.features.size());
   parallelChunks(regions.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) regions[f] = rasterizeFeature(contours.features[f], grid, subPixelBits);
@@ -202,8 +204,10 @@ double voxelVolume(const Grid& grid, int k) { return grid.spacingX * grid.spacin
 std::vector<int> assignLayers(int n, const std::vector<std::pair<int, int>>& conflictPairs,
                               const std::vector<std::pair<int, int>>& affinityPairs) {
   std::vector<std::vector<int>> conflicts(static_cast<std::size_t>(n)), affinity(static_cast<std::size_t>(n));
-  for (auto [a, b] : conflictPairs) conflicts[static_cast<std::size_t>(a)].push_back(b), conflicts[static_cast<std::size_t>(b)].push_back(a);
-  for (auto [a, b] : affinityPairs) affinity[static_cast<std::size_t>(a)].push_back(b), affinity[static_cast<std::size_t>(b)].push_back(a);
+  for (auto [a, b] : conflictPairs)
+    conflicts[static_cast<std::size_t>(a)].push_back(b), conflicts[static_cast<std::size_t>(b)].push_back(a);
+  for (auto [a, b] : affinityPairs)
+    affinity[static_cast<std::size_t>(a)].push_back(b), affinity[static_cast<std::size_t>(b)].push_back(a);
   std::vector<int> colour(static_cast<std::size_t>(n), -1);
   Colouring colouring{conflicts, affinity, colour};
   constexpr std::size_t kExactUpTo = 24;
@@ -232,8 +236,10 @@ struct NestingIntervals {
     std::vector<int> stack;
     for (int f = 0; f < n; ++f) {
       const int p = nesting.parent[static_cast<std::size_t>(f)];
-      if (p >= 0 && p < n) children[static_cast<std::size_t>(p)].push_back(f);
-      else stack.push_back(f);
+      if (p >= 0 && p < n)
+        children[static_cast<std::size_t>(p)].push_back(f);
+      else
+        stack.push_back(f);
     }
     enter.assign(static_cast<std::size_t>(n), 0), exit.assign(static_cast<std::size_t>(n), 0);
     std::vector<std::size_t> next(static_cast<std::size_t>(n), 0);  // next child to visit
@@ -262,13 +268,13 @@ struct NestingIntervals {
 };
 
 OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, const Nesting& nesting,
-                              const std::vector<FeatureRegion>& regions,
-                              const OverlapTolerance& tolerance) {
+                              const std::vector<FeatureRegion>& regions, const OverlapTolerance& tolerance) {
   const NestingIntervals intervals(nesting);
   OverlapReport report;
   const int n = static_cast<int>(contours.features.size());
   for (int f = 0; f < n; ++f)
-    report.features.push_back(volumesOf(contours.features[static_cast<std::size_t>(f)], regions[static_cast<std::size_t>(f)], grid));
+    report.features.push_back(
+        volumesOf(contours.features[static_cast<std::size_t>(f)], regions[static_cast<std::size_t>(f)], grid));
   std::vector<std::pair<int, int>> anyShared, affinity;
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b) {
@@ -289,8 +295,10 @@ OverlapReport analyzeOverlaps(const ContourSet& contours, const Grid& grid, cons
   judgeOverlaps(contours, grid, regions, tolerance, report);
   std::vector<std::pair<int, int>> real;
   for (const SharedVolume& s : report.shared) {
-    if (s.nested || s.incidental) affinity.emplace_back(s.a, s.b);
-    else real.emplace_back(s.a, s.b);
+    if (s.nested || s.incidental)
+      affinity.emplace_back(s.a, s.b);
+    else
+      real.emplace_back(s.a, s.b);
   }
   const std::vector<int> layers = assignLayers(n, real, affinity);
   const std::vector<int> maskLayers = assignLayers(n, anyShared, report.touching);
@@ -322,8 +330,8 @@ std::vector<VolumeLoss> volumeLosses(const std::vector<FeatureRegion>& regions, 
         }
     }
     for (const auto& [to, amount] : lost)
-      losses.push_back({static_cast<int>(f), to, amount.first, amount.second,
-                        to >= 0 && isInside(nesting, to, static_cast<int>(f))});
+      losses.push_back(
+          {static_cast<int>(f), to, amount.first, amount.second, to >= 0 && isInside(nesting, to, static_cast<int>(f))});
   }
   return losses;
 }

@@ -19,8 +19,8 @@ namespace scansurf {
 
 // One feature's own region: per slice, its layer and pixel runs; and its pixel bounding box.
 struct FeatureRegion {
-  std::vector<int> layers;                   // sorted, one per slice that lies on the grid
-  std::vector<std::vector<PixelRun>> runs;   // per entry of layers
+  std::vector<int> layers;                                     // sorted, one per slice that lies on the grid
+  std::vector<std::vector<PixelRun>> runs;                     // per entry of layers
   int minRow = 0, maxRow = -1, minColumn = 0, maxColumn = -1;  // empty when maxRow < minRow
 };
 

@@ -104,9 +104,9 @@ std::vector<PixelRun> intersectPixelRuns(const std::vector<PixelRun>& a, const s
 
 bool coversPixel(const std::vector<PixelRun>& runs, int column, int row) {
   // The first run past (row, column); the one before it holds the pixel if any does.
-  const auto after = std::upper_bound(runs.begin(), runs.end(), std::pair{row, column}, [](const std::pair<int, int>& p, const PixelRun& r) {
-    return p.first != r.row ? p.first < r.row : p.second < r.begin;
-  });
+  const auto after = std::upper_bound(
+      runs.begin(), runs.end(), std::pair{row, column},
+      [](const std::pair<int, int>& p, const PixelRun& r) { return p.first != r.row ? p.first < r.row : p.second < r.begin; });
   if (after == runs.begin()) return false;
   const PixelRun& r = *std::prev(after);
   return r.row == row && column >= r.begin && column < r.end;
@@ -132,8 +132,10 @@ std::vector<PixelRun> unitePixelRuns(const std::vector<PixelRun>& a, const std::
             [](const PixelRun& x, const PixelRun& y) { return x.row != y.row ? x.row < y.row : x.begin < y.begin; });
   std::vector<PixelRun> out;
   for (const PixelRun& r : all) {
-    if (!out.empty() && out.back().row == r.row && out.back().end >= r.begin) out.back().end = std::max(out.back().end, r.end);
-    else out.push_back(r);
+    if (!out.empty() && out.back().row == r.row && out.back().end >= r.begin)
+      out.back().end = std::max(out.back().end, r.end);
+    else
+      out.push_back(r);
   }
   return out;
 }

@@ -116,8 +116,8 @@ bool onBoundary(std::span<const Contour> contours, Point2 p, double tolerance) {
     const std::size_t n = pts.size();
     for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
       const Point2 a = pts[j], b = pts[i];
-      if (p.x < std::min(a.x, b.x) - tolerance || p.x > std::max(a.x, b.x) + tolerance ||
-          p.y < std::min(a.y, b.y) - tolerance || p.y > std::max(a.y, b.y) + tolerance)
+      if (p.x < std::min(a.x, b.x) - tolerance || p.x > std::max(a.x, b.x) + tolerance || p.y < std::min(a.y, b.y) - tolerance ||
+          p.y > std::max(a.y, b.y) + tolerance)
         continue;
       if (distanceSquaredToSegment(p, a, b) <= tol2) return true;
     }

@@ -22,12 +22,8 @@ struct Box2 {
   void add(const Box2& b);
   bool contains(Point2 p) const { return p.x >= minX && p.x <= maxX && p.y >= minY && p.y <= maxY; }
   // True when b lies within this box (boundaries included).
-  bool contains(const Box2& b) const {
-    return b.minX >= minX && b.maxX <= maxX && b.minY >= minY && b.maxY <= maxY;
-  }
-  bool overlaps(const Box2& b) const {
-    return b.minX <= maxX && b.maxX >= minX && b.minY <= maxY && b.maxY >= minY;
-  }
+  bool contains(const Box2& b) const { return b.minX >= minX && b.maxX <= maxX && b.minY >= minY && b.maxY <= maxY; }
+  bool overlaps(const Box2& b) const { return b.minX <= maxX && b.maxX >= minX && b.minY <= maxY && b.maxY >= minY; }
   double width() const { return empty() ? 0 : maxX - minX; }
   double height() const { return empty() ? 0 : maxY - minY; }
 };

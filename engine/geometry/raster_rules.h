@@ -39,8 +39,6 @@ inline std::uint32_t viewportExtent(int n) {
 
 // Depth of the feature with nesting rank `rank` (0 = innermost) among `count` features:
 // inside (0, 1), increasing with rank, so the depth test LESS lets inner features win.
-inline float rankDepth(int rank, int count) {
-  return static_cast<float>(rank + 1) / static_cast<float>(count + 2);
-}
+inline float rankDepth(int rank, int count) { return static_cast<float>(rank + 1) / static_cast<float>(count + 2); }
 
 }  // namespace scansurf

@@ -478,7 +478,8 @@ bool Remesher::relax(std::uint32_t v) {
     }
     net_.edgeTriangles(v, w, edgeTris);
     if (r == VertexRole::Curve && net_.isJunctionEdge(edgeTris)) along.push_back(w), key = curveKey(net_, edgeTris);
-    if (r == VertexRole::Plane && net_.isInPlaneEdge(v, w)) along.push_back(w), key = planeKey(net_.plane[v], net_.pair[edgeTris[0]]);
+    if (r == VertexRole::Plane && net_.isInPlaneEdge(v, w))
+      along.push_back(w), key = planeKey(net_.plane[v], net_.pair[edgeTris[0]]);
   }
   if (along.empty()) return false;
   Vec3 centroid{0, 0, 0};
@@ -593,12 +594,14 @@ void Remesher::gradeSizes() {
     net_.neighbours(v, scratch_);
     for (std::uint32_t w : scratch_) {
       net_.edgeTriangles(v, w, edgeTris);
-      if (net_.isFeatureEdge(v, w, edgeTris)) size_[v] = std::min(size_[v], std::max(kFeatureGrade * length(v, w), 0.05 * length_));
+      if (net_.isFeatureEdge(v, w, edgeTris))
+        size_[v] = std::min(size_[v], std::max(kFeatureGrade * length(v, w), 0.05 * length_));
     }
   }
   if (sagitta_ > 0)
     for (std::uint32_t v = 0; v < n; ++v)
-      if (net_.role[v] == VertexRole::Sheet && !net_.vtris[v].empty() && graded(v)) size_[v] = std::min(size_[v], curvatureSize(v));
+      if (net_.role[v] == VertexRole::Sheet && !net_.vtris[v].empty() && graded(v))
+        size_[v] = std::min(size_[v], curvatureSize(v));
   // Dijkstra from every shortened vertex: size(w) <= size(v) + slope |vw|.
   using Item = std::pair<double, std::uint32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
@@ -708,13 +711,15 @@ void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, bool rem
   // the end; the order of work never changes the result.
   std::vector<std::size_t> order(units.size());
   for (std::size_t u = 0; u < order.size(); ++u) order[u] = u;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return units[a].triangles > units[b].triangles; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return units[a].triangles > units[b].triangles; });
   std::atomic<std::size_t> next{0};
   parallelChunks(units.size(), threads, [&](int, std::size_t, std::size_t) {
     for (std::size_t i = next++; i < order.size(); i = next++) {
       const std::size_t u = order[i];
       subs[u] = extractUnit(mesh, valence, settled, units[u]);
-      Remesher remesher(Network(subs[u].mesh, context.planes, context.sliceTolerance, context.length), context, units[u], &subs[u]);
+      Remesher remesher(Network(subs[u].mesh, context.planes, context.sliceTolerance, context.length), context, units[u],
+                        &subs[u]);
       subs[u].mesh = {};
       remesher.run(context.iterations, remeshedBefore);
       results[u] = remesher.result(subs[u]);
@@ -786,7 +791,8 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   const ReferenceSurface reference(network, report.edgeLength, threads);
   const double voxel = std::min(grid.spacingX, grid.spacingY);
   const double sagitta = options.curvatureSizing ? kCurvatureSagitta * voxel : 0;
-  const Context context{std::move(planes), sliceTolerance, report.edgeLength, voxel, sagitta, options.iterations, surfaces, reference};
+  const Context context{std::move(planes), sliceTolerance,     report.edgeLength, voxel,
+                        sagitta,           options.iterations, surfaces,          reference};
   if (whole) {
     Remesher remesher(std::move(network), context, WorkUnit{}, nullptr);
     remesher.run(options.iterations);

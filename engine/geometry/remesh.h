@@ -27,8 +27,7 @@ namespace scansurf {
 // threads. Returns the figures; ran = false when disabled or empty.
 inline constexpr std::size_t kTrianglesPerSlab = 200'000;
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, int threads = 0,
-                        std::size_t trianglesPerSlab = kTrianglesPerSlab);
+                        const RemeshOptions& options, int threads = 0, std::size_t trianglesPerSlab = kTrianglesPerSlab);
 
 // Adds a layer's figures to the run's (Surfaces::remeshing): counts summed, smallest angle
 // and 5th percentile the least of the two, means weighted by triangles, distance the largest.

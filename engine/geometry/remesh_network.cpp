@@ -392,8 +392,8 @@ bool singleOrientedFans(std::vector<LinkEdge>& link) {
     std::uint32_t at = link[i].to;
     std::size_t steps = 1;
     while (at != link[i].from) {
-      const auto it = std::lower_bound(link.begin() + static_cast<std::ptrdiff_t>(i), link.begin() + static_cast<std::ptrdiff_t>(e),
-                                       LinkEdge{link[i].surface, at, 0});
+      const auto it = std::lower_bound(link.begin() + static_cast<std::ptrdiff_t>(i),
+                                       link.begin() + static_cast<std::ptrdiff_t>(e), LinkEdge{link[i].surface, at, 0});
       if (it == link.begin() + static_cast<std::ptrdiff_t>(e) || it->from != at || ++steps > e - i) return false;
       at = it->to;
     }

@@ -19,9 +19,7 @@ namespace scansurf::remesh {
 using glm::cross;
 using glm::dot;
 // Rounded to float and back: the mesh stores float, and every check runs on what is stored.
-inline Vec3 storable(const Vec3& p) {
-  return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])};
-}
+inline Vec3 storable(const Vec3& p) { return {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])}; }
 
 // Vertex roles (VertexRole, geometry/vertex_roles.h): a Curve vertex has exactly two junction
 // edges, a Plane vertex exactly two in-plane edges of its cross-section polyline.
@@ -76,8 +74,8 @@ class TriangleGrid {
 
 // Edits since an operation began, for undo.
 struct Change {
-  std::vector<std::uint32_t> removed;  // triangles made dead
-  std::uint32_t firstAdded = 0;        // triangles >= this were added
+  std::vector<std::uint32_t> removed;                 // triangles made dead
+  std::uint32_t firstAdded = 0;                       // triangles >= this were added
   std::vector<std::pair<std::uint32_t, Vec3>> moved;  // vertex, its old position
   bool addedVertex = false;
 };

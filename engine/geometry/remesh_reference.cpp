@@ -154,7 +154,9 @@ void ReferenceSurface::bucket(int threads) {
     for (std::size_t id = begin; id < end; ++id) {
       const Primitive& q = primitives_[id];
       boxOf(q, lo, hi);
-      forCells(lo, hi, {q.keyKind, q.keyValue}, [&](std::uint64_t key) { part.push_back({key, static_cast<std::uint32_t>(id)}); });
+      forCells(lo, hi, {q.keyKind, q.keyValue}, [&](std::uint64_t key) {
+        part.push_back({key, static_cast<std::uint32_t>(id)});
+      });
     }
     std::sort(part.begin(), part.end());
   });

@@ -65,8 +65,8 @@ class ReferenceSurface {
   // run of entries in one array, each run by ascending primitive (compressed rows).
   struct CellTable {
     static constexpr std::uint64_t kEmpty = ~0ull;
-    std::vector<std::uint64_t> keys;  // per slot, kEmpty when free
-    std::vector<std::uint32_t> runs;  // per slot, its run's index
+    std::vector<std::uint64_t> keys;    // per slot, kEmpty when free
+    std::vector<std::uint32_t> runs;    // per slot, its run's index
     std::vector<std::uint32_t> starts;  // run r is entries[starts[r], starts[r + 1])
     std::vector<CellEntry> entries;
     int shift = 64;

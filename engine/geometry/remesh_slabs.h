@@ -41,11 +41,11 @@ SlabPlan planSlabs(const MultiLabelMesh& mesh, double edgeLength, std::size_t tr
 // A unit's part of the network, its vertices renumbered in the whole mesh's order.
 struct SubMesh {
   MultiLabelMesh mesh;
-  std::vector<std::uint32_t> globalVertex;     // per local vertex
-  std::vector<char> pinned;                    // per local vertex
-  std::vector<char> rim;                       // per local vertex: some of its triangles are not in the submesh
-  std::vector<char> settled;                   // per local vertex: remeshed by an earlier phase
-  std::vector<std::uint32_t> editable;         // whole-mesh triangles with a free vertex
+  std::vector<std::uint32_t> globalVertex;          // per local vertex
+  std::vector<char> pinned;                         // per local vertex
+  std::vector<char> rim;                            // per local vertex: some of its triangles are not in the submesh
+  std::vector<char> settled;                        // per local vertex: remeshed by an earlier phase
+  std::vector<std::uint32_t> editable;              // whole-mesh triangles with a free vertex
   std::vector<std::array<std::uint32_t, 4>> fixed;  // the others: sorted local corners and pair, sorted
 };
 // `valence`: the whole mesh's triangles per vertex; `settled`: per vertex, whether an earlier

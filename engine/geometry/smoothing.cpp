@@ -59,19 +59,19 @@
 #include <cstring>
 #include <vector>
 
-#include "geometry/vec3.h"
-#include "geometry/vertex_roles.h"
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
 #include "geometry/huge_pages.h"
 #include "geometry/overlap_split.h"
+#include "geometry/vec3.h"
+#include "geometry/vertex_roles.h"
 
 namespace scansurf {
 namespace {
 
-constexpr double kMargin = 0.02;  // least barycentric weight inside a carrier
-constexpr double kBending = 0.45;  // bi-Laplacian step at strength 1
+constexpr double kMargin = 0.02;     // least barycentric weight inside a carrier
+constexpr double kBending = 0.45;    // bi-Laplacian step at strength 1
 constexpr double kTension = 0.0875;  // Laplacian step at strength 1
 constexpr int kNormalPeriod = 4;     // sweeps between vertex normal updates
 constexpr int kSuperStep = 30;       // most plain sweeps' worth of smoothing in one super-step
@@ -81,8 +81,7 @@ constexpr double kStability = 1.15;  // least ratio of a super-step's stability 
 using Float4 = float __attribute__((vector_size(16)));
 
 Vec3 cornerPosition(const Grid& grid, const int c[3]) {
-  return {grid.originX + grid.spacingX * c[0], grid.originY + grid.spacingY * c[1],
-          grid.layerZ[static_cast<std::size_t>(c[2])]};
+  return {grid.originX + grid.spacingX * c[0], grid.originY + grid.spacingY * c[1], grid.layerZ[static_cast<std::size_t>(c[2])]};
 }
 
 // The point of the carrier nearest p in the least-squares sense of its affine span, with its
@@ -129,12 +128,12 @@ Vec3 projectIntoCarrier(const Grid& grid, const Carrier& carrier, const Vec3& p)
 // Per vertex, one byte: its VertexRole in the low bits, and for a sheet vertex whether it slides
 // along its carrier edge (kOnEdge) and whether its link is not one cycle (kPinched).
 constexpr std::uint8_t kRoleMask = 3, kOnEdge = 4, kPinched = 8;
-constexpr std::uint8_t kSlides = 16;             // slides along its normal until the next refresh
+constexpr std::uint8_t kSlides = 16;              // slides along its normal until the next refresh
 constexpr std::uint8_t kStepX = 32, kStepY = 64;  // its carrier edge runs along x, along y
 VertexRole roleOf(std::uint8_t kind) { return static_cast<VertexRole>(kind & kRoleMask); }
 
 struct Adjacency {
-  std::vector<std::uint8_t> kind;    // VertexRole | kOnEdge | kPinched
+  std::vector<std::uint8_t> kind;   // VertexRole | kOnEdge | kPinched
   HugeVector<std::uint32_t> start;  // size V + 1, into neighbours
   // A sheet vertex's neighbours in the order of its link cycle (each triangle (v, a, b) of v,
   // counter-clockwise, is a consecutive a, b, the last neighbour followed by the first), so
@@ -165,8 +164,8 @@ IncidentTriangles incidentTriangles(const MultiLabelMesh& mesh) {
 
 // One thread's working lists while classifying vertices.
 struct ClassifyScratch {
-  std::vector<std::uint32_t> tris;                              // v's triangles
-  std::vector<std::uint32_t> sorted;                            // v's neighbours, ascending
+  std::vector<std::uint32_t> tris;                             // v's triangles
+  std::vector<std::uint32_t> sorted;                           // v's neighbours, ascending
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // (neighbour, label pair)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> link;   // (a, b) of each triangle (v, a, b)
   std::vector<std::array<std::uint32_t, 3>> pinched;
@@ -336,14 +335,15 @@ void placeOnMedialLines(const MultiLabelMesh& mesh, const Grid& grid, const Adja
     const auto point = [&](const int* corner) {
       return Point2{grid.originX + corner[0] * grid.spacingX, grid.originY + corner[1] * grid.spacingY};
     };
-    const double m = medial.crossing(adj.labels[2 * v], adj.labels[2 * v + 1], grid.layerZ[static_cast<std::size_t>(c.corners[0][2])],
-                                     point(c.corners[0]), point(c.corners[1]));
+    const double m =
+        medial.crossing(adj.labels[2 * v], adj.labels[2 * v + 1], grid.layerZ[static_cast<std::size_t>(c.corners[0][2])],
+                        point(c.corners[0]), point(c.corners[1]));
     if (m >= 0) t[v] = m;
   }
 }
 
-void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, std::span<const std::uint16_t> clearance,
-                         Adjacency& adj, int threads, const MedialCrossings* medial) {
+void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
+                         std::span<const std::uint16_t> clearance, Adjacency& adj, int threads, const MedialCrossings* medial) {
   std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, threads)
                                    : std::vector<double>(mesh.vertexCount(), -1.0);
   if (medial && !medial->empty()) placeOnMedialLines(mesh, grid, adj, *medial, t);
@@ -389,9 +389,9 @@ SmoothingReport settleRoles(const std::vector<std::uint64_t>& keys, std::vector<
 // float loses nothing beyond the final rounding to float that the mesh stores anyway.
 //
 // Each plain sweep moves a vertex by strength * (kTension * U - kBending * U^2), then into its
-// carrier (a stage of a super-step combines that step with the last two positions, Stage). Bending alone is stable below 0.5 for uniform weights (eigenvalues of U^2 <= 4)
-// and would extrapolate a cap past the last contour by the chord slope of the rings below;
-// a little tension balances that (measured on spheres and tori, see smoothing_test.cpp).
+// carrier (a stage of a super-step combines that step with the last two positions, Stage). Bending alone is stable below 0.5 for
+// uniform weights (eigenvalues of U^2 <= 4) and would extrapolate a cap past the last contour by the chord slope of the rings
+// below; a little tension balances that (measured on spheres and tori, see smoothing_test.cpp).
 //
 // A sheet vertex on a carrier edge e = b - a then goes where the plane through its target
 // with normal n cuts the edge (t clamped to [kMargin, 1 - kMargin]): it follows the
@@ -439,9 +439,9 @@ class Relaxation {
   const std::uint32_t* const neighbours_;
   const std::vector<std::array<std::uint32_t, 3>>& pinchedLinks_;
   const std::uint64_t* const keys_;
-  const float stepX_, stepY_;     // grid spacing, the x and y extent of a carrier edge
+  const float stepX_, stepY_;      // grid spacing, the x and y extent of a carrier edge
   const float bending_, tension_;  // kBending and kTension at the options' strength
-  HugeVector<Float4> cur_;        // positions before the sweep
+  HugeVector<Float4> cur_;         // positions before the sweep
   // After it; before it, the positions of the sweep before cur_ (a stage's second term).
   // Corner and plane vertices hold the same value in both.
   HugeVector<Float4> next_;
@@ -609,9 +609,9 @@ Float4 Relaxation::alongCarrierEdge(std::size_t v, std::uint8_t kind, float alon
 
 // The nearest point of v's carrier to p + d.
 Float4 Relaxation::intoCarrier(std::size_t v, const Float4& p, const Float4& d) const {
-  const Vec3 out = projectIntoCarrier(grid_, carrierOfKey(keys_[v]), {p[0] + static_cast<double>(d[0]),
-                                                                     p[1] + static_cast<double>(d[1]),
-                                                                     p[2] + static_cast<double>(d[2])});
+  const Vec3 out =
+      projectIntoCarrier(grid_, carrierOfKey(keys_[v]),
+                         {p[0] + static_cast<double>(d[0]), p[1] + static_cast<double>(d[1]), p[2] + static_cast<double>(d[2])});
   return Float4{static_cast<float>(out[0]), static_cast<float>(out[1]), static_cast<float>(out[2]), 0.0f};
 }
 
@@ -648,9 +648,8 @@ std::vector<Stage> scheduleOf(int iterations, double strength) {
 
 }  // namespace
 
-SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                           const SmoothingOptions& options, int threads,
-                           std::span<const std::uint16_t> clearance, const MedialCrossings* medial) {
+SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const SmoothingOptions& options,
+                           int threads, std::span<const std::uint16_t> clearance, const MedialCrossings* medial) {
   const std::size_t vertexCount = mesh.vertexCount();
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);

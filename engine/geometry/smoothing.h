@@ -14,11 +14,11 @@ namespace scansurf {
 
 // What the smoother did, by vertex role.
 struct SmoothingReport {
-  std::size_t sheet = 0;     // relaxed over their surface sheet
-  std::size_t curve = 0;     // relaxed along a junction curve (three or more labels)
-  std::size_t fixed = 0;     // junction curve meeting points and unrecognised vertices: kept
-  std::size_t fitted = 0;    // placed on their contour's crossing and kept there
-  int sweeps = 0;            // Jacobi sweeps run over all vertices (super-step stages)
+  std::size_t sheet = 0;   // relaxed over their surface sheet
+  std::size_t curve = 0;   // relaxed along a junction curve (three or more labels)
+  std::size_t fixed = 0;   // junction curve meeting points and unrecognised vertices: kept
+  std::size_t fitted = 0;  // placed on their contour's crossing and kept there
+  int sweeps = 0;          // Jacobi sweeps run over all vertices (super-step stages)
 };
 
 // Smooths mesh.positions in place; triangles, labels and keys are unchanged. Requires
@@ -32,8 +32,8 @@ struct SmoothingReport {
 // With `medial`, the interface vertices of incidental pairs on contour planes go to the pair's
 // medial line instead (geometry/overlap_split.h).
 class MedialCrossings;
-SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                           const SmoothingOptions& options, int threads = 0, std::span<const std::uint16_t> clearance = {},
+SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const SmoothingOptions& options,
+                           int threads = 0, std::span<const std::uint16_t> clearance = {},
                            const MedialCrossings* medial = nullptr);
 
 }  // namespace scansurf

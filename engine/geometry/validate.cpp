@@ -79,7 +79,6 @@ void dropRepeatedContours(ContourSet& contours, int f, FeatureSlice& slice, int 
   slice.contours = std::move(kept);
 }
 
-
 // The largest magnitude of the set's coordinates: differences below 1e-12 of it are rounding
 // of one value, not a spacing.
 double magnitudeOf(const ContourSet& contours) {
@@ -165,13 +164,11 @@ void mergeSlicesOfOnePlane(Feature& feature) {
 }  // namespace
 
 std::string describeFeature(const ContourSet& contours, int feature) {
-  return sourceName(contours) + ": feature \"" + contours.features[feature].name + "\" (#" +
-         std::to_string(feature) + ")";
+  return sourceName(contours) + ": feature \"" + contours.features[feature].name + "\" (#" + std::to_string(feature) + ")";
 }
 
 std::string describeSlice(const ContourSet& contours, int feature, int slice, double z) {
-  return describeFeature(contours, feature) + ", slice z=" + formatNumber(z) + " (#" +
-         std::to_string(slice) + ")";
+  return describeFeature(contours, feature) + ", slice z=" + formatNumber(z) + " (#" + std::to_string(slice) + ")";
 }
 
 Result<void> validateContours(ContourSet& contours) { return validateAndNormalize(contours); }
@@ -181,17 +178,15 @@ Result<void> validateAndNormalize(ContourSet& contours) {
   const int featureCount = static_cast<int>(contours.features.size());
   if (featureCount == 0) return invalid(source + ": no features");
   if (featureCount > kMaxFeatures)
-    return invalid(source + ": " + std::to_string(featureCount) + " features, more than the " +
-                   std::to_string(kMaxFeatures) + " supported");
+    return invalid(source + ": " + std::to_string(featureCount) + " features, more than the " + std::to_string(kMaxFeatures) +
+                   " supported");
 
   std::map<std::string, int> firstIndexOfName;
   for (int f = 0; f < featureCount; ++f) {
     const std::string& name = contours.features[f].name;
     if (name.empty()) return invalid(source + ": feature #" + std::to_string(f) + " has an empty name");
     const auto [it, inserted] = firstIndexOfName.emplace(name, f);
-    if (!inserted)
-      return invalid(describeFeature(contours, f) + ": duplicate name, also feature #" +
-                     std::to_string(it->second));
+    if (!inserted) return invalid(describeFeature(contours, f) + ": duplicate name, also feature #" + std::to_string(it->second));
   }
 
   for (int f = 0; f < featureCount; ++f) {
@@ -236,10 +231,8 @@ Result<void> validateAndNormalize(ContourSet& contours) {
     for (std::size_t i = 0; i < contours.order.size(); ++i) {
       const int f = contours.order[i];
       if (f < 0 || f >= featureCount)
-        return invalid(source + ": order entry " + std::to_string(i) + " (" + std::to_string(f) +
-                       ") is not a feature index");
-      if (seen[f]++)
-        return invalid(describeFeature(contours, f) + ": named more than once in order");
+        return invalid(source + ": order entry " + std::to_string(i) + " (" + std::to_string(f) + ") is not a feature index");
+      if (seen[f]++) return invalid(describeFeature(contours, f) + ": named more than once in order");
     }
     for (int f = 0; f < featureCount; ++f)
       if (!seen[f]) return invalid(describeFeature(contours, f) + ": missing from order");

@@ -8,8 +8,7 @@ namespace scansurf::gpu {
 const char* vkResultName(VkResult result) {
   switch (result) {
 #define SCANSURF_CASE(name) \
-  case name:                \
-    return #name;
+  case name: return #name;
     SCANSURF_CASE(VK_SUCCESS)
     SCANSURF_CASE(VK_NOT_READY)
     SCANSURF_CASE(VK_TIMEOUT)
@@ -28,14 +27,13 @@ const char* vkResultName(VkResult result) {
     SCANSURF_CASE(VK_ERROR_FRAGMENTED_POOL)
     SCANSURF_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
 #undef SCANSURF_CASE
-    default:
-      return "VkResult";
+    default: return "VkResult";
   }
 }
 
 Unexpected vulkanError(VkResult result, const char* call, const char* file, int line) {
-  return makeError(Errc::Vulkan, std::string("Vulkan call failed: ") + call + " returned " + vkResultName(result) +
-                                     " (" + std::to_string(static_cast<int>(result)) + ") at " +
+  return makeError(Errc::Vulkan, std::string("Vulkan call failed: ") + call + " returned " + vkResultName(result) + " (" +
+                                     std::to_string(static_cast<int>(result)) + ") at " +
                                      std::filesystem::path(file).filename().string() + ":" + std::to_string(line));
 }
 

@@ -16,9 +16,8 @@ Unexpected vulkanError(VkResult result, const char* call, const char* file, int 
 
 // Runs a Vulkan call; on failure returns an Errc::Vulkan error naming the call, the VkResult,
 // file and line. Never compiled away.
-#define SCANSURF_VK_TRY(call)                                                       \
-  do {                                                                              \
-    const VkResult scansurfVkResult_ = (call);                                      \
-    if (scansurfVkResult_ != VK_SUCCESS)                                            \
-      return ::scansurf::gpu::vulkanError(scansurfVkResult_, #call, __FILE__, __LINE__); \
+#define SCANSURF_VK_TRY(call)                                                                                               \
+  do {                                                                                                                      \
+    const VkResult scansurfVkResult_ = (call);                                                                              \
+    if (scansurfVkResult_ != VK_SUCCESS) return ::scansurf::gpu::vulkanError(scansurfVkResult_, #call, __FILE__, __LINE__); \
   } while (false)

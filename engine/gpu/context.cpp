@@ -61,7 +61,9 @@ int graphicsComputeFamily(VkPhysicalDevice device) {
 std::string rejection(VkPhysicalDevice device) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(device, &props);
-  if (props.apiVersion < VK_API_VERSION_1_3) return "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." + std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ", needs 1.3";
+  if (props.apiVersion < VK_API_VERSION_1_3)
+    return "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
+           std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ", needs 1.3";
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
   vkGetPhysicalDeviceFeatures2(device, &f2);
@@ -117,7 +119,8 @@ bool hasLayer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
 // The user's selector (an index or part of a name), else the best device type that can run
@@ -137,8 +140,9 @@ Result<VkPhysicalDevice> choosePhysicalDevice(VkInstance instance, const std::st
     const std::string why = rejection(devices[i]);
     report += "\n  [" + std::to_string(i) + "] " + props.deviceName + " (" + typeName(props.deviceType) + ")" +
               (why.empty() ? "" : ": unusable, " + why);
-    const bool matches = selector.empty() || (selectorIsIndex(selector) ? selector == std::to_string(i)
-                                                                        : lower(props.deviceName).find(lower(selector)) != std::string::npos);
+    const bool matches =
+        selector.empty() || (selectorIsIndex(selector) ? selector == std::to_string(i)
+                                                       : lower(props.deviceName).find(lower(selector)) != std::string::npos);
     if (!matches || !why.empty() || typeRank(props.deviceType) <= bestRank) continue;
     bestRank = typeRank(props.deviceType);
     chosen = static_cast<int>(i);
@@ -157,8 +161,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(VkDebugUtilsMessageSeverit
                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* self = static_cast<Context*>(user);
   self->validationMessages_.fetch_add(1);
-  std::string message = std::string(severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "validation error: " : "validation warning: ") +
-                        (data && data->pMessage ? data->pMessage : "(no message)");
+  std::string message =
+      std::string(severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "validation error: " : "validation warning: ") +
+      (data && data->pMessage ? data->pMessage : "(no message)");
   if (self->onValidationMessage_)
     self->onValidationMessage_(message);
   else
@@ -207,15 +212,16 @@ Result<void> Context::createInstance(bool validation) {
 
 Result<void> Context::createMessenger() {
   VkInstance instance = instance_;
-  auto createFn = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+  auto createFn =
+      reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
   auto destroyFn =
       reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
   if (!createFn || !destroyFn) return makeError(Errc::Vulkan, "VK_EXT_debug_utils is not available");
   const VkDebugUtilsMessengerCreateInfoEXT info = messengerInfo();
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
   SCANSURF_VK_TRY(createFn(instance, &info, nullptr, &messenger));
-  messenger_ = Owned<VkDebugUtilsMessengerEXT>(messenger,
-                                              [instance, destroyFn](VkDebugUtilsMessengerEXT m) { destroyFn(instance, m, nullptr); });
+  messenger_ = Owned<VkDebugUtilsMessengerEXT>(
+      messenger, [instance, destroyFn](VkDebugUtilsMessengerEXT m) { destroyFn(instance, m, nullptr); });
   return {};
 }
 

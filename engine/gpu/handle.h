@@ -11,8 +11,7 @@ class Owned {
  public:
   Owned() = default;
   Owned(T handle, std::function<void(T)> destroy) : handle_(handle), destroy_(std::move(destroy)) {}
-  Owned(Owned&& other) noexcept
-      : handle_(std::exchange(other.handle_, T{})), destroy_(std::move(other.destroy_)) {}
+  Owned(Owned&& other) noexcept : handle_(std::exchange(other.handle_, T{})), destroy_(std::move(other.destroy_)) {}
   Owned& operator=(Owned&& other) noexcept {
     if (this != &other) {
       reset();

@@ -18,15 +18,14 @@ Result<Owned<VkShaderModule>> createShaderModule(const Context& ctx, std::span<c
 Result<Owned<VkDescriptorSetLayout>> createStorageBufferSetLayout(const Context& ctx, std::uint32_t count,
                                                                   VkShaderStageFlags stages) {
   std::vector<VkDescriptorSetLayoutBinding> bindings(count);
-  for (std::uint32_t i = 0; i < count; ++i)
-    bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
+  for (std::uint32_t i = 0; i < count; ++i) bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr};
   VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   info.bindingCount = count;
   info.pBindings = bindings.data();
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
   SCANSURF_VK_TRY(vkCreateDescriptorSetLayout(ctx.device(), &info, nullptr, &layout));
-  return Owned<VkDescriptorSetLayout>(layout,
-                                      [d = ctx.device()](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(d, l, nullptr); });
+  return Owned<VkDescriptorSetLayout>(
+      layout, [d = ctx.device()](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(d, l, nullptr); });
 }
 
 Result<Owned<VkPipelineLayout>> createPipelineLayout(const Context& ctx, std::span<const VkDescriptorSetLayout> sets,

@@ -6,9 +6,8 @@
 namespace scansurf::gpu {
 namespace {
 
-Result<Owned<VkDeviceMemory>> allocate(const Context& ctx, const VkMemoryRequirements& req,
-                                       VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred,
-                                       std::uint32_t* typeOut) {
+Result<Owned<VkDeviceMemory>> allocate(const Context& ctx, const VkMemoryRequirements& req, VkMemoryPropertyFlags required,
+                                       VkMemoryPropertyFlags preferred, std::uint32_t* typeOut) {
   SCANSURF_ASSIGN_OR_RETURN(const std::uint32_t type, ctx.findMemoryType(req.memoryTypeBits, required, preferred));
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = req.size;
@@ -41,12 +40,8 @@ Result<Buffer> Buffer::create(const Context& ctx, VkDeviceSize size, VkBufferUsa
   VkMemoryPropertyFlags required = 0;
   VkMemoryPropertyFlags preferred = 0;
   switch (domain) {
-    case MemoryDomain::Device:
-      preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-      break;
-    case MemoryDomain::Upload:
-      required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-      break;
+    case MemoryDomain::Device: preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT; break;
+    case MemoryDomain::Upload: required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT; break;
     case MemoryDomain::Readback:
       required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
       preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
@@ -71,8 +66,8 @@ Result<void> Buffer::invalidate() const {
   return {};
 }
 
-Result<Image> Image::create(const Context& ctx, VkFormat format, std::uint32_t width, std::uint32_t height,
-                            std::uint32_t layers, VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+Result<Image> Image::create(const Context& ctx, VkFormat format, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
+                            VkImageUsageFlags usage, VkImageAspectFlags aspect) {
   Image img;
   img.format_ = format;
   img.aspect_ = aspect;

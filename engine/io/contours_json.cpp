@@ -61,8 +61,7 @@ struct Location {
                     : ": feature #" + std::to_string(feature);
     }
     if (slice >= 0) {
-      s += haveZ ? ", slice z=" + formatNumber(z) + " (#" + std::to_string(slice) + ")"
-                 : ", slice #" + std::to_string(slice);
+      s += haveZ ? ", slice z=" + formatNumber(z) + " (#" + std::to_string(slice) + ")" : ", slice #" + std::to_string(slice);
     }
     if (contour >= 0) s += ", contour " + std::to_string(contour);
     if (point >= 0) s += ", point " + std::to_string(point);
@@ -71,19 +70,18 @@ struct Location {
 };
 
 Result<Rgb> parseColor(const Json& j, const Location& at) {
-  if (!j.is_array() || j.size() != 3)
-    return invalid(at.text() + ": \"color\" must be an array of 3 integers in 0..255");
+  if (!j.is_array() || j.size() != 3) return invalid(at.text() + ": \"color\" must be an array of 3 integers in 0..255");
   Rgb rgb{};
   for (std::size_t i = 0; i < 3; ++i) {
     const Json& c = j[i];
     if (!c.is_number_integer())
-      return invalid(at.text() + ": \"color\" must be an array of 3 integers in 0..255, component " +
-                     std::to_string(i) + " is " + quoted(c));
-    const std::int64_t v = c.is_number_unsigned() ? static_cast<std::int64_t>(std::min<std::uint64_t>(c.get<std::uint64_t>(), 1000))
-                                                  : c.get<std::int64_t>();
+      return invalid(at.text() + ": \"color\" must be an array of 3 integers in 0..255, component " + std::to_string(i) + " is " +
+                     quoted(c));
+    const std::int64_t v = c.is_number_unsigned()
+                               ? static_cast<std::int64_t>(std::min<std::uint64_t>(c.get<std::uint64_t>(), 1000))
+                               : c.get<std::int64_t>();
     if (v < 0 || v > 255)
-      return invalid(at.text() + ": \"color\" component " + std::to_string(i) + " is " + std::to_string(v) +
-                     ", outside 0..255");
+      return invalid(at.text() + ": \"color\" component " + std::to_string(i) + " is " + std::to_string(v) + ", outside 0..255");
     rgb[i] = static_cast<std::uint8_t>(v);
   }
   return rgb;
@@ -115,8 +113,7 @@ Result<FeatureSlice> parseSlice(const Json& j, Location at) {
   at.haveZ = true;
   const auto contours = j.find("contours");
   if (contours == j.end()) return invalid(at.text() + ": missing \"contours\"");
-  if (!contours->is_array())
-    return invalid(at.text() + ": \"contours\" must be an array, found " + typeName(*contours));
+  if (!contours->is_array()) return invalid(at.text() + ": \"contours\" must be an array, found " + typeName(*contours));
   for (std::size_t c = 0; c < contours->size(); ++c) {
     at.contour = static_cast<int>(c);
     SCANSURF_ASSIGN_OR_RETURN(Contour contour, parseContour((*contours)[c], at));
@@ -167,8 +164,7 @@ Result<ContourSet> parseDocument(const Json& root, std::string source) {
 
   const auto features = root.find("features");
   if (features == root.end()) return invalid(set.source + ": missing \"features\"");
-  if (!features->is_array())
-    return invalid(set.source + ": \"features\" must be an array, found " + typeName(*features));
+  if (!features->is_array()) return invalid(set.source + ": \"features\" must be an array, found " + typeName(*features));
   for (std::size_t f = 0; f < features->size(); ++f) {
     at.feature = static_cast<int>(f);
     SCANSURF_ASSIGN_OR_RETURN(Feature feature, parseFeature((*features)[f], at));
@@ -180,15 +176,13 @@ Result<ContourSet> parseDocument(const Json& root, std::string source) {
     for (std::size_t i = 0; i < order->size(); ++i) {
       const Json& entry = (*order)[i];
       if (!entry.is_string())
-        return invalid(set.source + ": \"order\" entry " + std::to_string(i) + " must be a feature name, found " +
-                       quoted(entry));
+        return invalid(set.source + ": \"order\" entry " + std::to_string(i) + " must be a feature name, found " + quoted(entry));
       const std::string name = entry.get<std::string>();
       int index = -1;
       for (std::size_t f = 0; f < set.features.size() && index < 0; ++f)
         if (set.features[f].name == name) index = static_cast<int>(f);
       if (index < 0)
-        return invalid(set.source + ": \"order\" entry " + std::to_string(i) + " names unknown feature \"" + name +
-                       "\"");
+        return invalid(set.source + ": \"order\" entry " + std::to_string(i) + " names unknown feature \"" + name + "\"");
       set.order.push_back(index);
     }
     // An explicit but empty order names no feature: let validation report the first one missing.
@@ -253,8 +247,7 @@ std::string formatContoursJson(const ContourSet& contours) {
     out += "    {\n      \"name\": " + text(feature.name) + ",\n";
     if (feature.color) {
       const Rgb& c = *feature.color;
-      out += "      \"color\": [" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) +
-             "],\n";
+      out += "      \"color\": [" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + "],\n";
     }
     out += "      \"slices\": [";
     for (std::size_t s = 0; s < feature.slices.size(); ++s) {
@@ -296,13 +289,13 @@ Result<void> writeContoursJson(const ContourSet& contours, const std::filesystem
       for (const Contour& c : slice.contours)
         for (const Point2& p : c.points) finite = finite && std::isfinite(p.x) && std::isfinite(p.y);
       if (!finite)
-        return makeError(Errc::InvalidArgument, describeFeature(contours, f) + ": non-finite value, cannot write " +
-                                                    path.string());
+        return makeError(Errc::InvalidArgument,
+                         describeFeature(contours, f) + ": non-finite value, cannot write " + path.string());
     }
   for (int f : contours.order)
     if (f < 0 || f >= featureCount)
-      return makeError(Errc::InvalidArgument, "order index " + std::to_string(f) + " out of range, cannot write " +
-                                                  path.string());
+      return makeError(Errc::InvalidArgument,
+                       "order index " + std::to_string(f) + " out of range, cannot write " + path.string());
 
   const std::string text = formatContoursJson(contours);
   return writeFileAtomically(path, text.data(), text.size());

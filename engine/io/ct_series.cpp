@@ -29,8 +29,7 @@ struct Image {
   double spacing[2] = {0, 0};  // row spacing (y), column spacing (x)
 };
 
-Result<double> getDouble(DcmDataset& ds, const DcmTagKey& tag, unsigned long pos, const std::string& file,
-                         const char* name) {
+Result<double> getDouble(DcmDataset& ds, const DcmTagKey& tag, unsigned long pos, const std::string& file, const char* name) {
   Float64 v = 0;
   if (ds.findAndGetFloat64(tag, v, pos).bad()) return invalid(file + ": missing or malformed " + std::string(name));
   if (!std::isfinite(v)) return invalid(file + ": non-finite value in " + std::string(name));
@@ -83,16 +82,15 @@ Result<Image> imageOf(DcmDataset& ds, const std::filesystem::path& path) {
   if (image.sopInstanceUid.empty()) return invalid(file + ": missing SOP Instance UID (0008,0018)");
   Uint16 rows = 0, columns = 0;
   if (ds.findAndGetUint16(DCM_Rows, rows).bad() || rows == 0) return invalid(file + ": missing Rows (0028,0010)");
-  if (ds.findAndGetUint16(DCM_Columns, columns).bad() || columns == 0)
-    return invalid(file + ": missing Columns (0028,0011)");
+  if (ds.findAndGetUint16(DCM_Columns, columns).bad() || columns == 0) return invalid(file + ": missing Columns (0028,0011)");
   image.rows = rows;
   image.columns = columns;
   for (unsigned long i = 0; i < 3; ++i) {
     SCANSURF_ASSIGN_OR_RETURN(image.position[i],
                               getDouble(ds, DCM_ImagePositionPatient, i, file, "Image Position (Patient) (0020,0032)"));
     if (std::abs(image.position[i]) > kMaxCoordinate)
-      return invalid(file + ": Image Position (Patient) (0020,0032) value " + formatNumber(image.position[i]) +
-                     " is beyond " + formatNumber(kMaxCoordinate) + " mm from the origin");
+      return invalid(file + ": Image Position (Patient) (0020,0032) value " + formatNumber(image.position[i]) + " is beyond " +
+                     formatNumber(kMaxCoordinate) + " mm from the origin");
   }
   for (unsigned long i = 0; i < 2; ++i) {
     SCANSURF_ASSIGN_OR_RETURN(image.spacing[i], getDouble(ds, DCM_PixelSpacing, i, file, "Pixel Spacing (0028,0030)"));
@@ -128,19 +126,17 @@ Result<void> checkOneLattice(const std::vector<Image>& images, const std::string
   auto differs = [](double a, double b) { return std::abs(a - b) > kGeometryTolerance; };
   for (const Image& image : images) {
     if (image.seriesUid != first.seriesUid)
-      return invalid(dir + ": holds more than one series (" + first.seriesUid + " in " + first.file + ", " +
-                     image.seriesUid + " in " + image.file + "); give a folder with one series");
+      return invalid(dir + ": holds more than one series (" + first.seriesUid + " in " + first.file + ", " + image.seriesUid +
+                     " in " + image.file + "); give a folder with one series");
     if (image.rows != first.rows || image.columns != first.columns)
-      return invalid(image.file + ": " + std::to_string(image.columns) + " x " + std::to_string(image.rows) +
-                     " pixels, unlike " + first.file + " (" + std::to_string(first.columns) + " x " +
-                     std::to_string(first.rows) + ")");
+      return invalid(image.file + ": " + std::to_string(image.columns) + " x " + std::to_string(image.rows) + " pixels, unlike " +
+                     first.file + " (" + std::to_string(first.columns) + " x " + std::to_string(first.rows) + ")");
     if (differs(image.spacing[0], first.spacing[0]) || differs(image.spacing[1], first.spacing[1]))
       return invalid(image.file + ": Pixel Spacing differs from " + first.file + "'s");
     if (differs(image.position[0], first.position[0]) || differs(image.position[1], first.position[1]))
       return invalid(image.file + ": Image Position (Patient) x, y (" + formatNumber(image.position[0]) + ", " +
-                     formatNumber(image.position[1]) + ") differ from " + first.file + "'s (" +
-                     formatNumber(first.position[0]) + ", " + formatNumber(first.position[1]) +
-                     "); the slices must stack straight");
+                     formatNumber(image.position[1]) + ") differ from " + first.file + "'s (" + formatNumber(first.position[0]) +
+                     ", " + formatNumber(first.position[1]) + "); the slices must stack straight");
   }
   return {};
 }
@@ -214,8 +210,8 @@ Result<void> placeOnCtSlices(ContourSet& contours, const CtSeries& ct, double to
       if (it != zs.begin() && std::abs(*(it - 1) - slice.z) < std::abs(nearest - slice.z)) nearest = *(it - 1);
       if (std::abs(nearest - slice.z) > tolerance)
         return invalid(describeSlice(contours, f, s, slice.z) + ": not on a slice of the reference series " + ct.directory +
-                       " (nearest z=" + formatNumber(nearest) + ", " + std::to_string(zs.size()) + " slices from z=" +
-                       formatNumber(zs.front()) + " to " + formatNumber(zs.back()) + ")");
+                       " (nearest z=" + formatNumber(nearest) + ", " + std::to_string(zs.size()) +
+                       " slices from z=" + formatNumber(zs.front()) + " to " + formatNumber(zs.back()) + ")");
       slice.z = nearest;
     }
   }

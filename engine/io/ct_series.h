@@ -18,11 +18,11 @@ struct CtSeries {
   std::string seriesUid;
   std::string frameOfReferenceUid;
   std::string modality;
-  int columns = 0;       // pixels along x (Columns)
-  int rows = 0;          // pixels along y (Rows)
-  double spacingX = 0;   // Pixel Spacing [1]: between columns
-  double spacingY = 0;   // Pixel Spacing [0]: between rows
-  double originX = 0;    // Image Position (Patient) x, y: the centre of the first pixel
+  int columns = 0;      // pixels along x (Columns)
+  int rows = 0;         // pixels along y (Rows)
+  double spacingX = 0;  // Pixel Spacing [1]: between columns
+  double spacingY = 0;  // Pixel Spacing [0]: between rows
+  double originX = 0;   // Image Position (Patient) x, y: the centre of the first pixel
   double originY = 0;
   std::vector<double> sliceZ;  // Image Position (Patient) z of each image, increasing
   // Per image, in sliceZ order: its file and SOP Class / SOP Instance UIDs (for references

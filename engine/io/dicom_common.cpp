@@ -27,8 +27,7 @@ Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPi
     dcmEnableUnknownVRConversion.set(OFTrue);
   });
   const std::string file = path.string();
-  if (!std::ifstream(path, std::ios::binary).is_open())
-    return makeError(Errc::Io, file + ": cannot open the file");
+  if (!std::ifstream(path, std::ios::binary).is_open()) return makeError(Errc::Io, file + ": cannot open the file");
   if (std::filesystem::is_directory(path)) return makeError(Errc::Io, file + ": is a directory, not a file");
   if (!dcmDataDict.isDictionaryLoaded())
     return makeError(Errc::Internal, "DCMTK's DICOM data dictionary is not loaded (is libdcmtk installed? see DCMDICTPATH)");
@@ -46,8 +45,9 @@ Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPi
   }
   // Without the preamble DCMTK parses any bytes as a data set; a real one names its kind.
   if (!dicom.dataset().tagExistsWithValue(DCM_SOPClassUID) && !dicom.dataset().tagExistsWithValue(DCM_Modality))
-    return makeError(Errc::InvalidInput, file + (preamble ? ": DICOM file without SOP Class UID (0008,0016) or Modality (0008,0060)"
-                                                          : ": not a DICOM file"));
+    return makeError(
+        Errc::InvalidInput,
+        file + (preamble ? ": DICOM file without SOP Class UID (0008,0016) or Modality (0008,0060)" : ": not a DICOM file"));
   return dicom;
 }
 

@@ -4,8 +4,8 @@
 #include "io/dicom_nesting.h"
 
 #include <dcmtk/config/osconfig.h>
-#include <dcmtk/dcmdata/dcdict.h>
 #include <dcmtk/dcmdata/dcdicent.h>
+#include <dcmtk/dcmdata/dcdict.h>
 #include <zlib.h>
 
 #include <array>
@@ -79,7 +79,8 @@ class Reader {
 };
 
 bool hasLongLength(const char vr[2]) {
-  static constexpr std::array<const char*, 13> kLong{"OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC", "UN", "UR", "UT", "UV"};
+  static constexpr std::array<const char*, 13> kLong{"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
+                                                     "SV", "UC", "UN", "UR", "UT", "UV"};
   for (const char* v : kLong)
     if (vr[0] == v[0] && vr[1] == v[1]) return true;
   return false;
@@ -114,8 +115,10 @@ int deepestNesting(Reader& in, Syntax syntax, bool stopAtPixelData, int maxDepth
     if (!in.u16(tag.group) || !in.u16(tag.element)) break;
     if (tag.group == 0xfffe) {  // item, item delimiter, sequence delimiter: no VR, 32-bit length
       if (!in.u32(length)) break;
-      if (tag.element == 0xe000) open.push_back({false, length == kUndefinedLength ? kOpenEnded : in.position() + length});
-      else closeTo(tag.element == 0xe0dd);
+      if (tag.element == 0xe000)
+        open.push_back({false, length == kUndefinedLength ? kOpenEnded : in.position() + length});
+      else
+        closeTo(tag.element == 0xe0dd);
       continue;
     }
     char vr[2] = {0, 0};
@@ -226,7 +229,8 @@ std::string inflateRest(std::istream& stream, std::uint64_t limit, bool& over) {
 
 }  // namespace
 
-Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth, std::uint64_t inflateLimit) {
+Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPixelData, int maxDepth,
+                               std::uint64_t inflateLimit) {
   std::ifstream stream(path, std::ios::binary);
   if (!stream) return {};  // the loader reports what it cannot open
   char preamble[132] = {};
@@ -249,8 +253,9 @@ Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPix
     std::istringstream inflated(inflateRest(stream, memory.bytes / 4, over));
     if (over)
       return makeError(Errc::ResourceLimit, path.string() + ": its deflated data set inflates to more than " +
-                                                formatBytes(memory.bytes / 4) + ", a quarter of the " + formatBytes(memory.bytes) +
-                                                " of memory available (" + memory.source + "); not read");
+                                                formatBytes(memory.bytes / 4) + ", a quarter of the " +
+                                                formatBytes(memory.bytes) + " of memory available (" + memory.source +
+                                                "); not read");
     Reader in(inflated, false);
     deepest = deepestNesting(in, Syntax::ExplicitLittle, stopAtPixelData, maxDepth);
   } else {

@@ -133,7 +133,8 @@ struct VoxelCensus {
   std::vector<std::size_t> inside, total, layerOf;
 };
 
-VoxelCensus countVoxels(std::size_t featureCount, const std::vector<LabelVolume>& layers, const CtSeries& ct, const CtInGrid& at) {
+VoxelCensus countVoxels(std::size_t featureCount, const std::vector<LabelVolume>& layers, const CtSeries& ct,
+                        const CtInGrid& at) {
   const std::size_t slices = ct.sliceZ.size();
   VoxelCensus n{std::vector<std::vector<char>>(featureCount, std::vector<char>(slices, 0)),
                 std::vector<std::size_t>(featureCount, 0), std::vector<std::size_t>(featureCount, 0),
@@ -221,7 +222,8 @@ Result<void> addDimensionsAndSharedGroups(DcmSegmentation& seg, const CtSeries& 
 }
 
 // One segment per feature with voxels, named and coloured; returns their segment numbers.
-Result<std::vector<Uint16>> addSegments(DcmSegmentation& seg, const ContourSet& contours, const std::vector<std::size_t>& features) {
+Result<std::vector<Uint16>> addSegments(DcmSegmentation& seg, const ContourSet& contours,
+                                        const std::vector<std::size_t>& features) {
   const std::vector<Rgb> colors = featureColors(contours);
   const CodeSequenceMacro category("85756007", "SCT", "Tissue"), type("85756007", "SCT", "Tissue");
   std::vector<Uint16> numbers;
@@ -247,10 +249,10 @@ Result<std::vector<Uint16>> addSegments(DcmSegmentation& seg, const ContourSet& 
 
 // One frame's per-frame functional groups: its position, its dimension index values, and the
 // CT image it derives from; then the frame itself.
-Result<void> addFrame(DcmSegmentation& seg, std::vector<Uint8>& mask, Uint16 segmentNumber, std::size_t k,
-                      const CtSeries& ct) {
+Result<void> addFrame(DcmSegmentation& seg, std::vector<Uint8>& mask, Uint16 segmentNumber, std::size_t k, const CtSeries& ct) {
   const std::string x = decimalString(ct.originX), y = decimalString(ct.originY);
-  std::unique_ptr<FGPlanePosPatient> position(FGPlanePosPatient::createMinimal(x.c_str(), y.c_str(), decimalString(ct.sliceZ[k]).c_str()));
+  std::unique_ptr<FGPlanePosPatient> position(
+      FGPlanePosPatient::createMinimal(x.c_str(), y.c_str(), decimalString(ct.sliceZ[k]).c_str()));
   FGFrameContent frameContent;
   ImageSOPInstanceReferenceMacro source;
   OFCondition c;

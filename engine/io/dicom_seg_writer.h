@@ -19,8 +19,8 @@ namespace scansurf {
 // of them, so segments may overlap as the structures do) must lie on the CT's lattice (the grid makeGrid
 // builds from gridReferenceOf(ct): one background voxel around the CT, so CT voxel (i, j, k)
 // is grid voxel (i + 1, j + 1, k + 1) unless the contours reached beyond the CT). Feature f's
-// segment holds the voxels labelled f + 1 in its layer: its own region, whatever overlaps it. One segment per feature with at least one voxel inside the CT (label = its
-// name, Recommended Display CIELab Value = its colour, algorithm AUTOMATIC "scansurf",
+// segment holds the voxels labelled f + 1 in its layer: its own region, whatever overlaps it. One segment per feature with at
+// least one voxel inside the CT (label = its name, Recommended Display CIELab Value = its colour, algorithm AUTOMATIC "scansurf",
 // category and type SCT 85756007 "Tissue"); one frame per segment and CT slice that holds
 // some of it (empty frames are left out), with Plane Position, Frame Content (dimension
 // indices: segment number, slice position) and Derivation Image (source: that CT image) per

@@ -12,8 +12,8 @@
 namespace scansurf {
 
 struct GlbContainer {
-  std::string json;                // the JSON chunk, without padding
-  std::vector<std::uint8_t> bin;   // the BIN chunk, without padding; empty = none
+  std::string json;               // the JSON chunk, without padding
+  std::vector<std::uint8_t> bin;  // the BIN chunk, without padding; empty = none
 };
 
 // Splits a GLB file's bytes into its chunks. Errors: Errc::Internal for a malformed container

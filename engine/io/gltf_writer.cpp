@@ -187,7 +187,8 @@ Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFea
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco glTF encoder: " + s.error_msg_string());
   SCANSURF_ASSIGN_OR_RETURN(GlbContainer glb, parseGlb(reinterpret_cast<const std::uint8_t*>(buffer.data()), buffer.size()));
   nlohmann::json gltf = nlohmann::json::parse(glb.json, nullptr, false);
-  if (gltf.is_discarded()) return makeError(Errc::Internal, "cannot encode '" + path.string() + "': unreadable glTF JSON from Draco");
+  if (gltf.is_discarded())
+    return makeError(Errc::Internal, "cannot encode '" + path.string() + "': unreadable glTF JSON from Draco");
   realNames(gltf, names);
   if (!options.draco) markBufferViewTargets(gltf);
   adjustScene(gltf, options);

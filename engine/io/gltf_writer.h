@@ -14,10 +14,10 @@
 namespace scansurf {
 
 struct GltfFeature {
-  std::string name;              // the node's and mesh's name
-  Rgb color{};                   // sRGB; stored as the material's linear baseColorFactor
+  std::string name;                   // the node's and mesh's name
+  Rgb color{};                        // sRGB; stored as the material's linear baseColorFactor
   const CompactMesh* mesh = nullptr;  // skipped when it has no triangles
-  float opacity = 1;             // below 1: alphaMode BLEND with this alpha
+  float opacity = 1;                  // below 1: alphaMode BLEND with this alpha
 };
 
 struct GlbOptions {

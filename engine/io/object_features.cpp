@@ -71,8 +71,8 @@ Result<std::vector<ObjectInfo>> buildObjectFeatures(std::vector<RawObject>& obje
     const bool any =
         std::any_of(objects.begin(), objects.end(), [&](const RawObject& o) { return objectNameMatches(pattern, o.info.name); });
     if (!any)
-      return makeError(Errc::InvalidArgument,
-                       file + ": the object pattern \"" + pattern + "\" matches no object; the file holds " + quotedNames(objects));
+      return makeError(Errc::InvalidArgument, file + ": the object pattern \"" + pattern +
+                                                  "\" matches no object; the file holds " + quotedNames(objects));
   }
 
   if (!options.patterns.empty()) out.fileExtent = fileExtentOf(objects);  // the default grid's lattice

@@ -36,7 +36,8 @@ std::string sanitized(const std::string& name) {
 namespace {
 
 bool equalIgnoringCase(const std::string& a, const std::string& b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](unsigned char x, unsigned char y) { return std::tolower(x) == std::tolower(y); });
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](unsigned char x, unsigned char y) { return std::tolower(x) == std::tolower(y); });
 }
 
 // FNV-1a, 32 bits, as 8 hex digits: tells cut names apart.
@@ -106,8 +107,8 @@ namespace {
 Result<void> checkFile(const fs::path& path, const char* what, const std::string& ext, std::vector<fs::path>& seen) {
   if (path.empty()) return {};
   if (!ext.empty() && !hasExtension(path, ext))
-    return makeError(Errc::InvalidArgument, std::string(what) + " '" + path.string() + "': unknown format (expected a " + ext +
-                                                " file)");
+    return makeError(Errc::InvalidArgument,
+                     std::string(what) + " '" + path.string() + "': unknown format (expected a " + ext + " file)");
   const fs::path full = fs::absolute(path).lexically_normal();
   if (std::find(seen.begin(), seen.end(), full) != seen.end())
     return makeError(Errc::InvalidArgument, "two outputs would be written to '" + path.string() + "'");

@@ -51,7 +51,8 @@ constexpr const char* kLockName = ".scansurf.lock";
 // new one after an earlier removal).
 void unlinkOwnLock(const fs::path& dir, int fd) {
   const fs::path file = dir / kLockName;
-  struct stat held {}, named {};
+  struct stat held {
+  }, named{};
   if (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino && held.st_dev == named.st_dev)
     ::unlink(file.c_str());
 }
@@ -61,7 +62,8 @@ void unlinkOwnLock(const fs::path& dir, int fd) {
 Result<int> openLockFile(const fs::path& file) {
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0 && errno == ELOOP)
-    return makeError(Errc::Io, "the run lock '" + file.string() + "' is a symbolic link; scansurf never follows one there (remove it)");
+    return makeError(Errc::Io,
+                     "the run lock '" + file.string() + "' is a symbolic link; scansurf never follows one there (remove it)");
   if (fd < 0) return makeError(Errc::Io, "cannot open the run lock '" + file.string() + "': " + std::strerror(errno));
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -86,10 +88,11 @@ Result<void> OutputStaging::lock(const fs::path& directory) {
   for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
     SCANSURF_ASSIGN_OR_RETURN(fd, openLockFile(file));
     busy = ::flock(fd, LOCK_EX | LOCK_NB) != 0;
-    struct stat held {}, named {};
+    struct stat held {
+    }, named{};
     if (busy || (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
                  held.st_dev == named.st_dev))
-      break;  // held by another run, or locked and still the file of that name
+      break;      // held by another run, or locked and still the file of that name
     ::close(fd);  // its last holder unlinked it meanwhile: lock the new one
     fd = -1;
   }
@@ -206,8 +209,8 @@ Result<std::vector<fs::path>> OutputStaging::commit() {
     fs::rename(staged, target, ec);
     if (ec) {
       undo(i);
-      return makeError(Errc::Io, "cannot move " + target.filename().string() + " into place at '" + target.string() + "': " +
-                                     ec.message() + "; nothing was replaced");
+      return makeError(Errc::Io, "cannot move " + target.filename().string() + " into place at '" + target.string() +
+                                     "': " + ec.message() + "; nothing was replaced");
     }
     written.push_back(target);
   }

@@ -10,14 +10,14 @@
 #include "io/ct_series.h"
 #include "io/dicom_seg_writer.h"
 #include "io/draco_writer.h"
-#include "io/run_volumes.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_writers.h"
-#include "io/output_names.h"
 #include "io/nifti_writer.h"
 #include "io/nrrd_writer.h"
+#include "io/output_names.h"
 #include "io/ply_writer.h"
 #include "io/png_writer.h"
+#include "io/run_volumes.h"
 #include "scansurf/nesting.h"
 #include "scansurf/palette.h"
 
@@ -58,8 +58,8 @@ std::vector<LabelEntry> labelTable(const ContourSet& contours) {
   return table;
 }
 
-Result<void> writeCompact(const fs::path& path, const CompactMesh& mesh, int feature, MeshFormat format,
-                          const std::string& name, const DracoOptions& draco) {
+Result<void> writeCompact(const fs::path& path, const CompactMesh& mesh, int feature, MeshFormat format, const std::string& name,
+                          const DracoOptions& draco) {
   if (format != MeshFormat::Ply && mesh.triangles.empty())
     return makeError(Errc::InvalidArgument, "feature \"" + name + "\" has no surface: " + extensionOf(format) +
                                                 " cannot hold an empty mesh (" + path.string() + ")");
@@ -105,8 +105,7 @@ bool has(const std::vector<MeshFormat>& formats, MeshFormat f) {
 
 // The per-feature files of one feature in the plan's directory.
 Result<void> stageFeatureFiles(OutputStaging& staging, const OutputPlan& plan, const CompactMesh& mesh, int feature,
-                               const std::string& name, const std::string& stem, const DracoOptions& draco,
-                               SurfaceOutputs& out) {
+                               const std::string& name, const std::string& stem, const DracoOptions& draco, SurfaceOutputs& out) {
   for (MeshFormat format : plan.formats) {
     if (format == MeshFormat::Glb) continue;
     if (format != MeshFormat::Ply && mesh.triangles.empty()) {
@@ -201,8 +200,10 @@ void warnAboutFileStem(const std::string& name, const std::string& stem, std::ve
     warnings.push_back("feature \"" + name.substr(0, 40) + "...\": its name is too long for a file name; its files are " + stem +
                        ".* (the report keeps the whole name)");
   else if (stem != plain && stem.rfind(plain + "_", 0) == 0)
-    warnings.push_back("feature \"" + name + "\": another feature's file name differs only in case or in characters a file name "
-                       "cannot hold; its files are " + stem + ".*");
+    warnings.push_back("feature \"" + name +
+                       "\": another feature's file name differs only in case or in characters a file name "
+                       "cannot hold; its files are " +
+                       stem + ".*");
 }
 
 }  // namespace
@@ -232,11 +233,13 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
     if (!scenes.empty()) compact.push_back(std::move(mesh));
   }
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)
-    SCANSURF_TRY(staging.stage(plan.dir / "multilabel.ply", [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh); }));
+    SCANSURF_TRY(
+        staging.stage(plan.dir / "multilabel.ply", [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh); }));
   const GlbOptions glb = glbOptions(plan.scene, draco, contours);
   const std::vector<float> opacity = scenes.empty() ? std::vector<float>{} : sceneOpacity(contours, plan.scene);
   for (const fs::path& target : scenes) {
-    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeGlb(p, sceneFeatures(contours, compact, opacity), glb); }));
+    SCANSURF_TRY(
+        staging.stage(target, [&](const fs::path& p) { return writeGlb(p, sceneFeatures(contours, compact, opacity), glb); }));
     for (std::size_t f = 0; f < featureCount; ++f)
       if (surfaces.features[f].triangleCount() > 0) out.files[f].push_back(target);
   }
@@ -249,8 +252,8 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   if (!plan.labelVolume.empty()) {
     SCANSURF_ASSIGN_OR_RETURN(const VolumeFormat format, volumeFormatOf(plan.labelVolume));
     const std::vector<LabelEntry> table = labelTable(contours);
-    SCANSURF_TRY(staging.stage(plan.labelVolume,
-                               [&](const fs::path& p) { return writeRunVolume(p, format, contours, *volumes, table); }));
+    SCANSURF_TRY(
+        staging.stage(plan.labelVolume, [&](const fs::path& p) { return writeRunVolume(p, format, contours, *volumes, table); }));
     SCANSURF_TRY(staging.stage(labelTablePathFor(plan.labelVolume, format),
                                [&](const fs::path& p) { return writeTableFile(p, format, table); }));
   }

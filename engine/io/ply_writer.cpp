@@ -60,8 +60,7 @@ std::string generatorComment() { return std::string("comment generator: scansurf
 
 }  // namespace
 
-Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh,
-                             const FeatureSurface& surface) {
+Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh, const FeatureSurface& surface) {
   SCANSURF_ASSIGN_OR_RETURN(const CompactMesh compact, compactSurface(mesh, surface));
   return writeSurfacePly(path, compact, surface.feature);
 }
@@ -72,13 +71,12 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMes
 
   return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
     LittleEndianWriter out(file);
-    const std::string header =
-        "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
-        std::to_string(feature) + " (label " + std::to_string(feature + 1) +
-        "), faces wound counter-clockwise seen from outside\n" + generatorComment() + kUnitsComment + "element vertex " +
-        std::to_string(used) +
-        "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-        std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
+                               std::to_string(feature) + " (label " + std::to_string(feature + 1) +
+                               "), faces wound counter-clockwise seen from outside\n" + generatorComment() + kUnitsComment +
+                               "element vertex " + std::to_string(used) +
+                               "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                               std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
     out.bytes(header.data(), header.size());
     for (float x : compact.positions) {
       out.value(x);
@@ -103,8 +101,7 @@ Result<void> writeMultiLabelPly(const std::filesystem::path& path, const MultiLa
         "comment label_inside < label_outside; each face's normal (counter-clockwise) points from "
         "label_inside's region into label_outside's\n" +
         generatorComment() + kUnitsComment + "element vertex " + std::to_string(mesh.vertexCount()) +
-        "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-        std::to_string(mesh.triangleCount()) +
+        "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(mesh.triangleCount()) +
         "\nproperty list uchar int vertex_indices\nproperty ushort label_inside\nproperty ushort label_outside\n"
         "end_header\n";
     out.bytes(header.data(), header.size());

@@ -12,8 +12,7 @@ namespace scansurf {
 // Writes one feature's surface: only the vertices it uses, renumbered in mesh order, as
 // float x, y, z (input units), and its triangles as `uchar 3, int i0, i1, i2`, wound outward.
 // The file is replaced atomically. Errors: Errc::Io naming the path.
-Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh,
-                             const FeatureSurface& surface);
+Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh, const FeatureSurface& surface);
 // The same from a surface already compacted (geometry/compact_mesh.h); `feature` names it in
 // the header.
 Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMesh& surface, int feature);

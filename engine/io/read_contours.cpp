@@ -9,8 +9,8 @@
 #include "core/memory.h"
 #include "geometry/validate.h"
 #include "io/contours_json.h"
-#include "io/dicom_common.h"
 #include "io/ct_series.h"
+#include "io/dicom_common.h"
 #include "io/imod_reader.h"
 #include "io/reconstruct_reader.h"
 #include "io/rtstruct_reader.h"
@@ -102,7 +102,6 @@ Unexpected unrecognised(const std::filesystem::path& path) {
                                            "); supported formats, recognised by content: " + kSupportedFormats);
 }
 
-
 // --roi, --reference and --object each apply to some formats only.
 Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& path, const ReadOptions& options) {
   const bool dicom = format == InputFormat::RtStruct;
@@ -110,7 +109,8 @@ Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& 
   if (!dicom && (!options.roiPatterns.empty() || !options.referenceSeries.empty()))
     return makeError(Errc::InvalidArgument,
                      std::string("ROI selection and a reference series apply to DICOM RTSTRUCT input, not to ") +
-                         inputFormatName(format) + " " + path.string() + (objects ? " (select its objects with an object pattern)" : ""));
+                         inputFormatName(format) + " " + path.string() +
+                         (objects ? " (select its objects with an object pattern)" : ""));
   if (!objects && !options.objectPatterns.empty())
     return makeError(Errc::InvalidArgument, std::string("object selection applies to Reconstruct and IMOD input, not to ") +
                                                 inputFormatName(format) + " " + path.string() +
@@ -127,8 +127,9 @@ Result<void> checkInputFile(const std::filesystem::path& path) {
   const auto status = std::filesystem::status(path, ec);
   if (ec) return makeError(Errc::Io, "cannot read " + path.string() + ": " + ec.message());
   if (status.type() != std::filesystem::file_type::regular)
-    return makeError(Errc::InvalidInput, path.string() + ": not a regular file (a directory, device, FIFO or socket); "
-                                                         "scansurf reads contour files");
+    return makeError(Errc::InvalidInput, path.string() +
+                                             ": not a regular file (a directory, device, FIFO or socket); "
+                                             "scansurf reads contour files");
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   const HostMemory memory = availableHostMemory();
   if (!ec && memory.bytes > 0 && size > memory.bytes / 4)

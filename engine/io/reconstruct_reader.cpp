@@ -328,8 +328,8 @@ namespace {
 
 // Which series the given file opens (a series file, or a section file and the series beside
 // it) and, for a section file read alone, its file list.
-Result<void> identifySeries(const fs::path& path, const std::string& rootName, ReconstructSeries& out, std::vector<fs::path>& files,
-                            std::vector<std::string>& warnings) {
+Result<void> identifySeries(const fs::path& path, const std::string& rootName, ReconstructSeries& out,
+                            std::vector<fs::path>& files, std::vector<std::string>& warnings) {
   const std::string given = path.string();
   if (rootName == "Series") {
     out.seriesFile = path;
@@ -461,8 +461,7 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
                      (dir.empty() ? std::string(".") : dir.string()));
   }
   SCANSURF_ASSIGN_OR_RETURN(std::vector<Section> sections, readSections(files, out));
-  std::vector<RawObject> objects =
-      collectObjects(sections, out.seriesFile.empty() ? given : out.seriesFile.string(), warnings);
+  std::vector<RawObject> objects = collectObjects(sections, out.seriesFile.empty() ? given : out.seriesFile.string(), warnings);
   out.contours.units = unitsOf(units);
   out.contours.warnings = warnings;
   SCANSURF_ASSIGN_OR_RETURN(out.objects,

@@ -39,11 +39,12 @@ void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapRepo
   r.overlapDepthLimit = incidentalDepthLimit(overlaps.tolerance, grid);
   const auto percent = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
   for (const SharedVolume& s : overlaps.partialOverlaps()) {
-    const FeatureVolumes &a = overlaps.features[static_cast<std::size_t>(s.a)], &b = overlaps.features[static_cast<std::size_t>(s.b)];
-    r.partialOverlaps.push_back({contours.features[static_cast<std::size_t>(s.a)].name, contours.features[static_cast<std::size_t>(s.b)].name,
-                                 s.volume, percent(s.volume, std::min(a.ownVolume, b.ownVolume)), s.depth, s.depthMeasured,
-                                 s.incidental, s.givenUpByA, s.givenUpByB, percent(s.givenUpByA, a.contour),
-                                 percent(s.givenUpByB, b.contour)});
+    const FeatureVolumes &a = overlaps.features[static_cast<std::size_t>(s.a)],
+                         &b = overlaps.features[static_cast<std::size_t>(s.b)];
+    r.partialOverlaps.push_back({contours.features[static_cast<std::size_t>(s.a)].name,
+                                 contours.features[static_cast<std::size_t>(s.b)].name, s.volume,
+                                 percent(s.volume, std::min(a.ownVolume, b.ownVolume)), s.depth, s.depthMeasured, s.incidental,
+                                 s.givenUpByA, s.givenUpByB, percent(s.givenUpByA, a.contour), percent(s.givenUpByB, b.contour)});
   }
   for (const VolumeLoss& l : overlaps.losses) {
     const double contour = overlaps.features[static_cast<std::size_t>(l.feature)].contour;
@@ -70,18 +71,21 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.meshTriangles = built.surfaces.mesh.triangleCount();
   if (stats.size() != built.surfaces.features.size()) {
     stats.clear();
-    for (const FeatureSurface& f : built.surfaces.features) stats.push_back(computeMeshStats(built.surfaces.mesh.positions, f.triangles));
+    for (const FeatureSurface& f : built.surfaces.features)
+      stats.push_back(computeMeshStats(built.surfaces.mesh.positions, f.triangles));
   }
   const std::vector<Rgb> colors = featureColors(contours);
   const std::vector<std::vector<std::string>> neighbours = surfaceNeighbours(contours, built.surfaces.mesh);
   for (std::size_t f = 0; f < contours.features.size() && f < stats.size(); ++f) {
-    ReportFeature rf{contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}, {}, neighbours[f], {}};
+    ReportFeature rf{
+        contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}, {}, neighbours[f], {}};
     if (f < context.files.size())
       for (const fs::path& p : context.files[f]) rf.files.push_back(p.string());
     if (f < built.overlaps.features.size()) rf.volumes = built.overlaps.features[f];
     for (const SharedVolume& s : built.overlaps.partialOverlaps())
       if (s.a == static_cast<int>(f) || s.b == static_cast<int>(f))
-        rf.overlaps.emplace_back(contours.features[static_cast<std::size_t>(s.a == static_cast<int>(f) ? s.b : s.a)].name, s.volume);
+        rf.overlaps.emplace_back(contours.features[static_cast<std::size_t>(s.a == static_cast<int>(f) ? s.b : s.a)].name,
+                                 s.volume);
     r.features.push_back(std::move(rf));
   }
   addOverlapFacts(r, contours, built.overlaps, built.volume.grid);
@@ -97,9 +101,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
 
 namespace {
 
-nlohmann::ordered_json anglesJson(const AngleFigures& a) {
-  return {{"min", a.min}, {"p5", a.p5}, {"mean", a.mean}};
-}
+nlohmann::ordered_json anglesJson(const AngleFigures& a) { return {{"min", a.min}, {"p5", a.p5}, {"mean", a.mean}}; }
 
 // Remeshing's figures: triangle counts, the smallest angle of each triangle (degrees: least,
 // 5th percentile, mean) before and after, and the largest distance from the smoothed surface.
@@ -112,8 +114,8 @@ nlohmann::ordered_json remeshingJson(const RemeshReport& r) {
           {"max_distance", r.maxDistance},
           {"slabs", r.slabs},
           {"bands", r.bands},
-          {"operations", {{"splits", r.splits}, {"collapses", r.collapses}, {"flips", r.flips}, {"moves", r.moves},
-                          {"refused", r.rejected}}}};
+          {"operations",
+           {{"splits", r.splits}, {"collapses", r.collapses}, {"flips", r.flips}, {"moves", r.moves}, {"refused", r.rejected}}}};
 }
 
 nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, double>>& overlaps) {
@@ -172,11 +174,16 @@ nlohmann::ordered_json overlapsSectionJson(const RunReport& report) {
   ordered_json j = {{"mode", report.overlapMode}, {"layers", report.layers}, {"mask_layers", report.maskLayers}};
   ordered_json losses = ordered_json::array();
   for (const RunReport::Loss& l : report.losses)
-    losses.push_back({{"feature", l.feature}, {"to", l.to}, {"volume", l.volume}, {"percent_of_contour_volume", l.percentOfContour},
+    losses.push_back({{"feature", l.feature},
+                      {"to", l.to},
+                      {"volume", l.volume},
+                      {"percent_of_contour_volume", l.percentOfContour},
                       {"nested", l.nested}});
   j["losses"] = losses;
   const OverlapTolerance& t = report.overlapTolerance;
-  j["tolerance"] = {{"enabled", t.enabled}, {"depth", report.overlapDepthLimit}, {"depth_automatic", t.depth <= 0},
+  j["tolerance"] = {{"enabled", t.enabled},
+                    {"depth", report.overlapDepthLimit},
+                    {"depth_automatic", t.depth <= 0},
                     {"percent_of_smaller", t.percent}};
   ordered_json pairs = ordered_json::array();
   for (const RunReport::Overlap& o : report.partialOverlaps)

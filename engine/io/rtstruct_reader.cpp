@@ -8,9 +8,9 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcdict.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
-#include <dcmtk/dcmdata/dcuid.h>
 #include <dcmtk/dcmdata/dcitem.h>
 #include <dcmtk/dcmdata/dcsequen.h>
+#include <dcmtk/dcmdata/dcuid.h>
 #include <fnmatch.h>
 
 #include <algorithm>
@@ -80,8 +80,8 @@ std::string notAxialReason(const std::vector<double>& xyz, double zMin, double z
   }
   if (!planar) return "it is not planar: " + why;
   auto round3 = [](double v) { return formatNumber(std::round(v * 1000) / 1000 + 0.0); };
-  return "it is not axial: it lies in the plane with normal (" + round3(n[0]) + ", " + round3(n[1]) + ", " +
-         round3(n[2]) + "), " + why + "; only axial contours (constant z) are supported";
+  return "it is not axial: it lies in the plane with normal (" + round3(n[0]) + ", " + round3(n[1]) + ", " + round3(n[2]) +
+         "), " + why + "; only axial contours (constant z) are supported";
 }
 
 std::size_t distinctPoints(std::vector<Point2> pts) {
@@ -280,8 +280,8 @@ Result<void> selectRois(const std::string& file, const std::vector<std::string>&
   }
   for (RawRoi& r : rois) {
     if (patterns.empty()) continue;
-    r.info.selected = std::any_of(patterns.begin(), patterns.end(),
-                                  [&](const std::string& p) { return roiNameMatches(p, r.info.name); });
+    r.info.selected =
+        std::any_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return roiNameMatches(p, r.info.name); });
   }
   return {};
 }

@@ -37,10 +37,11 @@ Result<RunVolumes> runVolumes(const ContourSet& input, const BuildResult& built,
   const LabelVolume partition = withPartition ? partitionVolume(regions, grid, built.nesting.order) : LabelVolume{};
   // Only a grid built on the reference lattice (no --voxel-size / --grid of its own) is cut to it.
   const bool onLattice = contours.reference && std::abs(grid.spacingX - contours.reference->spacingX) <= 1e-9 * grid.spacingX &&
-                           std::abs(grid.spacingY - contours.reference->spacingY) <= 1e-9 * grid.spacingY;
+                         std::abs(grid.spacingY - contours.reference->spacingY) <= 1e-9 * grid.spacingY;
   if (contours.reference && !onLattice)
-    out.warnings.push_back("the label volume lies on the run's grid, not on the reference CT's (a voxel size or pixel "
-                           "counts of its own were given)");
+    out.warnings.push_back(
+        "the label volume lies on the run's grid, not on the reference CT's (a voxel size or pixel "
+        "counts of its own were given)");
   if (!onLattice) {
     for (const LabelVolume& m : out.masksOnGrid) out.masks.push_back(regularize(m));
     if (withPartition) out.partition = regularize(partition);

@@ -8,18 +8,18 @@
 #include <vector>
 
 #include "io/nrrd_writer.h"
-#include "scansurf/contours.h"
 #include "scansurf/build_result.h"
+#include "scansurf/contours.h"
 #include "scansurf/result.h"
 
 namespace scansurf {
 
 struct RunVolumes {
-  std::vector<LabelVolume> masksOnGrid;      // mask layers on the build's grid (with its border)
-  std::vector<RegularLabelVolume> masks;     // the same as a file holds them
-  RegularLabelVolume partition;              // one label per voxel, inner features first (when asked for)
-  std::vector<int> maskLayerOf;              // per feature
-  std::vector<std::string> warnings;         // voxels of a feature beyond the reference CT
+  std::vector<LabelVolume> masksOnGrid;   // mask layers on the build's grid (with its border)
+  std::vector<RegularLabelVolume> masks;  // the same as a file holds them
+  RegularLabelVolume partition;           // one label per voxel, inner features first (when asked for)
+  std::vector<int> maskLayerOf;           // per feature
+  std::vector<std::string> warnings;      // voxels of a feature beyond the reference CT
 };
 
 // withPartition: also the single partition (for NIfTI); the masks are always made.

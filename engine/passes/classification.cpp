@@ -10,10 +10,10 @@
 
 #include "classify_push.h"
 #include "gpu/check.h"
-#include "passes/shader_registry.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
+#include "passes/shader_registry.h"
 
 namespace scansurf::passes {
 namespace {
@@ -45,7 +45,7 @@ Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) 
   SCANSURF_ASSIGN_OR_RETURN(s->setLayout, gpu::createStorageBufferSetLayout(ctx, 3, VK_SHADER_STAGE_COMPUTE_BIT));
   const VkDescriptorSetLayout setLayout = s->setLayout.get();
   SCANSURF_ASSIGN_OR_RETURN(s->layout, gpu::createPipelineLayout(ctx, std::span(&setLayout, 1), sizeof(shared::ClassifyPush),
-                                                                  VK_SHADER_STAGE_COMPUTE_BIT));
+                                                                 VK_SHADER_STAGE_COMPUTE_BIT));
   const std::uint32_t spec[] = {kGroupX, kGroupY};
   SCANSURF_ASSIGN_OR_RETURN(s->pipeline, gpu::createComputePipeline(ctx, s->layout.get(), s->module.get(), spec));
 
@@ -66,9 +66,7 @@ struct Classifier::Source {
   std::uint32_t bits = 16;
   bool upperIsData = false;  // 32-bit words: the label is the lower half
 
-  std::size_t layerBytes() const {
-    return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8);
-  }
+  std::size_t layerBytes() const { return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8); }
   bool inPlace() const { return size > 0; }
 };
 
@@ -87,8 +85,8 @@ Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_
                            bool inPlace) {
   if (cellCount(grid) > 0xFFFFFFFFull)
     return makeError(Errc::InvalidArgument, "classification: more than 2^32 cells; use a coarser grid");
-  const std::size_t maxRange = ctx.limits().maxStorageBufferRange -
-                               (inPlace ? std::max<std::size_t>(4, ctx.limits().minStorageBufferOffsetAlignment) : 0);
+  const std::size_t maxRange =
+      ctx.limits().maxStorageBufferRange - (inPlace ? std::max<std::size_t>(4, ctx.limits().minStorageBufferOffsetAlignment) : 0);
   const std::size_t labelBudget = std::min(slabBudget, maxRange);
   if (2 * layerBytes + 4 > labelBudget)
     return makeError(Errc::InvalidArgument, "classification: two layers of " + std::to_string(grid.nx) + " x " +
@@ -126,8 +124,7 @@ Result<gpu::Buffer> createSlabBuffer(const gpu::Context& ctx, const Classifier::
 // Host labels: written straight into the mapped slab buffer before recording.
 // Device labels: a copy recorded ahead of the dispatch (the first after a barrier on every
 // earlier write to the application's buffer).
-void fillSlab(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::Buffer& labels, int firstLayer,
-              int layers) {
+void fillSlab(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::Buffer& labels, int firstLayer, int layers) {
   const std::size_t bytes = source.layerBytes() * static_cast<std::size_t>(layers + 1);
   const std::size_t start = source.layerBytes() * static_cast<std::size_t>(firstLayer);
   if (source.host) {
@@ -161,8 +158,8 @@ Result<std::vector<CellCase>> Classifier::run(const LabelVolume& volume) {
 Result<Classifier::Source> Classifier::deviceSource(const DeviceLabelVolume& volume) const {
   if (volume.buffer == VK_NULL_HANDLE) return makeError(Errc::InvalidArgument, "DeviceLabelVolume: no buffer");
   if (volume.bitsPerLabel != 16 && volume.bitsPerLabel != 32)
-    return makeError(Errc::InvalidArgument, "DeviceLabelVolume: bitsPerLabel is " + std::to_string(volume.bitsPerLabel) +
-                                                "; 16 and 32 are supported");
+    return makeError(Errc::InvalidArgument,
+                     "DeviceLabelVolume: bitsPerLabel is " + std::to_string(volume.bitsPerLabel) + "; 16 and 32 are supported");
   if (volume.grid.nx < 0 || volume.grid.ny < 0 || volume.grid.nz < 0 ||
       volume.grid.layerZ.size() != static_cast<std::size_t>(volume.grid.nz))
     return makeError(Errc::InvalidArgument, "DeviceLabelVolume: the grid needs nz layer z values and non-negative sizes");
@@ -194,13 +191,17 @@ void Classifier::recordSlab(VkCommandBuffer cmd, const Source& source, const gpu
   const Grid& grid = source.grid;
   fillSlab(cmd, source, labels, first, layers);
   vkCmdFillBuffer(cmd, counter.handle(), 0, 8, 0);
-  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->pipeline.get());
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
-  const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
-                                  static_cast<std::uint32_t>(layers),  static_cast<std::uint32_t>(first),
-                                  static_cast<std::uint32_t>(capacity), source.bits, labelOffset,
+  const shared::ClassifyPush push{static_cast<std::uint32_t>(grid.nx),
+                                  static_cast<std::uint32_t>(grid.ny),
+                                  static_cast<std::uint32_t>(layers),
+                                  static_cast<std::uint32_t>(first),
+                                  static_cast<std::uint32_t>(capacity),
+                                  source.bits,
+                                  labelOffset,
                                   source.upperIsData ? 1u : 0u};
   vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
@@ -248,8 +249,8 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     std::uint32_t counts[2] = {0, 0};
     std::memcpy(counts, counter.mapped(), sizeof(counts));
     if (counts[1] != 0)
-      return makeError(Errc::InvalidInput, "DeviceLabelVolume: label " + std::to_string(counts[1]) +
-                                               " in layers " + std::to_string(first) + ".." + std::to_string(first + layers) +
+      return makeError(Errc::InvalidInput, "DeviceLabelVolume: label " + std::to_string(counts[1]) + " in layers " +
+                                               std::to_string(first) + ".." + std::to_string(first + layers) +
                                                " exceeds the largest label, 65535");
     const std::uint32_t count = counts[0];
 

@@ -20,11 +20,23 @@
 namespace scansurf::passes {
 namespace {
 constexpr std::uint32_t kBindings = 11;
-constexpr std::uint32_t kLineGroup = 64;    // rows and columns: one invocation each
-constexpr std::uint32_t kPixelGroup = 8;    // interpolation: 8 x 8 pixels
+constexpr std::uint32_t kLineGroup = 64;  // rows and columns: one invocation each
+constexpr std::uint32_t kPixelGroup = 8;  // interpolation: 8 x 8 pixels
 constexpr std::uint32_t kMaxGroupsY = 65535;
 
-enum Binding : std::uint32_t { kPlanes, kFields, kValues, kScratch, kEntries, kPairs, kTileRanges, kTileEntries, kOutput, kCaps, kCrossings };
+enum Binding : std::uint32_t {
+  kPlanes,
+  kFields,
+  kValues,
+  kScratch,
+  kEntries,
+  kPairs,
+  kTileRanges,
+  kTileEntries,
+  kOutput,
+  kCaps,
+  kCrossings
+};
 
 // One buffer per binding, kept from slab to slab and grown when a slab needs more (fresh
 // memory for every slab cost more in page faults than the work).
@@ -93,7 +105,7 @@ Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
   SCANSURF_ASSIGN_OR_RETURN(s.setLayout, gpu::createStorageBufferSetLayout(ctx, kBindings, VK_SHADER_STAGE_COMPUTE_BIT));
   const VkDescriptorSetLayout setLayout = s.setLayout.get();
   SCANSURF_ASSIGN_OR_RETURN(s.layout, gpu::createPipelineLayout(ctx, std::span(&setLayout, 1), sizeof(shared::InterpolatePush),
-                                                                 VK_SHADER_STAGE_COMPUTE_BIT));
+                                                                VK_SHADER_STAGE_COMPUTE_BIT));
   const std::uint32_t lines[] = {kLineGroup, 1};
   const std::uint32_t pixels[] = {kPixelGroup, kPixelGroup};
   SCANSURF_ASSIGN_OR_RETURN(s.lines, gpu::createComputePipeline(ctx, s.layout.get(), s.linesModule.get(), lines));
@@ -109,10 +121,11 @@ Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
 
 // Fills the buffers for `slab` (the planes only when they are not copied on the device from
 // devicePlanes); true when any buffer is new.
-Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                         const InterpolationSlab& slab, bool devicePlanes) {
+Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVolume& volume,
+                         const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab, bool devicePlanes) {
   const std::size_t plane = static_cast<std::size_t>(volume.grid.nx) * static_cast<std::size_t>(volume.grid.ny);
-  const std::size_t first = plane * static_cast<std::size_t>(slab.firstPlane), count = plane * static_cast<std::size_t>(slab.planes);
+  const std::size_t first = plane * static_cast<std::size_t>(slab.firstPlane),
+                    count = plane * static_cast<std::size_t>(slab.planes);
   bool fresh = false;
   auto track = [&](Result<bool> r) -> Result<void> {
     if (!r) return Unexpected(std::move(r).takeError());
@@ -120,7 +133,7 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
     return {};
   };
   SCANSURF_TRY(track(devicePlanes ? b.reserve(ctx, kPlanes, count * sizeof(Label))
-                                   : b.upload(ctx, kPlanes, volume.labels.data() + first, count * sizeof(Label))));
+                                  : b.upload(ctx, kPlanes, volume.labels.data() + first, count * sizeof(Label))));
   SCANSURF_TRY(track(b.upload(ctx, kCrossings, crossings.data() + first, count * sizeof(std::uint16_t))));
   SCANSURF_TRY(track(b.upload(ctx, kFields, slab.fields)));
   SCANSURF_TRY(track(b.reserve(ctx, kValues, slab.fieldValues * 4)));
@@ -142,7 +155,8 @@ void bindSlab(const gpu::Context& ctx, VkDescriptorSet set, const SlabBuffers& s
 
 void computeBarrier(VkCommandBuffer cmd) {
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 // One dispatch per 65535 fields: x over the longest row or column, y over fields.
@@ -151,7 +165,8 @@ void dispatchFields(VkCommandBuffer cmd, VkPipelineLayout layout, shared::Interp
   for (std::size_t first = 0; first < fields; first += kMaxGroupsY) {
     push.pair = static_cast<std::uint32_t>(first);
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, (lines + kLineGroup - 1) / kLineGroup, static_cast<std::uint32_t>(std::min<std::size_t>(kMaxGroupsY, fields - first)), 1);
+    vkCmdDispatch(cmd, (lines + kLineGroup - 1) / kLineGroup,
+                  static_cast<std::uint32_t>(std::min<std::size_t>(kMaxGroupsY, fields - first)), 1);
   }
 }
 
@@ -179,8 +194,8 @@ void recordPlanesCopy(VkCommandBuffer cmd, const gpu::Buffer& devicePlanes, cons
 // layers), ahead of the host's readback.
 void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::Buffer& words, VkDeviceSize offset,
                      VkDeviceSize bytes) {
-  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_READ_BIT);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   const VkBufferCopy region{0, offset, bytes};
   vkCmdCopyBuffer(cmd, output.handle(), words.handle(), 1, &region);
 }
@@ -188,12 +203,14 @@ void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::
 namespace {
 
 // The slab's distance fields: three passes over every field.
-void recordFields(VkCommandBuffer cmd, const Interpolator::State& s, const InterpolationSlab& slab, const shared::InterpolatePush& push) {
+void recordFields(VkCommandBuffer cmd, const Interpolator::State& s, const InterpolationSlab& slab,
+                  const shared::InterpolatePush& push) {
   std::uint32_t longest = 0, widest = 0;
   for (const shared::DistanceField& f : slab.fields)
-    longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}), widest = std::max(widest, static_cast<std::uint32_t>(f.w));
-  for (const auto& [pipeline, lines] : {std::pair{s.lines.get(), longest}, std::pair{s.envelopes.get(), longest},
-                                        std::pair{s.finish.get(), widest}}) {
+    longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}),
+    widest = std::max(widest, static_cast<std::uint32_t>(f.w));
+  for (const auto& [pipeline, lines] :
+       {std::pair{s.lines.get(), longest}, std::pair{s.envelopes.get(), longest}, std::pair{s.finish.get(), widest}}) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     dispatchFields(cmd, s.layout.get(), push, slab.fields.size(), lines);
     computeBarrier(cmd);
@@ -222,8 +239,8 @@ Result<void> fillCapTable(const gpu::Context& ctx, Interpolator::State& s, const
   }
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
-  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_READ_BIT);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
   vkCmdCopyBuffer(cmd, s.buffers.buffers[kValues].handle(), s.cappedFields.handle(), static_cast<std::uint32_t>(regions.size()),
                   regions.data());
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
@@ -239,26 +256,35 @@ Result<void> fillCapTable(const gpu::Context& ctx, Interpolator::State& s, const
 
 }  // namespace
 
-Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
-                                   const DistanceWeights& weights, CapShape caps, const SlabWords& store,
-                                   const InterpolationDeviceIo& device) {
+Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                   const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps,
+                                   const SlabWords& store, const InterpolationDeviceIo& device) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& g = volume.grid;
   SlabBuffers& buffers = state_->buffers;
   SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareSlab(ctx, buffers, volume, crossings, slab, device.planes != nullptr));
   if (fresh) bindSlab(ctx, state_->set, buffers);
   const VkDeviceSize plane = static_cast<VkDeviceSize>(g.nx) * static_cast<VkDeviceSize>(g.ny);
-  shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx), static_cast<std::uint32_t>(g.ny),
-                               static_cast<std::uint32_t>(slab.fields.size()), 0, weights.x, weights.y, weights.fixedScale,
-                               caps == CapShape::Round ? 1u : 0u, static_cast<std::uint32_t>(kTileSize),
-                               static_cast<std::uint32_t>(slab.tilesX), weights.unit, farDistance(g, weights),
+  shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx),
+                               static_cast<std::uint32_t>(g.ny),
+                               static_cast<std::uint32_t>(slab.fields.size()),
+                               0,
+                               weights.x,
+                               weights.y,
+                               weights.fixedScale,
+                               caps == CapShape::Round ? 1u : 0u,
+                               static_cast<std::uint32_t>(kTileSize),
+                               static_cast<std::uint32_t>(slab.tilesX),
+                               weights.unit,
+                               farDistance(g, weights),
                                deepDistance(g)};
   // The fields first; with round caps their domes need the fields' depths before interpolation.
   const bool domes = caps == CapShape::Round && slab.capInts > 0;
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
   if (device.planes)
-    recordPlanesCopy(cmd, *device.planes, buffers.buffers[kPlanes], plane * static_cast<VkDeviceSize>(slab.firstPlane) * sizeof(Label),
+    recordPlanesCopy(cmd, *device.planes, buffers.buffers[kPlanes],
+                     plane * static_cast<VkDeviceSize>(slab.firstPlane) * sizeof(Label),
                      plane * static_cast<VkDeviceSize>(slab.planes) * sizeof(Label));
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
   recordFields(cmd, *state_, slab, push);
@@ -277,12 +303,14 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
     push.pair = static_cast<std::uint32_t>(p);
     vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(g.nx) + kPixelGroup - 1) / kPixelGroup,
-                  (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup, static_cast<std::uint32_t>(slab.pairs[p].layers));
+                  (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup,
+                  static_cast<std::uint32_t>(slab.pairs[p].layers));
   }
   const gpu::Buffer& output = buffers.buffers[kOutput];
-  if (device.words) recordWordsCopy(cmd, output, *device.words, device.wordsOffset, plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
-  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                     VK_ACCESS_2_HOST_READ_BIT);
+  if (device.words)
+    recordWordsCopy(cmd, output, *device.words, device.wordsOffset, plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
+  gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   SCANSURF_TRY(second ? second->submitAndWait() : commands.submitAndWait());
   SCANSURF_TRY(output.invalidate());
   store(static_cast<const std::uint32_t*>(output.mapped()));
@@ -290,7 +318,8 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
 }
 
 Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                             const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device) {
+                                             const std::vector<int>& factors, CapShape caps, int threads,
+                                             InterpolationDeviceIo device) {
   if (crossings.size() != volume.labels.size())
     return makeError(Errc::InvalidArgument, "interpolation: one edge-crossing word per voxel is needed");
   SCANSURF_ASSIGN_OR_RETURN(const DistanceWeights weights, distanceWeights(volume.grid));
@@ -298,11 +327,14 @@ Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const st
   state_->lastSlabs = 0;
   const std::vector<int> fineOf = fineLayerOfPlane(factors);
   const VkDeviceSize plane = static_cast<VkDeviceSize>(volume.grid.nx) * static_cast<VkDeviceSize>(volume.grid.ny);
-  return interpolateVolume(volume, factors, budget, threads, [&](const InterpolationSlab& slab, const SlabWords& store) {
-    ++state_->lastSlabs;
-    device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(slab.firstPlane)]) * 4;
-    return runSlab(volume, crossings, slab, weights, caps, store, device);
-  }, device.words == nullptr);
+  return interpolateVolume(
+      volume, factors, budget, threads,
+      [&](const InterpolationSlab& slab, const SlabWords& store) {
+        ++state_->lastSlabs;
+        device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(slab.firstPlane)]) * 4;
+        return runSlab(volume, crossings, slab, weights, caps, store, device);
+      },
+      device.words == nullptr);
 }
 
 }  // namespace scansurf::passes

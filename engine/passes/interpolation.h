@@ -33,8 +33,8 @@ class Interpolator {
   // The volume on interpolatedGrid(volume.grid, factors) (see interpolated_volume.h);
   // crossings: planeEdgeCrossings of the volume (geometry/edge_crossings.h). With device
   // words, the host gets the clearances only (the volume's labels stay empty).
-  Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const std::vector<int>& factors,
-                                 CapShape caps, int threads, InterpolationDeviceIo device = {});
+  Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                 const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device = {});
   // One slab's output layers, handed to `store` (InterpolationSlab::outputLayers of nx * ny
   // label | clearance << 16 words, read straight from the device's readback buffer).
   Result<void> runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,

@@ -12,19 +12,18 @@
 
 #include "geometry/vec3.h"
 #include "gpu/check.h"
-#include "passes/shader_registry.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
+#include "passes/shader_registry.h"
 #include "preview_push.h"
 
 namespace scansurf {
 
 std::optional<ViewPreset> parseViewPreset(std::string_view name) {
   static constexpr std::pair<std::string_view, ViewPreset> kNames[] = {
-      {"oblique", ViewPreset::Oblique}, {"front", ViewPreset::Front}, {"back", ViewPreset::Back},
-      {"left", ViewPreset::Left},       {"right", ViewPreset::Right}, {"top", ViewPreset::Top},
-      {"bottom", ViewPreset::Bottom}};
+      {"oblique", ViewPreset::Oblique}, {"front", ViewPreset::Front}, {"back", ViewPreset::Back},    {"left", ViewPreset::Left},
+      {"right", ViewPreset::Right},     {"top", ViewPreset::Top},     {"bottom", ViewPreset::Bottom}};
   for (const auto& [n, v] : kNames)
     if (n == name) return v;
   return std::nullopt;
@@ -53,7 +52,7 @@ void viewBasis(ViewPreset view, Vec3& forward, Vec3& up) {
   switch (view) {
     case ViewPreset::Front: forward = {0, 1, 0}; break;
     case ViewPreset::Back: forward = {0, -1, 0}; break;
-    case ViewPreset::Left: forward = {-1, 0, 0}; break;   // from the patient's left side
+    case ViewPreset::Left: forward = {-1, 0, 0}; break;  // from the patient's left side
     case ViewPreset::Right: forward = {1, 0, 0}; break;
     case ViewPreset::Top: forward = {0, 0, -1}, up = {0, -1, 0}; break;
     case ViewPreset::Bottom: forward = {0, 0, 1}, up = {0, -1, 0}; break;
@@ -116,7 +115,8 @@ struct PreviewScene {
 Draw featureDraw(std::size_t f, const std::vector<std::uint32_t>& tris, std::size_t first, const PreviewOptions& options) {
   const Rgb c = f < options.colors.size() ? options.colors[f] : Rgb{160, 160, 160};
   const float alpha = f < options.opacity.size() ? std::clamp(options.opacity[f], 0.01f, 1.0f) : 1.0f;
-  return Draw{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(tris.size()),
+  return Draw{static_cast<std::uint32_t>(first),
+              static_cast<std::uint32_t>(tris.size()),
               {c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f, alpha}};
 }
 
@@ -143,8 +143,7 @@ Result<PreviewScene> gatherScene(const Surfaces& surfaces, const PreviewOptions&
 
 // The push constants every draw shares: the orthographic camera fitted to the scene with a
 // 6 % margin and square pixels, and a light over the viewer's shoulder.
-shared::PreviewPush fitCamera(const CameraBasis& camera, const PreviewScene& scene, std::uint32_t width,
-                              std::uint32_t height) {
+shared::PreviewPush fitCamera(const CameraBasis& camera, const PreviewScene& scene, std::uint32_t width, std::uint32_t height) {
   const Vec3& forward = camera.forward;
   const Vec3& up = camera.up;
   const Vec3& right = camera.right;
@@ -189,13 +188,16 @@ struct PreviewTargets {
 };
 
 Result<PreviewTargets> createPreviewTargets(const gpu::Context& ctx, std::uint32_t width, std::uint32_t height) {
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Image color, gpu::Image::create(ctx, kColorFormat, width, height, 1,
-                                                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                                                                 VK_IMAGE_ASPECT_COLOR_BIT));
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Image depth, gpu::Image::create(ctx, kDepthFormat, width, height, 1,
-                                                                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT));
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer readback, gpu::Buffer::create(ctx, std::size_t{4} * width * height,
-                                                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Image color,
+      gpu::Image::create(ctx, kColorFormat, width, height, 1,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Image depth,
+                            gpu::Image::create(ctx, kDepthFormat, width, height, 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                               VK_IMAGE_ASPECT_DEPTH_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Buffer readback,
+      gpu::Buffer::create(ctx, std::size_t{4} * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
   return PreviewTargets{std::move(color), std::move(depth), std::move(readback)};
 }
 
@@ -240,7 +242,8 @@ std::vector<std::uint8_t> averageBlocks(const std::vector<std::uint8_t>& big, st
         unsigned sum = 0;
         for (std::uint32_t dy = 0; dy < kSupersample; ++dy)
           for (std::uint32_t dx = 0; dx < kSupersample; ++dx)
-            sum += big[4 * ((std::size_t{y} * kSupersample + dy) * bigWidth + x * kSupersample + dx) + static_cast<std::size_t>(c)];
+            sum +=
+                big[4 * ((std::size_t{y} * kSupersample + dy) * bigWidth + x * kSupersample + dx) + static_cast<std::size_t>(c)];
         rgba[4 * (std::size_t{y} * width + x) + static_cast<std::size_t>(c)] =
             static_cast<std::uint8_t>((sum + kSupersample * kSupersample / 2) / (kSupersample * kSupersample));
       }
@@ -281,16 +284,14 @@ Result<std::unique_ptr<PreviewRenderer>> PreviewRenderer::create(const gpu::Cont
 namespace {
 
 // The opaque draws, then the translucent ones blended over them.
-void recordDraws(VkCommandBuffer cmd, const PreviewRenderer::State& state, const PreviewScene& scene,
-                 shared::PreviewPush& push) {
+void recordDraws(VkCommandBuffer cmd, const PreviewRenderer::State& state, const PreviewScene& scene, shared::PreviewPush& push) {
   for (const auto* pass : {&scene.opaque, &scene.translucent}) {
     if (pass->empty()) continue;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                      pass == &scene.opaque ? state.opaque.get() : state.translucent.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass == &scene.opaque ? state.opaque.get() : state.translucent.get());
     for (const Draw& d : *pass) {
       std::memcpy(push.color, d.color, sizeof push.color);
-      vkCmdPushConstants(cmd, state.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                         sizeof push, &push);
+      vkCmdPushConstants(cmd, state.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push,
+                         &push);
       vkCmdDrawIndexed(cmd, d.count, 1, d.first, 0, 0);
     }
   }
@@ -301,11 +302,12 @@ Result<void> renderOnDevice(const PreviewRenderer::State& state, const MultiLabe
                             shared::PreviewPush push, const Rgb& background, std::uint32_t width, std::uint32_t height,
                             std::vector<std::uint8_t>& rgba) {
   const gpu::Context& ctx = *state.ctx;
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer vertexBuffer, uploadBuffer(ctx, mesh.positions.data(), mesh.positions.size() * sizeof(float),
-                                                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT));
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer indexBuffer, uploadBuffer(ctx, scene.indices.data(),
-                                                                  scene.indices.size() * sizeof(std::uint32_t),
-                                                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Buffer vertexBuffer,
+      uploadBuffer(ctx, mesh.positions.data(), mesh.positions.size() * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(
+      gpu::Buffer indexBuffer,
+      uploadBuffer(ctx, scene.indices.data(), scene.indices.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT));
   SCANSURF_ASSIGN_OR_RETURN(const PreviewTargets targets, createPreviewTargets(ctx, width, height));
 
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));

@@ -10,10 +10,10 @@
 
 #include "geometry/raster_rules.h"
 #include "gpu/check.h"
-#include "passes/shader_registry.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"
 #include "gpu/resources.h"
+#include "passes/shader_registry.h"
 #include "scan_push.h"
 
 namespace scansurf::passes {
@@ -99,8 +99,8 @@ Result<void> checkRunArguments(const VkPhysicalDeviceLimits& limits, const Grid&
   if (static_cast<std::uint32_t>(grid.nx) > limits.maxImageDimension2D ||
       static_cast<std::uint32_t>(grid.ny) > limits.maxImageDimension2D ||
       viewportExtent(grid.nx) > limits.maxViewportDimensions[0] || viewportExtent(grid.ny) > limits.maxViewportDimensions[1])
-    return makeError(Errc::InvalidArgument, "scan conversion: a " + std::to_string(grid.nx) + " x " +
-                                                std::to_string(grid.ny) + " grid exceeds the device's image limits");
+    return makeError(Errc::InvalidArgument, "scan conversion: a " + std::to_string(grid.nx) + " x " + std::to_string(grid.ny) +
+                                                " grid exceeds the device's image limits");
   return {};
 }
 
@@ -112,7 +112,8 @@ Result<std::vector<std::vector<SliceRef>>> slicesByLayer(const ContourSet& conto
       const int layer = grid.layerOfPlane(s.z);
       if (layer < 1 || layer > grid.nz - 2)
         return makeError(Errc::Internal, "scan conversion: slice z=" + std::to_string(s.z) + " of feature \"" +
-                                             contours.features[static_cast<std::size_t>(f)].name + "\" is not a layer of the grid");
+                                             contours.features[static_cast<std::size_t>(f)].name +
+                                             "\" is not a layer of the grid");
       byLayer[static_cast<std::size_t>(layer)].push_back({f, &s});
     }
   return byLayer;
@@ -140,8 +141,8 @@ int slabLayerCount(std::size_t slabBudget, std::size_t layerBytes, std::uint32_t
       slabBudget / layerBytes, 1, std::min<std::size_t>(maxImageArrayLayers, static_cast<std::size_t>(sliceLayers))));
 }
 
-Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthStencilFormat, const Grid& grid,
-                                      int slabLayers, std::size_t layerBytes, bool toHost) {
+Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthStencilFormat, const Grid& grid, int slabLayers,
+                                      std::size_t layerBytes, bool toHost) {
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Image labels,
       gpu::Image::create(ctx, kLabelFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
@@ -149,9 +150,8 @@ Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthSte
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT));
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Image depthStencil,
-      gpu::Image::create(ctx, depthStencilFormat, static_cast<std::uint32_t>(grid.nx),
-                         static_cast<std::uint32_t>(grid.ny), 1, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                         VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT));
+      gpu::Image::create(ctx, depthStencilFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny), 1,
+                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT));
   SlabTargets targets{std::move(labels), std::move(depthStencil), {}};
   if (toHost) {
     SCANSURF_ASSIGN_OR_RETURN(targets.readback,
@@ -280,9 +280,8 @@ Result<std::unique_ptr<ScanConverter>> ScanConverter::create(const gpu::Context&
   SCANSURF_ASSIGN_OR_RETURN(s->depthStencilFormat, pickDepthStencilFormat(ctx));
   SCANSURF_ASSIGN_OR_RETURN(s->vertex, gpu::createShaderModule(ctx, shaders::spirv("scan.vert")));
   SCANSURF_ASSIGN_OR_RETURN(s->fragment, gpu::createShaderModule(ctx, shaders::spirv("scan_label.frag")));
-  SCANSURF_ASSIGN_OR_RETURN(
-      s->layout, gpu::createPipelineLayout(ctx, {}, sizeof(shared::ScanPush),
-                                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(s->layout, gpu::createPipelineLayout(ctx, {}, sizeof(shared::ScanPush),
+                                                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT));
 
   gpu::RasterPipelineDesc desc;
   desc.vertex = s->vertex.get();
@@ -320,8 +319,8 @@ void recordFeatureDraws(VkCommandBuffer cmd, const ScanConverter::State& state, 
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, state.stencilPipeline.get());
     push.depth = d.depth;
     push.label = d.label;
-    vkCmdPushConstants(cmd, state.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof(push), &push);
+    vkCmdPushConstants(cmd, state.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
     std::uint32_t v = d.firstVertex;
     for (std::uint32_t n : d.contourCounts) {
       vkCmdDraw(cmd, n, 1, v, 0);
@@ -359,13 +358,13 @@ void recordSlab(VkCommandBuffer cmd, const ScanConverter::State& state, const Ru
 }
 
 // Scan converts layers first .. first + count - 1 in one submit into the sinks.
-Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets, int first,
-                         int count, const LabelSinks& sinks) {
+Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets, int first, int count,
+                         const LabelSinks& sinks) {
   const gpu::Context& ctx = *state.ctx;
   const SlabGeometry geometry = buildSlabGeometry(plan, first, count);
   const std::size_t vertexBytes = geometry.vertices.size() * sizeof(float);
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer vertexBuffer, gpu::Buffer::create(ctx, vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                                                          gpu::MemoryDomain::Upload));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer vertexBuffer,
+                            gpu::Buffer::create(ctx, vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, gpu::MemoryDomain::Upload));
   std::memcpy(vertexBuffer.mapped(), geometry.vertices.data(), vertexBytes);
 
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
@@ -382,8 +381,8 @@ Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan,
 LabelVolume backgroundVolume(const Grid& grid) { return LabelVolume{grid, std::vector<Label>(grid.voxelCount(), kBackground)}; }
 
 // Scan converts every slice layer, slab by slab, into the sinks.
-Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours, const Grid& grid,
-                        const std::vector<int>& order, const LabelSinks& sinks) {
+Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
+                        const LabelSinks& sinks) {
   const gpu::Context& ctx = *state.ctx;
   SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state.subPixelBits));
   const int sliceLayers = grid.nz - 2;

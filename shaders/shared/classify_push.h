@@ -26,7 +26,8 @@ layout(push_constant) uniform ClassifyPush {
   uint labelBits;
   uint labelOffset;
   uint upperIsData;
-} push;
+}
+push;
 #endif
 
 #endif

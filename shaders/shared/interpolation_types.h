@@ -44,22 +44,22 @@ SCANSURF_STRUCT(PairEntry) {
 // Every pair of an interpolated volume has one, factor 1 included: plane A's clearance
 // (output layer m = 0) places the vertices between it and its neighbouring layers.
 SCANSURF_STRUCT(PairPlan) {
-  int_t planeA;     // plane B = planeA + 1
-  int_t factor;     // layers m = 1 .. factor-1 lie between A and B (m = 0: A, m = factor: B)
-  int_t firstLayer; // output layer of m = 0
+  int_t planeA;      // plane B = planeA + 1
+  int_t factor;      // layers m = 1 .. factor-1 lie between A and B (m = 0: A, m = factor: B)
+  int_t firstLayer;  // output layer of m = 0
   int_t tileStart;
-  int_t layers;     // output layers m = 0 .. layers-1: factor, or factor + 1 for the volume's last pair
+  int_t layers;  // output layers m = 0 .. layers-1: factor, or factor + 1 for the volume's last pair
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 44 && sizeof(PairPlan) == 20);
 struct InterpolatePush {
   std::uint32_t nx, ny;
-  std::uint32_t count;        // fields (EDT passes) or entries (unused by interpolate)
-  std::uint32_t pair;         // interpolate: the pair of this dispatch
+  std::uint32_t count;            // fields (EDT passes) or entries (unused by interpolate)
+  std::uint32_t pair;             // interpolate: the pair of this dispatch
   std::int32_t weightX, weightY;  // squared-distance weights of a pixel step along x and y
-  std::uint32_t fixedScale;   // distance in 1/16 units = isqrt(fixedScale * squared distance)
-  std::uint32_t roundCaps;    // 1: round caps, 0: flat
+  std::uint32_t fixedScale;       // distance in 1/16 units = isqrt(fixedScale * squared distance)
+  std::uint32_t roundCaps;        // 1: round caps, 0: flat
   std::uint32_t tileSize, tilesX;
   std::int32_t unit;  // distances in 1/unit pixel
   std::int32_t far;   // farther than any distance on the grid
@@ -85,7 +85,8 @@ layout(push_constant) uniform InterpolatePush {
   int unit;
   int far;
   int deep;
-} push;
+}
+push;
 #endif
 
 #endif

@@ -6,9 +6,9 @@
 #ifdef __cplusplus
 namespace scansurf::shared {
 struct PreviewPush {
-  float clip[16];     // input coordinates -> clip space, column-major
-  float color[4];     // sRGB colour and opacity of the feature
-  float light[4];     // unit direction towards the light, input coordinates
+  float clip[16];  // input coordinates -> clip space, column-major
+  float color[4];  // sRGB colour and opacity of the feature
+  float light[4];  // unit direction towards the light, input coordinates
 };
 static_assert(sizeof(PreviewPush) == 96, "PreviewPush must match the GLSL push-constant block");
 }  // namespace scansurf::shared
@@ -17,7 +17,8 @@ layout(push_constant) uniform PreviewPush {
   mat4 clip;
   vec4 color;
   vec4 light;
-} push;
+}
+push;
 #endif
 
 #endif

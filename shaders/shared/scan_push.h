@@ -18,7 +18,8 @@ layout(push_constant) uniform ScanPush {
   vec2 ndcScale;
   float depth;
   uint label;
-} push;
+}
+push;
 #endif
 
 #endif

@@ -68,8 +68,8 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
       std::fprintf(stderr, "%s\n", e.what());
       return 4;
     }
-    std::printf("%s: %zu structures, %zu contours, %zu points -> %s\n", name.c_str(), spec.contours.features.size(),
-                contours, points, path.c_str());
+    std::printf("%s: %zu structures, %zu contours, %zu points -> %s\n", name.c_str(), spec.contours.features.size(), contours,
+                points, path.c_str());
   }
   return 0;
 }
@@ -96,10 +96,10 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   }
 
   BuildOptions options;
-  options.smoothing.enabled = smooth;  // as the command-line tool does by default
-  options.interpolation.factor = interpolate;  // kAuto, as the command-line tool does by default
+  options.smoothing.enabled = smooth;            // as the command-line tool does by default
+  options.interpolation.factor = interpolate;    // kAuto, as the command-line tool does by default
   options.remeshing.enabled = smooth && remesh;  // off, as the command-line tool does by default (--remesh)
-  options.keepLabelVolume = false;  // as the command-line tool: the labels stay on the device
+  options.keepLabelVolume = false;               // as the command-line tool: the labels stay on the device
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {

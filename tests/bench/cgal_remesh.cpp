@@ -61,14 +61,17 @@ int main(int argc, char** argv) {
   }
   const auto start = std::chrono::steady_clock::now();
   for (Mesh& mesh : meshes)
-    CGAL::Polygon_mesh_processing::isotropic_remeshing(faces(mesh), length, mesh, CGAL::parameters::number_of_iterations(iterations));
+    CGAL::Polygon_mesh_processing::isotropic_remeshing(faces(mesh), length, mesh,
+                                                       CGAL::parameters::number_of_iterations(iterations));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // The angles as scansurf's report measures them.
   std::vector<float> positions;
   std::vector<std::uint32_t> triangles;
   for (Mesh& mesh : meshes) mesh.collect_garbage(), append(mesh, positions, triangles);
   const scansurf::AngleFigures angles = scansurf::computeAngleFigures(positions, triangles);
-  std::printf("{\"seconds\": %.3f, \"surfaces\": %zu, \"triangles_before\": %zu, \"triangles_after\": %zu, \"min_angle\": %.2f, \"p5_angle\": %.2f}\n",
-              seconds, meshes.size(), before, triangles.size() / 3, angles.min, angles.p5);
+  std::printf(
+      "{\"seconds\": %.3f, \"surfaces\": %zu, \"triangles_before\": %zu, \"triangles_after\": %zu, \"min_angle\": %.2f, "
+      "\"p5_angle\": %.2f}\n",
+      seconds, meshes.size(), before, triangles.size() / 3, angles.min, angles.p5);
   return 0;
 }

@@ -12,8 +12,8 @@
 // (they must be equal). Set SCANSURF_SMOOTH_BENCH_REPEAT to repeat each run and keep the best.
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
@@ -91,8 +91,8 @@ std::optional<Input> contourSet(const char* path, int nx, int ny) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::optional<Input> in = argc > 3 ? contourSet(argv[1], std::atoi(argv[2]), std::atoi(argv[3]))
-                                           : sphere(argc > 1 ? std::atof(argv[1]) : 81.0);
+  const std::optional<Input> in =
+      argc > 3 ? contourSet(argv[1], std::atoi(argv[2]), std::atoi(argv[3])) : sphere(argc > 1 ? std::atof(argv[1]) : 81.0);
   if (!in) return 1;
   std::printf("grid %d x %d x %d, %zu vertices, %zu triangles\n", in->grid.nx, in->grid.ny, in->grid.nz, in->raw.vertexCount(),
               in->raw.triangleCount());
@@ -119,10 +119,11 @@ int main(int argc, char** argv) {
       std::memcpy(&bits, &x, sizeof bits);
       for (int k = 0; k < 4; ++k) hash = (hash ^ ((bits >> (8 * k)) & 0xff)) * 1099511628211ull;
     }
-    std::printf("smoothing, %d thread(s): %.2f s wall, %.2f s CPU, %d sweeps (%zu sheet, %zu fitted, %zu junction, %zu fixed vertices), "
-                "positions %016llx\n",
-                threads == 0 ? defaultThreadCount() : threads, bestWall, bestCpu, r.sweeps, r.sheet, r.fitted, r.curve, r.fixed,
-                static_cast<unsigned long long>(hash));
+    std::printf(
+        "smoothing, %d thread(s): %.2f s wall, %.2f s CPU, %d sweeps (%zu sheet, %zu fitted, %zu junction, %zu fixed vertices), "
+        "positions %016llx\n",
+        threads == 0 ? defaultThreadCount() : threads, bestWall, bestCpu, r.sweeps, r.sheet, r.fitted, r.curve, r.fixed,
+        static_cast<unsigned long long>(hash));
     if (first.empty())
       first = mesh.positions;
     else

@@ -125,9 +125,9 @@ std::vector<double> planes(int count, double spacing, double z0 = 0) {
 }
 
 Rgb paletteColor(int i) {
-  static const Rgb kColors[] = {{230, 25, 75},  {60, 180, 75},  {255, 225, 25}, {0, 130, 200},  {245, 130, 48},
-                                {145, 30, 180}, {70, 240, 240}, {240, 50, 230}, {210, 245, 60}, {250, 190, 212},
-                                {0, 128, 128},  {220, 190, 255}, {170, 110, 40}, {128, 0, 0},   {170, 255, 195}};
+  static const Rgb kColors[] = {{230, 25, 75},  {60, 180, 75},   {255, 225, 25}, {0, 130, 200},  {245, 130, 48},
+                                {145, 30, 180}, {70, 240, 240},  {240, 50, 230}, {210, 245, 60}, {250, 190, 212},
+                                {0, 128, 128},  {220, 190, 255}, {170, 110, 40}, {128, 0, 0},    {170, 255, 195}};
   return kColors[static_cast<std::size_t>(i) % std::size(kColors)];
 }
 
@@ -152,8 +152,10 @@ ContourSet pelvis() {
   b.add("FemoralHead_R", {230, 230, 200}, b.ellipsoid(95, 0, 170, 25, 25, 25));
   b.add("Femur_L", {220, 220, 190}, Builder::shell(b.tube(-110, 0, 0, -98, 0, 150, 16), b.tube(-110, 0, 0, -98, 0, 150, 8)));
   b.add("Femur_R", {220, 220, 190}, Builder::shell(b.tube(110, 0, 0, 98, 0, 150, 16), b.tube(110, 0, 0, 98, 0, 150, 8)));
-  b.add("Ilium_L", {240, 240, 210}, Builder::shell(b.ellipsoid(-120, -20, 280, 45, 25, 80), b.ellipsoid(-120, -20, 280, 35, 15, 70)));
-  b.add("Ilium_R", {240, 240, 210}, Builder::shell(b.ellipsoid(120, -20, 280, 45, 25, 80), b.ellipsoid(120, -20, 280, 35, 15, 70)));
+  b.add("Ilium_L", {240, 240, 210},
+        Builder::shell(b.ellipsoid(-120, -20, 280, 45, 25, 80), b.ellipsoid(-120, -20, 280, 35, 15, 70)));
+  b.add("Ilium_R", {240, 240, 210},
+        Builder::shell(b.ellipsoid(120, -20, 280, 45, 25, 80), b.ellipsoid(120, -20, 280, 35, 15, 70)));
   b.add("Sacrum", {200, 200, 160}, b.ellipsoid(0, -95, 290, 40, 18, 60));
   b.add("Coccyx", {190, 190, 150}, b.tube(0, -95, 200, 0, -100, 232, 6));
   b.add("PubicSymphysis", {210, 210, 180}, b.ellipsoid(0, 85, 175, 30, 10, 18));

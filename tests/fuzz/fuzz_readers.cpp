@@ -84,8 +84,7 @@ Verdict contoursJson(std::span<const std::uint8_t> input) {
 
 // One input file of `format`: read, then listed (listRois or listObjects).
 template <typename List>
-Verdict readAndList(std::span<const std::uint8_t> input, const char* name, InputFormat format, List list,
-                    const char* listName) {
+Verdict readAndList(std::span<const std::uint8_t> input, const char* name, InputFormat format, List list, const char* listName) {
   const fs::path path = freshScratch() / name;
   writeFile(path, textOf(input));
   if (detectInputFormat(path) != format) return {Outcome::OtherFormat, {}};
@@ -96,7 +95,8 @@ Verdict readAndList(std::span<const std::uint8_t> input, const char* name, Input
 }
 
 Verdict rtStruct(std::span<const std::uint8_t> input) {
-  return readAndList(input, "input.dcm", InputFormat::RtStruct, [](const fs::path& p) { return listRois(p); }, "listRois");
+  return readAndList(
+      input, "input.dcm", InputFormat::RtStruct, [](const fs::path& p) { return listRois(p); }, "listRois");
 }
 
 // The images of a series, one file each; read as --reference reads them, then a two-slice
@@ -137,8 +137,7 @@ Verdict reconstruct(std::span<const std::uint8_t> input) {
   for (std::size_t i = 1; i < parts.size(); ++i) writeFile(dir / ("s." + std::to_string(i)), parts[i]);
   if (detectInputFormat(dir / "s.ser") != InputFormat::ReconstructSeries) return {Outcome::OtherFormat, {}};
   Verdict verdict;
-  if (isBug(readContours(dir / "s.ser"), verdict, "readContours") ||
-      isBug(listObjects(dir / "s.ser"), verdict, "listObjects"))
+  if (isBug(readContours(dir / "s.ser"), verdict, "readContours") || isBug(listObjects(dir / "s.ser"), verdict, "listObjects"))
     return verdict;
   if (parts.size() > 1 && detectInputFormat(dir / "s.1") == InputFormat::ReconstructSeries)
     isBug(readContours(dir / "s.1"), verdict, "readContours of a section file");
@@ -146,8 +145,8 @@ Verdict reconstruct(std::span<const std::uint8_t> input) {
 }
 
 Verdict imod(std::span<const std::uint8_t> input) {
-  return readAndList(input, "input.mod", InputFormat::ImodModel, [](const fs::path& p) { return listObjects(p); },
-                     "listObjects");
+  return readAndList(
+      input, "input.mod", InputFormat::ImodModel, [](const fs::path& p) { return listObjects(p); }, "listObjects");
 }
 
 constexpr std::array kTargets{

@@ -60,8 +60,8 @@ TEST_P(FuzzInputs, ReadOrFailCleanly) {
 
 std::string nameOf(const ::testing::TestParamInfo<std::string_view>& info) { return std::string(info.param); }
 
-INSTANTIATE_TEST_SUITE_P(Readers, FuzzInputs,
-                         ::testing::Values("contours_json", "rtstruct", "ct_series", "reconstruct", "imod"), nameOf);
+INSTANTIATE_TEST_SUITE_P(Readers, FuzzInputs, ::testing::Values("contours_json", "rtstruct", "ct_series", "reconstruct", "imod"),
+                         nameOf);
 
 }  // namespace
 }  // namespace scansurf::fuzz

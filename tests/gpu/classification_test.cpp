@@ -22,7 +22,10 @@ LabelVolume randomVolume(unsigned seed, int nx, int ny, int nz, int labels) {
   v.labels.assign(v.grid.voxelCount(), 0);
   std::uniform_int_distribution<int> label(0, labels);
   std::uniform_real_distribution<double> unit(0, 1);
-  struct Seed { double x, y, z, r; Label l; };
+  struct Seed {
+    double x, y, z, r;
+    Label l;
+  };
   std::vector<Seed> seeds;
   for (int s = 0; s < 12; ++s)
     seeds.push_back({unit(rng) * nx, unit(rng) * ny, unit(rng) * nz, 1 + unit(rng) * nx / 3, static_cast<Label>(label(rng))});
@@ -44,9 +47,9 @@ void expectSameRecords(const std::vector<CellCase>& gpu, const std::vector<CellC
   ASSERT_EQ(gpu.size(), ref.size());
   std::size_t bad = 0;
   for (std::size_t i = 0; i < gpu.size(); ++i) {
-    const bool same = gpu[i].cell == ref[i].cell && gpu[i].tetCodes == ref[i].tetCodes &&
-                      gpu[i].labels[0] == ref[i].labels[0] && gpu[i].labels[1] == ref[i].labels[1] &&
-                      gpu[i].labels[2] == ref[i].labels[2] && gpu[i].labels[3] == ref[i].labels[3];
+    const bool same = gpu[i].cell == ref[i].cell && gpu[i].tetCodes == ref[i].tetCodes && gpu[i].labels[0] == ref[i].labels[0] &&
+                      gpu[i].labels[1] == ref[i].labels[1] && gpu[i].labels[2] == ref[i].labels[2] &&
+                      gpu[i].labels[3] == ref[i].labels[3];
     if (!same && bad++ < 5) ADD_FAILURE() << "record " << i << " differs (cell " << gpu[i].cell << " vs " << ref[i].cell << ")";
   }
   EXPECT_EQ(bad, 0u);
@@ -58,7 +61,8 @@ TEST_F(ClassificationTest, RandomVolumesMatchReference) {
   auto classifier = passes::Classifier::create(sharedContext());
   ASSERT_TRUE(classifier) << classifier.error().message;
   for (unsigned seed = 1; seed <= 8; ++seed) {
-    const LabelVolume v = randomVolume(seed, 17 + static_cast<int>(seed), 23, 11 + static_cast<int>(seed % 3), 2 + static_cast<int>(seed % 4));
+    const LabelVolume v =
+        randomVolume(seed, 17 + static_cast<int>(seed), 23, 11 + static_cast<int>(seed % 3), 2 + static_cast<int>(seed % 4));
     auto gpu = (*classifier)->run(v);
     ASSERT_TRUE(gpu) << gpu.error().message;
     const std::vector<CellCase> ref = classifyCellsReference(v);
@@ -93,7 +97,8 @@ TEST_F(ClassificationTest, DeviceLabelsInSlabsMatchReference) {
   for (std::uint32_t bits : {16u, 32u}) {
     SCOPED_TRACE(std::to_string(bits) + "-bit labels");
     const std::size_t bytes = v.labels.size() * bits / 8, offset = 12;
-    auto buffer = gpu::Buffer::create(sharedContext(), offset + bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryDomain::Upload);
+    auto buffer =
+        gpu::Buffer::create(sharedContext(), offset + bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, gpu::MemoryDomain::Upload);
     ASSERT_TRUE(buffer) << buffer.error().message;
     auto* out = static_cast<std::uint8_t*>(buffer->mapped()) + offset;
     if (bits == 16) {

@@ -48,8 +48,10 @@ class AppVulkan {
   // A device-local buffer holding `bytes`, filled on the device by a copy submitted to the
   // queue and NOT waited for: scansurf must order its reads after it on the same queue.
   VkBuffer uploadOnDevice(const void* bytes, VkDeviceSize size) {
-    staging_ = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    labels_ = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    staging_ = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                          VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    labels_ = makeBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     void* mapped = nullptr;
     vkMapMemory(device, staging_.memory, 0, size, 0, &mapped);
     std::memcpy(mapped, bytes, size);

@@ -2,8 +2,8 @@
 // slivers along their interface and must still share one surface; overlaps by design (a PTV,
 // a deep poke) stay layers.
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 
@@ -116,7 +116,8 @@ TEST_F(IncidentalOverlapsTest, IndependentlyDrawnNeighboursShareOneSurface) {
     const BuildResult layered = build(set, off);
     for (int f : {prostate, rectum}) {
       const double given = f == s->a ? s->givenUpByA : s->givenUpByB;
-      EXPECT_GE(stats(b, f).volume, stats(layered, f).volume - given - 0.002 * b.overlaps.features[static_cast<std::size_t>(f)].contour);
+      EXPECT_GE(stats(b, f).volume,
+                stats(layered, f).volume - given - 0.002 * b.overlaps.features[static_cast<std::size_t>(f)].contour);
     }
     // The figures docs/overlaps.md quotes: crossings between the two organs with the rule off
     // (their layers' meshes together) against none with it; each surface's volume error.
@@ -129,10 +130,11 @@ TEST_F(IncidentalOverlapsTest, IndependentlyDrawnNeighboursShareOneSurface) {
       const double c = r.overlaps.features[static_cast<std::size_t>(f)].contour;
       return 100 * (stats(r, f).volume - c) / c;
     };
-    std::printf("pelvis at %s: pixels %.3g mm, shared %.1f mm3 (depth %.2f mm); crossings %zu -> 0; volume error prostate "
-                "%+.2f -> %+.2f %%, rectum %+.2f -> %+.2f %%\n",
-                voxel == 0 ? "the default grid" : (std::to_string(voxel).substr(0, 3) + " mm").c_str(), b.volume.grid.spacingX,
-                s->volume, s->depth, before, error(layered, prostate), error(b, prostate), error(layered, rectum), error(b, rectum));
+    std::printf(
+        "pelvis at %s: pixels %.3g mm, shared %.1f mm3 (depth %.2f mm); crossings %zu -> 0; volume error prostate "
+        "%+.2f -> %+.2f %%, rectum %+.2f -> %+.2f %%\n",
+        voxel == 0 ? "the default grid" : (std::to_string(voxel).substr(0, 3) + " mm").c_str(), b.volume.grid.spacingX, s->volume,
+        s->depth, before, error(layered, prostate), error(b, prostate), error(layered, rectum), error(b, rectum));
   }
 }
 
@@ -200,7 +202,8 @@ TEST_F(IncidentalOverlapsTest, SmallButDeepPokeIsReal) {
     EXPECT_LT(s->volume, 0.02 * smaller) << "small: only the depth makes it real";
     EXPECT_FALSE(s->incidental);
     EXPECT_EQ(b.overlaps.layers, 2);
-    EXPECT_NE(b.overlaps.features[static_cast<std::size_t>(prostate)].layer, b.overlaps.features[static_cast<std::size_t>(rectum)].layer);
+    EXPECT_NE(b.overlaps.features[static_cast<std::size_t>(prostate)].layer,
+              b.overlaps.features[static_cast<std::size_t>(rectum)].layer);
   }
 }
 
@@ -214,7 +217,8 @@ TEST_F(IncidentalOverlapsTest, PlanningVolumeOverTwoIndependentlyDrawnOrgans) {
   const BuildResult b = build(set, options(1.0));
   EXPECT_EQ(b.overlaps.layers, 2);
   EXPECT_FALSE(pairOf(b.overlaps, ptv, rectum)->incidental);
-  EXPECT_NE(b.overlaps.features[static_cast<std::size_t>(ptv)].layer, b.overlaps.features[static_cast<std::size_t>(rectum)].layer);
+  EXPECT_NE(b.overlaps.features[static_cast<std::size_t>(ptv)].layer,
+            b.overlaps.features[static_cast<std::size_t>(rectum)].layer);
   expectSharedInterface(set, b, prostate, rectum);
   expectNoCrossings(b, b.overlaps.features[static_cast<std::size_t>(prostate)].layer);
   const MeshStats m = stats(b, ptv);
@@ -250,7 +254,8 @@ TEST_F(IncidentalOverlapsTest, MasksKeepEachFeaturesOwnRegion) {
   for (std::size_t m = 0; m < masksA.size(); ++m) EXPECT_EQ(masksA[m].labels, masksB[m].labels);
   for (std::size_t f = 0; f < set.features.size(); ++f) {
     std::size_t voxels = 0;
-    for (const LabelVolume& m : masksA) voxels += static_cast<std::size_t>(std::count(m.labels.begin(), m.labels.end(), labelOfFeature(static_cast<int>(f))));
+    for (const LabelVolume& m : masksA)
+      voxels += static_cast<std::size_t>(std::count(m.labels.begin(), m.labels.end(), labelOfFeature(static_cast<int>(f))));
     EXPECT_EQ(voxels, a.overlaps.features[f].ownVoxels);
   }
 }
@@ -258,7 +263,8 @@ TEST_F(IncidentalOverlapsTest, MasksKeepEachFeaturesOwnRegion) {
 // Bad tolerances are refused, naming what is wrong.
 TEST_F(IncidentalOverlapsTest, BadTolerancesAreRefused) {
   const ContourSet set = thinOverlapContours(1.0);
-  for (auto [depth, percent] : {std::pair{-1.0, 2.0}, std::pair{std::nan(""), 2.0}, std::pair{0.0, 101.0}, std::pair{0.0, -0.5}}) {
+  for (auto [depth, percent] :
+       {std::pair{-1.0, 2.0}, std::pair{std::nan(""), 2.0}, std::pair{0.0, 101.0}, std::pair{0.0, -0.5}}) {
     BuildOptions o = options(1.0);
     o.overlapTolerance.depth = depth;
     o.overlapTolerance.percent = percent;

@@ -2,8 +2,8 @@
 // reference voxel for voxel; interpolated shapes keep their topology (branching, splitting,
 // moving, abutting, nested); and surfaces from thick slices get closer to the true shape.
 #include <algorithm>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <numbers>
 #include <set>
@@ -72,8 +72,9 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     (*interpolator)->setSlabBudget(round % 4 == 3 ? 1 : std::size_t{64} << 20);  // 1 byte: a slab per pair
     const std::vector<std::uint16_t> crossings = randomCrossings(rng, planes);
     const Grid fineGrid = interpolatedGrid(planes.grid, factors);
-    auto words = gpu::Buffer::create(sharedContext(), fineGrid.voxelCount() * 4,
-                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Device);
+    auto words =
+        gpu::Buffer::create(sharedContext(), fineGrid.voxelCount() * 4,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Device);
     ASSERT_TRUE(words);
     // Odd rounds: the planes copied on the device from a buffer of them, not uploaded.
     auto planesBuffer = gpu::Buffer::create(sharedContext(), planes.labels.size() * sizeof(Label) + 4,
@@ -86,10 +87,11 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     ASSERT_TRUE(onDeviceRun) << onDeviceRun.error().message;
     EXPECT_TRUE(onDeviceRun->volume.labels.empty());  // they stayed on the device
     const DistanceWeights weights = *distanceWeights(planes.grid);
-    auto cpu = interpolateVolume(planes, factors, std::size_t{64} << 20, 1, [&](const InterpolationSlab& slab, const SlabWords& store) {
-      store(interpolateSlabReference(planes, crossings, slab, weights, caps).data());
-      return Result<void>{};
-    });
+    auto cpu =
+        interpolateVolume(planes, factors, std::size_t{64} << 20, 1, [&](const InterpolationSlab& slab, const SlabWords& store) {
+          store(interpolateSlabReference(planes, crossings, slab, weights, caps).data());
+          return Result<void>{};
+        });
     ASSERT_TRUE(cpu) << cpu.error().message;
     ASSERT_EQ(gpu->volume.grid.nz, cpu->volume.grid.nz);
     ASSERT_EQ(gpu->volume.labels, cpu->volume.labels) << "round " << round;
@@ -103,7 +105,8 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     ASSERT_EQ(onDevice->size(), reference.size()) << "round " << round;
     EXPECT_EQ(std::memcmp(onDevice->data(), reference.data(), reference.size() * sizeof(CellCase)), 0) << "round " << round;
     voxels += cpu->volume.labels.size();
-    labelled += static_cast<std::size_t>(std::count_if(cpu->volume.labels.begin(), cpu->volume.labels.end(), [](Label l) { return l != 0; }));
+    labelled += static_cast<std::size_t>(
+        std::count_if(cpu->volume.labels.begin(), cpu->volume.labels.end(), [](Label l) { return l != 0; }));
     if (round % 4 == 3) {
       EXPECT_GT((*interpolator)->lastSlabCount(), 1);
     }
@@ -123,7 +126,8 @@ TEST_F(InterpolationGpuTest, OriginalPlanesStayAsTheyWere) {
   const std::vector<int> fineOf = fineLayerOfPlane(factors);
   ASSERT_EQ(fine->grid.nz, fineOf.back() + 1);
   for (int k = 0; k < planes.grid.nz; ++k) {
-    EXPECT_EQ(fine->grid.layerZ[static_cast<std::size_t>(fineOf[static_cast<std::size_t>(k)])], planes.grid.layerZ[static_cast<std::size_t>(k)]);
+    EXPECT_EQ(fine->grid.layerZ[static_cast<std::size_t>(fineOf[static_cast<std::size_t>(k)])],
+              planes.grid.layerZ[static_cast<std::size_t>(k)]);
     for (int y = 0; y < 30; ++y) {
       for (int x = 0; x < 40; ++x) ASSERT_EQ(fine->at(x, y, fineOf[static_cast<std::size_t>(k)]), planes.at(x, y, k));
     }
@@ -156,8 +160,10 @@ TEST(InterpolationDistances, FieldsAreExactEuclideanDistancesToTheCrossings) {
       for (int y = 0; y < f.h; ++y)
         for (int x = 0; x < f.w; ++x) {
           const std::uint16_t c = crossings[planes.grid.index(f.x0 + x, f.y0 + y, f.plane)];
-          if (x + 1 < f.w && inside(x, y) != inside(x + 1, y)) points.push_back({x * w.unit + ((c & 0xFF) * w.unit + 128) / 256, y * w.unit});
-          if (y + 1 < f.h && inside(x, y) != inside(x, y + 1)) points.push_back({x * w.unit, y * w.unit + ((c >> 8) * w.unit + 128) / 256});
+          if (x + 1 < f.w && inside(x, y) != inside(x + 1, y))
+            points.push_back({x * w.unit + ((c & 0xFF) * w.unit + 128) / 256, y * w.unit});
+          if (y + 1 < f.h && inside(x, y) != inside(x, y + 1))
+            points.push_back({x * w.unit, y * w.unit + ((c >> 8) * w.unit + 128) / 256});
         }
       ASSERT_FALSE(points.empty());
       for (int y = 0; y < f.h; ++y)
@@ -184,9 +190,8 @@ TEST(InterpolationDistances, FieldsAreExactEuclideanDistancesToTheCrossings) {
 
 class InterpolatedShapesTest : public EngineTest {
  protected:
-  static BuildResult build(const ContourSet& set, double voxelSize, int factor = InterpolationOptions::kAuto,
-                           bool smooth = true, CapShape caps = CapShape::Round,
-                           SurfaceConvention convention = SurfaceConvention::Enclosing) {
+  static BuildResult build(const ContourSet& set, double voxelSize, int factor = InterpolationOptions::kAuto, bool smooth = true,
+                           CapShape caps = CapShape::Round, SurfaceConvention convention = SurfaceConvention::Enclosing) {
     BuildOptions options;
     options.grid.voxelSize = voxelSize;
     options.interpolation.factor = factor;
@@ -236,8 +241,10 @@ TEST_F(InterpolatedShapesTest, UprightTorusWhoseContoursSplitAndMergeKeepsGenusO
     if (hi2 <= 0) continue;
     const double hi = std::sqrt(hi2);
     std::vector<std::pair<double, double>> intervals;
-    if (lo2 > 0) intervals = {{-hi, -std::sqrt(lo2)}, {std::sqrt(lo2), hi}};
-    else intervals = {{-hi, hi}};
+    if (lo2 > 0)
+      intervals = {{-hi, -std::sqrt(lo2)}, {std::sqrt(lo2), hi}};
+    else
+      intervals = {{-hi, hi}};
     FeatureSlice slice{z, {}};
     for (const auto& [a, b] : intervals) {
       Contour c;
@@ -379,9 +386,18 @@ Accuracy accuracy(const BuildResult& b, const Distance& distance, double zLow = 
                                      std::pow(u[0] * v[1] - u[1] * v[0], 2));
     double local = 0;
     for (int c = 0; c < 4; ++c) {
-      const double w[3] = {c == 0 ? 1.0 : c == 3 ? 1.0 / 3 : 0.0, c == 1 ? 1.0 : c == 3 ? 1.0 / 3 : 0.0, c == 2 ? 1.0 : c == 3 ? 1.0 / 3 : 0.0};
-      const double d = std::abs(distance(w[0] * p[0][0] + w[1] * p[1][0] + w[2] * p[2][0], w[0] * p[0][1] + w[1] * p[1][1] + w[2] * p[2][1],
-                                         w[0] * p[0][2] + w[1] * p[1][2] + w[2] * p[2][2]));
+      const double w[3] = {c == 0   ? 1.0
+                           : c == 3 ? 1.0 / 3
+                                    : 0.0,
+                           c == 1   ? 1.0
+                           : c == 3 ? 1.0 / 3
+                                    : 0.0,
+                           c == 2   ? 1.0
+                           : c == 3 ? 1.0 / 3
+                                    : 0.0};
+      const double d =
+          std::abs(distance(w[0] * p[0][0] + w[1] * p[1][0] + w[2] * p[2][0], w[0] * p[0][1] + w[1] * p[1][1] + w[2] * p[2][1],
+                            w[0] * p[0][2] + w[1] * p[1][2] + w[2] * p[2][2]));
       local += d / 4;
       worst = std::max(worst, d);
     }
@@ -409,8 +425,8 @@ void expectLabelsWithinOneVoxel(const ContourSet& set, double voxel, const Dista
   ASSERT_TRUE(interpolator);
   InterpolationOptions options;
   options.factor = InterpolationOptions::kAuto;
-  auto fine = (*interpolator)->run(*volume, planeEdgeCrossings(*volume, set, 1),
-                                   interpolationFactors(grid, options), CapShape::Round, 1);
+  auto fine =
+      (*interpolator)->run(*volume, planeEdgeCrossings(*volume, set, 1), interpolationFactors(grid, options), CapShape::Round, 1);
   ASSERT_TRUE(fine) << fine.error().message;
   const Grid& g = fine->volume.grid;
   const double slack = voxel * std::sqrt(3.0), z0 = grid.layerZ[1], z1 = grid.layerZ[static_cast<std::size_t>(grid.nz - 2)];
@@ -498,8 +514,8 @@ TEST_F(InterpolatedShapesTest, ThickSlicesAndCapsFigures) {
   for (double slices : {3.0, 4.0}) {
     const BuildResult off = build(sphereContours(r, slices), 1.0, 1), on = build(sphereContours(r, slices), 1.0);
     const Accuracy a = accuracy(off, sphere), b = accuracy(on, sphere);
-    std::printf("[ figure   ] sphere r20, 1 mm pixels, %.0f mm slices: mean %.3f max %.3f mm interpolated, %.3f / %.3f off\n", slices,
-                b.mean, b.max, a.mean, a.max);
+    std::printf("[ figure   ] sphere r20, 1 mm pixels, %.0f mm slices: mean %.3f max %.3f mm interpolated, %.3f / %.3f off\n",
+                slices, b.mean, b.max, a.mean, a.max);
     // Within a quarter of off's mean (measured +12 % at 3 mm, +21 % at 4 mm): the domes stand
     // past the true poles to keep the slab rule's volume.
     EXPECT_LT(b.mean, 1.25 * a.mean);
@@ -508,9 +524,11 @@ TEST_F(InterpolatedShapesTest, ThickSlicesAndCapsFigures) {
     expectTopology(ton, 0, 1, 1);
     const Accuracy ta = accuracy(toff, torus), tb = accuracy(ton, torus), tf = accuracy(tflat, torus);
     const Accuracy ma = accuracy(toff, torus, -slices / 2, slices / 2), mb = accuracy(ton, torus, -slices / 2, slices / 2);
-    std::printf("[ figure   ] torus R12 r5, 1 mm pixels, %.0f mm slices: mean %.3f max %.3f mm interpolated (flat caps %.3f / %.3f), %.3f / %.3f off; "
-                "between the middle planes %.3f / %.3f interpolated, %.3f / %.3f off\n", slices,
-                tb.mean, tb.max, tf.mean, tf.max, ta.mean, ta.max, mb.mean, mb.max, ma.mean, ma.max);
+    std::printf(
+        "[ figure   ] torus R12 r5, 1 mm pixels, %.0f mm slices: mean %.3f max %.3f mm interpolated (flat caps %.3f / %.3f), "
+        "%.3f / %.3f off; "
+        "between the middle planes %.3f / %.3f interpolated, %.3f / %.3f off\n",
+        slices, tb.mean, tb.max, tf.mean, tf.max, ta.mean, ta.max, mb.mean, mb.max, ma.mean, ma.max);
   }
   // Slices at z = +-1, +-3, ... +-19: the true pole lies 1 mm beyond the last plane.
   for (CapShape caps : {CapShape::Flat, CapShape::Round}) {
@@ -518,8 +536,10 @@ TEST_F(InterpolatedShapesTest, ThickSlicesAndCapsFigures) {
     float top = -1e30f;
     for (std::size_t v = 2; v < b.surfaces.mesh.positions.size(); v += 3) top = std::max(top, b.surfaces.mesh.positions[v]);
     const Accuracy a = accuracy(b, sphere, r - 3, r);
-    std::printf("[ figure   ] sphere r20 pole with %s caps, 0.5 mm pixels, 2 mm slices: top at %.3f (true 20), cap mean %.3f max %.3f mm\n",
-                caps == CapShape::Flat ? "flat" : "round", top, a.mean, a.max);
+    std::printf(
+        "[ figure   ] sphere r20 pole with %s caps, 0.5 mm pixels, 2 mm slices: top at %.3f (true 20), cap mean %.3f max %.3f "
+        "mm\n",
+        caps == CapShape::Flat ? "flat" : "round", top, a.mean, a.max);
   }
 }
 

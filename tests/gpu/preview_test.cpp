@@ -18,7 +18,8 @@ using PreviewTest = EngineTest;
 // Pixels whose hue is close to `c` (shading scales the colour, so compare directions).
 std::size_t pixelsOfColor(const PreviewImage& img, Rgb c) {
   std::size_t n = 0;
-  const double cl = std::sqrt(static_cast<double>(c[0]) * c[0] + static_cast<double>(c[1]) * c[1] + static_cast<double>(c[2]) * c[2]);
+  const double cl =
+      std::sqrt(static_cast<double>(c[0]) * c[0] + static_cast<double>(c[1]) * c[1] + static_cast<double>(c[2]) * c[2]);
   for (std::size_t p = 0; p < img.rgba.size(); p += 4) {
     const double r = img.rgba[p], g = img.rgba[p + 1], b = img.rgba[p + 2];
     const double l = std::sqrt(r * r + g * g + b * b);

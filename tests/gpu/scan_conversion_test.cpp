@@ -152,20 +152,19 @@ TEST_F(ScanConversionTest, LatticeAlignedEdgesAndAbuttingFeaturesMatchReference)
 TEST_F(ScanConversionTest, NestedFeatureWinsAndHoleStaysEmpty) {
   Grid grid = smallGrid(24, 24, 1, 1.0);
   grid.spacingY = 1.0;
-  auto square = [&](double x0, double y0, double x1, double y1) {
-    return Contour{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}};
-  };
+  auto square = [&](double x0, double y0, double x1, double y1) { return Contour{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}; };
   const double ox = grid.originX, oy = grid.originY, z = grid.layerZ[1];
   ContourSet set;
   set.source = "nested";
   // outer: a ring (square with a square hole); inner: a square inside the ring's body.
-  set.features.push_back({"outer", {}, {{z, {square(ox + 1.5, oy + 1.5, ox + 20.5, oy + 20.5), square(ox + 8.5, oy + 8.5, ox + 13.5, oy + 13.5)}}}});
+  set.features.push_back(
+      {"outer", {}, {{z, {square(ox + 1.5, oy + 1.5, ox + 20.5, oy + 20.5), square(ox + 8.5, oy + 8.5, ox + 13.5, oy + 13.5)}}}});
   set.features.push_back({"inner", {}, {{z, {square(ox + 2.5, oy + 2.5, ox + 5.5, oy + 5.5)}}}});
   auto converter = passes::ScanConverter::create(sharedContext());
   ASSERT_TRUE(converter);
   auto volume = (*converter)->run(set, grid, {1, 0});
   ASSERT_TRUE(volume) << volume.error().message;
-  EXPECT_EQ(volume->at(4, 4, 1), labelOfFeature(1));   // inner wins inside the outer
+  EXPECT_EQ(volume->at(4, 4, 1), labelOfFeature(1));    // inner wins inside the outer
   EXPECT_EQ(volume->at(16, 16, 1), labelOfFeature(0));  // the ring's body
   EXPECT_EQ(volume->at(11, 11, 1), kBackground);        // the hole
   EXPECT_EQ(volume->at(0, 0, 1), kBackground);          // padding
@@ -206,7 +205,8 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
   set.source = "device";
   set.features = {Feature{"a", {}, {}}, Feature{"b", {}, {}}};
   for (int s = 0; s < 9; ++s)
-    for (Feature& f : set.features) f.slices.push_back({grid.layerZ[static_cast<std::size_t>(s + 1)], {randomStar(rng, grid, 13)}});
+    for (Feature& f : set.features)
+      f.slices.push_back({grid.layerZ[static_cast<std::size_t>(s + 1)], {randomStar(rng, grid, 13)}});
   auto converter = passes::ScanConverter::create(sharedContext());
   auto classifier = passes::Classifier::create(sharedContext());
   ASSERT_TRUE(converter && classifier);
@@ -229,14 +229,16 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
   auto deviceOnly = (*converter)->runOnDevice(set, grid, {0, 1}, nullptr);
   ASSERT_TRUE(deviceOnly);
   (*classifier)->setSlabBudget(4 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
-  auto inPlace = (*classifier)->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 0, 16, deviceOnly->grid},
-                                           deviceOnly->buffer.size());
+  auto inPlace =
+      (*classifier)
+          ->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 0, 16, deviceOnly->grid}, deviceOnly->buffer.size());
   ASSERT_TRUE(inPlace) << inPlace.error().message;
   EXPECT_EQ((*classifier)->lastSlabCount(), 5);  // 2 cell layers each
   ASSERT_EQ(inPlace->size(), fromHost->size());
   EXPECT_EQ(std::memcmp(inPlace->data(), fromHost->data(), fromHost->size() * sizeof(CellCase)), 0);
-  auto tooSmall = (*classifier)->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 4, 16, deviceOnly->grid},
-                                            deviceOnly->buffer.size());
+  auto tooSmall =
+      (*classifier)
+          ->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 4, 16, deviceOnly->grid}, deviceOnly->buffer.size());
   EXPECT_FALSE(tooSmall);
 }
 

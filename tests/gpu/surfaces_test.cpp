@@ -17,9 +17,7 @@ namespace {
 
 class SurfacesTest : public EngineTest {
  protected:
-
-  static BuildResult build(const ContourSet& set, double voxelSize,
-                           SurfaceConvention convention = SurfaceConvention::Enclosing) {
+  static BuildResult build(const ContourSet& set, double voxelSize, SurfaceConvention convention = SurfaceConvention::Enclosing) {
     BuildOptions options;
     options.grid.voxelSize = voxelSize;
     options.convention = convention;
@@ -56,8 +54,8 @@ TEST_F(SurfacesTest, SphereIsClosedGenusZeroWithinThreePercentOfAnalyticVolume) 
   const double analytic = 4.0 / 3.0 * M_PI * r * r * r;
   const double error = std::abs(s.volume - analytic) / analytic;
   RecordProperty("sphere_volume_error_percent", std::to_string(100 * error));
-  std::printf("[ figures  ] 20 mm sphere at 1 mm: %zu triangles, volume %.1f mm3 (analytic %.1f, error %.2f %%)\n",
-              s.triangles, s.volume, analytic, 100 * error);
+  std::printf("[ figures  ] 20 mm sphere at 1 mm: %zu triangles, volume %.1f mm3 (analytic %.1f, error %.2f %%)\n", s.triangles,
+              s.volume, analytic, 100 * error);
   EXPECT_LT(error, 0.03);
   EXPECT_TRUE(b.warnings.empty());
 }

@@ -72,8 +72,8 @@ Contour drawnOutline(const std::vector<Point2>& path, double step, double jitter
     const Point2 p = path[seg], q = path[(seg + 1) % path.size()];
     const double length = at[seg + 1] - at[seg], t = length > 0 ? (s - at[seg]) / length : 0;
     const double tx = length > 0 ? (q.x - p.x) / length : 1, ty = length > 0 ? (q.y - p.y) / length : 0;
-    const double offset =
-        jitter * (0.5 * std::sin(2 * kPi * s / 23 + phase1) + 0.3 * std::sin(2 * kPi * s / 7 + phase2) + 0.2 * rng.uniform(-1, 1));
+    const double offset = jitter * (0.5 * std::sin(2 * kPi * s / 23 + phase1) + 0.3 * std::sin(2 * kPi * s / 7 + phase2) +
+                                    0.2 * rng.uniform(-1, 1));
     c.points.push_back({p.x + t * (q.x - p.x) + offset * ty, p.y + t * (q.y - p.y) - offset * tx});
   }
   return c;

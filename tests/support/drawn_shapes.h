@@ -17,11 +17,11 @@ namespace scansurf {
 Contour drawnOutline(const std::vector<Point2>& path, double step, double jitter, ShapeRng& rng);
 
 struct DrawnPelvisOptions {
-  double jitter = 1.0;        // mm, each outline point
+  double jitter = 1.0;  // mm, each outline point
   std::uint64_t seed = 1;
-  bool body = true;           // "BODY" around everything
+  bool body = true;             // "BODY" around everything
   bool planningVolume = false;  // "PTV": the prostate with a margin, deep into the rectum
-  double pokeDepth = 0;       // > 0: the rectum pokes this far into the prostate, 6 mm wide, on two slices
+  double pokeDepth = 0;         // > 0: the rectum pokes this far into the prostate, 6 mm wide, on two slices
   double sliceSpacing = 2.0;
 };
 

@@ -19,9 +19,7 @@ IntersectionReport findCrossings(std::span<const float> positions, std::span<con
   std::vector<char> degenerate(n, 0);
   double extent = 0;
   Point3 origin = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  const auto point = [&](std::uint32_t v) {
-    return Point3{positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]};
-  };
+  const auto point = [&](std::uint32_t v) { return Point3{positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; };
   for (std::size_t t = 0; t < n; ++t) {
     Box b{point(triangles[3 * t]), point(triangles[3 * t])};
     for (int c = 1; c < 3; ++c) {

@@ -19,9 +19,9 @@ using scansurf::Point3;
 using scansurf::trianglesCross;
 
 struct IntersectionReport {
-  std::size_t pairsTested = 0;  // pairs whose bounding boxes touch
-  std::size_t crossings = 0;    // pairs for which trianglesCross holds
-  std::size_t degenerate = 0;   // zero-area triangles (skipped)
+  std::size_t pairsTested = 0;                                    // pairs whose bounding boxes touch
+  std::size_t crossings = 0;                                      // pairs for which trianglesCross holds
+  std::size_t degenerate = 0;                                     // zero-area triangles (skipped)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> examples;  // first few crossing pairs
 };
 

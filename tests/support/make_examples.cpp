@@ -6,8 +6,8 @@
 //   both for drawn-pelvis-ptv (docs' overlap pictures).
 #include <cstdio>
 #include <cstdlib>
-#include <string>
 #include <filesystem>
+#include <string>
 
 #include "io/contours_json.h"
 #include "support/drawn_shapes.h"

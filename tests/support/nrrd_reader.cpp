@@ -42,8 +42,10 @@ Nrrd readNrrd(const std::filesystem::path& path) {
     if (line.empty() || line[0] == '#') continue;
     const std::size_t kv = line.find(":=");
     const std::size_t colon = line.find(": ");
-    if (kv != std::string::npos && (colon == std::string::npos || kv < colon)) n.fields[line.substr(0, kv)] = line.substr(kv + 2);
-    else if (colon != std::string::npos) n.fields[line.substr(0, colon)] = line.substr(colon + 2);
+    if (kv != std::string::npos && (colon == std::string::npos || kv < colon))
+      n.fields[line.substr(0, kv)] = line.substr(kv + 2);
+    else if (colon != std::string::npos)
+      n.fields[line.substr(0, colon)] = line.substr(colon + 2);
   }
   n.data = gunzip(bytes.substr(end + 2));
   return n;

@@ -45,8 +45,7 @@ void toggleTriangle(SubpixelPoint a, SubpixelPoint b, SubpixelPoint c, int bits,
 
 }  // namespace
 
-LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                                 int subPixelBits) {
+LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order, int subPixelBits) {
   LabelVolume volume;
   volume.grid = grid;
   volume.labels.assign(grid.voxelCount(), kBackground);

@@ -11,7 +11,6 @@
 
 namespace scansurf::test {
 
-LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
-                                 int subPixelBits);
+LabelVolume referenceScanConvert(const ContourSet& contours, const Grid& grid, const std::vector<int>& order, int subPixelBits);
 
 }  // namespace scansurf::test

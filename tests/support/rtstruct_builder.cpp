@@ -91,7 +91,8 @@ void writeTestRtStruct(const TestRtStruct& rt, const std::filesystem::path& path
     if (rt.roiContourSequence && roi.contourItem) {
       DcmItem& item = newItem(ds, DCM_ROIContourSequence);
       put(item, DCM_ReferencedROINumber, std::to_string(roi.number));
-      if (roi.color) put(item, DCM_ROIDisplayColor, join({double((*roi.color)[0]), double((*roi.color)[1]), double((*roi.color)[2])}));
+      if (roi.color)
+        put(item, DCM_ROIDisplayColor, join({double((*roi.color)[0]), double((*roi.color)[1]), double((*roi.color)[2])}));
       int number = 0;
       for (const TestContour& c : roi.contours) {
         DcmItem& contour = newItem(item, DCM_ContourSequence);

@@ -25,13 +25,13 @@ struct TestRoi {
   std::string interpretedType = "ORGAN";
   std::optional<Rgb> color;
   std::vector<TestContour> contours;
-  bool contourItem = true;   // write an ROI Contour Sequence item for it
-  bool writeNumber = true;   // write ROI Number in the Structure Set ROI Sequence
+  bool contourItem = true;  // write an ROI Contour Sequence item for it
+  bool writeNumber = true;  // write ROI Number in the Structure Set ROI Sequence
 };
 
 struct TestRtStruct {
   std::vector<TestRoi> rois;
-  bool fileHeader = true;  // DICOM Part 10 preamble and meta header
+  bool fileHeader = true;                                     // DICOM Part 10 preamble and meta header
   std::string sopClassUid = "1.2.840.10008.5.1.4.1.1.481.3";  // RT Structure Set Storage
   std::string modality = "RTSTRUCT";
   bool structureSetRoiSequence = true;

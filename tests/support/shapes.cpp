@@ -50,9 +50,9 @@ std::pair<Contour, Contour> splitDisc(Point2 c, double r, double step) {
   appendRun(chord, bottom, top, step);
   chord.push_back(top);
   Contour left, right;
-  appendArcInterior(left.points, c, r, kPi / 2, 3 * kPi / 2, step);  // top -> bottom via the left
-  left.points.insert(left.points.end(), chord.begin(), chord.end());  // bottom -> top
-  appendArcInterior(right.points, c, r, -kPi / 2, kPi / 2, step);     // bottom -> top via the right
+  appendArcInterior(left.points, c, r, kPi / 2, 3 * kPi / 2, step);       // top -> bottom via the left
+  left.points.insert(left.points.end(), chord.begin(), chord.end());      // bottom -> top
+  appendArcInterior(right.points, c, r, -kPi / 2, kPi / 2, step);         // bottom -> top via the right
   right.points.insert(right.points.end(), chord.rbegin(), chord.rend());  // top -> bottom
   return {std::move(left), std::move(right)};
 }
@@ -109,8 +109,8 @@ ContourSet torusContours(double majorRadius, double tubeRadius, double sliceSpac
   return set;
 }
 
-ContourSet yBranchContours(double trunkRadius, double branchOffset, double branchRadius, double sliceSpacing,
-                           int trunkSlices, int branchSlices) {
+ContourSet yBranchContours(double trunkRadius, double branchOffset, double branchRadius, double sliceSpacing, int trunkSlices,
+                           int branchSlices) {
   ContourSet set;
   set.source = "y_branch";
   Feature f;
@@ -121,8 +121,8 @@ ContourSet yBranchContours(double trunkRadius, double branchOffset, double branc
     if (k < trunkSlices)
       f.slices.push_back(sliceOf(z, {circleContour({0, 0}, trunkRadius)}));
     else
-      f.slices.push_back(sliceOf(z, {circleContour({-branchOffset, 0}, branchRadius),
-                                     circleContour({branchOffset, 0}, branchRadius)}));
+      f.slices.push_back(
+          sliceOf(z, {circleContour({-branchOffset, 0}, branchRadius), circleContour({branchOffset, 0}, branchRadius)}));
   }
   set.features.push_back(std::move(f));
   return set;
@@ -178,7 +178,7 @@ ContourSet phantomContours(double sliceSpacing) {
   // 100 mm of slices from z = 0; at 2.5 mm the bundled example's 40.
   const int kSlices = static_cast<int>(std::floor(99.0 / sliceSpacing + 1e-9)) + 1;
   const double kSpacing = sliceSpacing;
-  constexpr double e = 1e-9;  // z ranges below hold their ends
+  constexpr double e = 1e-9;     // z ranges below hold their ends
   constexpr double kStep = 1.0;  // mm between contour points
   ContourSet set;
   set.source = "phantom";
@@ -252,9 +252,7 @@ std::uint64_t ShapeRng::next() {
   return z ^ (z >> 31);
 }
 
-double ShapeRng::uniform(double lo, double hi) {
-  return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1.0p-53;
-}
+double ShapeRng::uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
 Contour randomPolygon(ShapeRng& rng, Point2 centre, double minRadius, double maxRadius, int vertices) {
   Contour c;

@@ -25,8 +25,8 @@ ContourSet torusContours(double majorRadius, double tubeRadius, double sliceSpac
 // One feature "vessel" shaped like trousers: a trunk circle on `trunkSlices` slices, then two
 // branch circles (overlapping the trunk in xy, so they connect) on `branchSlices` slices.
 // Slices at z = (k + 0.5) * sliceSpacing, k = 0 .. trunkSlices + branchSlices - 1.
-ContourSet yBranchContours(double trunkRadius = 6, double branchOffset = 5, double branchRadius = 3,
-                           double sliceSpacing = 2, int trunkSlices = 5, int branchSlices = 5);
+ContourSet yBranchContours(double trunkRadius = 6, double branchOffset = 5, double branchRadius = 3, double sliceSpacing = 2,
+                           int trunkSlices = 5, int branchSlices = 5);
 
 // Features "outer" (sphere of outerRadius) and "inner" (sphere of innerRadius, same centre).
 ContourSet nestedSpheresContours(double outerRadius = 20, double innerRadius = 8, double sliceSpacing = 2.5);

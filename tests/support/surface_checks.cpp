@@ -48,7 +48,8 @@ Angles minAngles(const MultiLabelMesh& m) {
       double u[3], v[3];
       for (int k = 0; k < 3; ++k) u[k] = p[k] - o[k], v[k] = q[k] - o[k];
       const double d = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-      const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), nv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]),
+                   nv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       best = std::min(best, std::acos(std::clamp(d / (nu * nv), -1.0, 1.0)) * 180 / std::numbers::pi);
     }
     mins.push_back(best);
@@ -68,7 +69,8 @@ Accuracy accuracy(const Built& b, const Distance& distance) {
     for (int k = 0; k < 3; ++k) u[k] = p[1][k] - p[0][k], v[k] = p[2][k] - p[0][k];
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     const double a = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    static constexpr double kBary[7][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {.5, .5, 0}, {0, .5, .5}, {.5, 0, .5}, {1. / 3, 1. / 3, 1. / 3}};
+    static constexpr double kBary[7][3] = {
+        {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {.5, .5, 0}, {0, .5, .5}, {.5, 0, .5}, {1. / 3, 1. / 3, 1. / 3}};
     double local = 0;
     for (const auto& w : kBary) {
       double q[3];

@@ -44,9 +44,7 @@ LabelVolume implicitVolume(int n, double h, const std::vector<Inside>& features,
 }
 
 Inside ball(double cx, double cy, double cz, double r) {
-  return [=](double x, double y, double z) {
-    return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) <= r * r;
-  };
+  return [=](double x, double y, double z) { return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) <= r * r; };
 }
 
 MultiLabelMesh meshOf(const LabelVolume& v, int threads = 0) {
@@ -61,9 +59,7 @@ Nesting flatNesting(int featureCount) {
   return n;
 }
 
-MeshStats statsOf(const MultiLabelMesh& mesh, const FeatureSurface& s) {
-  return computeMeshStats(mesh.positions, s.triangles);
-}
+MeshStats statsOf(const MultiLabelMesh& mesh, const FeatureSurface& s) { return computeMeshStats(mesh.positions, s.triangles); }
 
 // Every non-empty surface in both conventions: closed, manifold, oriented, positive volume.
 void expectWellFormed(const MultiLabelMesh& mesh, int featureCount, const Nesting& nesting) {
@@ -111,8 +107,8 @@ TEST(Assembly, SphereVolumeWithinThreePercent) {
   const auto surfaces = extractFeatureSurfaces(mesh, 1, flatNesting(1), SurfaceConvention::Enclosing);
   const MeshStats s = statsOf(mesh, surfaces[0]);
   const double exact = 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  std::printf("sphere r=10 at 1 mm: volume %.1f vs %.1f (%.2f%%), area %.1f vs %.1f, %zu triangles\n", s.volume,
-              exact, 100 * (s.volume - exact) / exact, s.area, 4 * std::numbers::pi * r * r, s.triangles);
+  std::printf("sphere r=10 at 1 mm: volume %.1f vs %.1f (%.2f%%), area %.1f vs %.1f, %zu triangles\n", s.volume, exact,
+              100 * (s.volume - exact) / exact, s.area, 4 * std::numbers::pi * r * r, s.triangles);
   EXPECT_NEAR(s.volume, exact, 0.03 * exact);
   EXPECT_TRUE(s.closed && s.manifold && s.oriented);
   EXPECT_EQ(s.components, 1);
@@ -130,8 +126,7 @@ TEST(Assembly, Torus) {
   const auto surfaces = extractFeatureSurfaces(mesh, 1, flatNesting(1), SurfaceConvention::Partition);
   const MeshStats s = statsOf(mesh, surfaces[0]);
   const double exact = 2 * std::numbers::pi * std::numbers::pi * big * small * small;
-  std::printf("torus R=8 r=3 at 1 mm: volume %.1f vs %.1f (%.2f%%)\n", s.volume, exact,
-              100 * (s.volume - exact) / exact);
+  std::printf("torus R=8 r=3 at 1 mm: volume %.1f vs %.1f (%.2f%%)\n", s.volume, exact, 100 * (s.volume - exact) / exact);
   EXPECT_TRUE(s.closed && s.manifold && s.oriented);
   EXPECT_EQ(s.components, 1);
   EXPECT_EQ(s.genus, 1);
@@ -139,9 +134,8 @@ TEST(Assembly, Torus) {
 }
 
 TEST(Assembly, TwoSeparateBalls) {
-  const LabelVolume v = implicitVolume(24, 1.0, {[](double x, double y, double z) {
-    return ball(-5, 0, 0, 4)(x, y, z) || ball(6, 1, 0, 3.5)(x, y, z);
-  }});
+  const LabelVolume v = implicitVolume(
+      24, 1.0, {[](double x, double y, double z) { return ball(-5, 0, 0, 4)(x, y, z) || ball(6, 1, 0, 3.5)(x, y, z); }});
   const MultiLabelMesh mesh = meshOf(v);
   const auto surfaces = extractFeatureSurfaces(mesh, 1, flatNesting(1), SurfaceConvention::Enclosing);
   const MeshStats s = statsOf(mesh, surfaces[0]);
@@ -219,8 +213,10 @@ TEST(Assembly, FourLabelsMeetAtAPoint) {
   auto region = [](int w) -> Inside {
     return [w](double x, double y, double z) {
       int r;
-      if (y < 0.3) r = x < 0.1 ? 0 : 1;
-      else r = z < -0.2 ? 2 : 3;
+      if (y < 0.3)
+        r = x < 0.1 ? 0 : 1;
+      else
+        r = z < -0.2 ? 2 : 3;
       return r == w && ball(0, 0, 0, 7)(x, y, z);
     };
   };

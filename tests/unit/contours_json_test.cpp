@@ -110,8 +110,7 @@ TEST(ContoursJson, MissingFields) {
   expectError(doc(R"({"slices":[]})"), {"feature #1", "missing \"name\""});
   expectError(doc(R"({"name": 5, "slices":[]})"), {"feature #1", "\"name\" must be a string"});
   expectError(doc(R"({"name":"organ"})"), {"feature \"organ\" (#1)", "missing \"slices\""});
-  expectError(doc(R"({"name":"organ","slices":[{"contours":[]}]})"),
-              {"feature \"organ\" (#1)", "slice #0", "missing \"z\""});
+  expectError(doc(R"({"name":"organ","slices":[{"contours":[]}]})"), {"feature \"organ\" (#1)", "slice #0", "missing \"z\""});
   expectError(doc(R"({"name":"organ","slices":[{"z":"a","contours":[]}]})"),
               {"feature \"organ\" (#1)", "slice #0", "\"z\" must be a number"});
   expectError(doc(R"({"name":"organ","slices":[{"z":1},{"z":2.5}]})"),
@@ -125,8 +124,7 @@ TEST(ContoursJson, BadPointsAndContours) {
               {"feature \"organ\" (#1)", "slice z=2.5 (#0)", "contour 1", "point 1", "2 numbers"});
   expectError(doc(R"({"name":"organ","slices":[{"z":2.5,"contours":[[[0,0],[1,"x"],[0,1]]]}]})"),
               {"contour 0", "point 1", "2 numbers"});
-  expectError(doc(R"({"name":"organ","slices":[{"z":2.5,"contours":[{"points":[]}]}]})"),
-              {"contour 0", "array of points"});
+  expectError(doc(R"({"name":"organ","slices":[{"z":2.5,"contours":[{"points":[]}]}]})"), {"contour 0", "array of points"});
   expectError(doc(R"({"name":"organ","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]},
                      {"z":12.5,"contours":[[[0,0],[1,0],[0,1]],[[0,0],[1,0],[0,1]],[[3,3],[4,4],[4,4],[3,3]]]}]})"),
               {"feature \"organ\" (#1)", "slice z=12.5 (#1)", "contour 2", "fewer than 3 distinct points"});
@@ -134,8 +132,7 @@ TEST(ContoursJson, BadPointsAndContours) {
 
 TEST(ContoursJson, NonFiniteValues) {
   // JSON cannot spell NaN or infinity; an overflowing number is rejected by the parser.
-  expectError(doc(R"({"name":"organ","slices":[{"z":3,"contours":[[[0,0],[1e999,0],[0,1]]]}]})"),
-              {"not valid JSON", "1e999"});
+  expectError(doc(R"({"name":"organ","slices":[{"z":3,"contours":[[[0,0],[1e999,0],[0,1]]]}]})"), {"not valid JSON", "1e999"});
   // Other readers can produce them: validation names the place.
   ContourSet set;
   set.source = "model";
@@ -156,8 +153,7 @@ TEST(ContoursJson, NonFiniteValues) {
 TEST(ContoursJson, NamesAndColours) {
   expectError(doc(R"({"name":"skin","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})"),
               {"feature \"skin\" (#1)", "duplicate name", "#0"});
-  expectError(doc(R"({"name":"","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})"),
-              {"feature #1", "empty name"});
+  expectError(doc(R"({"name":"","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})"), {"feature #1", "empty name"});
   expectError(doc(R"({"name":"organ","color":[0,256,0],"slices":[]})"), {"feature \"organ\" (#1)", "color", "0..255"});
   expectError(doc(R"({"name":"organ","color":[0,-1,0],"slices":[]})"), {"feature \"organ\" (#1)", "color", "0..255"});
   expectError(doc(R"({"name":"organ","color":[0,1],"slices":[]})"), {"feature \"organ\" (#1)", "color"});
@@ -179,21 +175,23 @@ TEST(Validate, ModelLevelErrorsNameEverything) {
   ContourSet set;
   set.source = "phantom.json";
   for (int i = 0; i < 4; ++i)
-    set.features.push_back(Feature{"f" + std::to_string(i), std::nullopt, {FeatureSlice{0, {Contour{{{0, 0}, {1, 0}, {0, 1}}}}}}});
+    set.features.push_back(
+        Feature{"f" + std::to_string(i), std::nullopt, {FeatureSlice{0, {Contour{{{0, 0}, {1, 0}, {0, 1}}}}}}});
   set.features[3].name = "rectum";
-  for (int s = 1; s <= 4; ++s)
-    set.features[3].slices.push_back(FeatureSlice{s * 2.5 + 2.5, {Contour{{{0, 0}, {1, 0}, {0, 1}}}}});
+  for (int s = 1; s <= 4; ++s) set.features[3].slices.push_back(FeatureSlice{s * 2.5 + 2.5, {Contour{{{0, 0}, {1, 0}, {0, 1}}}}});
   ContourSet nan = set;
   nan.features[3].slices[4].contours.push_back(Contour{{{0, 0}, {std::nan(""), 0}, {0, 1}}});
   auto r = validateAndNormalize(nan);
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().message, "phantom.json: feature \"rectum\" (#3), slice z=12.5 (#4), contour 1, point 1: non-finite coordinate");
+  EXPECT_EQ(r.error().message,
+            "phantom.json: feature \"rectum\" (#3), slice z=12.5 (#4), contour 1, point 1: non-finite coordinate");
   ContourSet few = set;
   few.features[3].slices[4].contours.push_back(Contour{{{0, 0}, {1, 1}}});
   few.features[3].slices[4].contours.push_back(Contour{{{0, 0}, {1, 1}, {0, 0}}});
   r = validateAndNormalize(few);
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().message, "phantom.json: feature \"rectum\" (#3), slice z=12.5 (#4), contour 1: fewer than 3 distinct points");
+  EXPECT_EQ(r.error().message,
+            "phantom.json: feature \"rectum\" (#3), slice z=12.5 (#4), contour 1: fewer than 3 distinct points");
   ContourSet back = set;  // a, b, a, b: four points, two distinct
   back.features[0].slices[0].contours[0].points = {{0, 0}, {1, 1}, {0, 0}, {1, 1}};
   r = validateAndNormalize(back);
@@ -220,7 +218,8 @@ TEST(ContoursJson, MissingFileIsIo) {
 }
 
 fs::path tempDir() {
-  const fs::path dir = fs::temp_directory_path() / ("scansurf_json_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("scansurf_json_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::create_directories(dir);
   return dir;
 }
@@ -266,8 +265,7 @@ TEST(ContoursJson, WriteReadRoundTripIsExact) {
     // Writing twice gives the same bytes, and no temporary file is left behind.
     EXPECT_EQ(formatContoursJson(*r), formatContoursJson(set));
   }
-  for (const auto& entry : fs::directory_iterator(dir))
-    EXPECT_EQ(entry.path().extension(), ".json") << entry.path();
+  for (const auto& entry : fs::directory_iterator(dir)) EXPECT_EQ(entry.path().extension(), ".json") << entry.path();
   fs::remove_all(dir);
 }
 
@@ -325,7 +323,8 @@ TEST(ContoursJson, DeepNestingIsRefusedNotFatal) {
   const std::string deep = std::string(200000, '[') + std::string(200000, ']');
   for (const std::string& doc : {"{\"version\": " + deep + ", \"features\": []}",
                                  "{\"version\": 1, \"features\": [{\"name\": \"a\", \"slices\": [{\"z\": 0, "
-                                 "\"contours\": [[[0, 0], [1, 0], " + deep + "]]}]}]}"}) {
+                                 "\"contours\": [[[0, 0], [1, 0], " +
+                                     deep + "]]}]}]}"}) {
     const auto r = parseContoursJson(doc, "deep.json");
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, Errc::InvalidInput);
@@ -382,8 +381,9 @@ TEST(Validation, SlicePlanesMergeRelativeToTheSpacing) {
   EXPECT_EQ(close.features[0].slices[0].contours.size(), 1u) << "the copies meet on one plane; one is kept";
   EXPECT_EQ(close.features[1].slices[0].z, 2.0) << "moved onto the lower plane exactly";
   ASSERT_EQ(close.warnings.size(), 2u) << "the merge, then the copies dropped";
-  EXPECT_EQ(close.warnings[0], "close: 2 slice position(s) within 0.002 mm (a thousandth of the median slice spacing) of a "
-                               "lower one were merged into its plane, e.g. z=1e-09 into z=0");
+  EXPECT_EQ(close.warnings[0],
+            "close: 2 slice position(s) within 0.002 mm (a thousandth of the median slice spacing) of a "
+            "lower one were merged into its plane, e.g. z=1e-09 into z=0");
 }
 
 TEST(Validation, RepeatedContoursOfASliceAreDroppedWithAWarning) {
@@ -392,12 +392,14 @@ TEST(Validation, RepeatedContoursOfASliceAreDroppedWithAWarning) {
   const Contour hole{{{1, 1}, {3, 1}, {3, 3}, {1, 3}}};
   ContourSet set;
   set.source = "dup";
-  set.features.push_back(Feature{"organ", std::nullopt, {FeatureSlice{2, {square, hole, rotatedReversed}}, FeatureSlice{4, {square}}}});
+  set.features.push_back(
+      Feature{"organ", std::nullopt, {FeatureSlice{2, {square, hole, rotatedReversed}}, FeatureSlice{4, {square}}}});
   ASSERT_TRUE(validateAndNormalize(set));
   ASSERT_EQ(set.features[0].slices[0].contours.size(), 2u) << "the square and its hole";
   ASSERT_EQ(set.warnings.size(), 1u);
-  EXPECT_EQ(set.warnings[0], "dup: feature \"organ\" (#0), slice z=2 (#0): contour 2 repeats an earlier contour of the slice point "
-                             "for point; the copy is dropped (two copies would cancel by the even-odd rule)");
+  EXPECT_EQ(set.warnings[0],
+            "dup: feature \"organ\" (#0), slice z=2 (#0): contour 2 repeats an earlier contour of the slice point "
+            "for point; the copy is dropped (two copies would cancel by the even-odd rule)");
   EXPECT_EQ(set.features[0].slices[1].contours.size(), 1u);
 }
 

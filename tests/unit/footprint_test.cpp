@@ -23,9 +23,8 @@ std::size_t realVertices(const ContourSet& set, const Grid& grid) {
 
 TEST(Footprint, VertexEstimateBoundsTheMeshFromAbove) {
   const std::vector<std::pair<const char*, ContourSet>> shapes = {
-      {"sphere", sphereContours(20, 2)},       {"torus", torusContours(20, 6, 2)},
-      {"nested", nestedSpheresContours()},     {"abutting", abuttingContours()},
-      {"branching", yBranchContours()},        {"phantom", phantomContours()}};
+      {"sphere", sphereContours(20, 2)}, {"torus", torusContours(20, 6, 2)}, {"nested", nestedSpheresContours()},
+      {"abutting", abuttingContours()},  {"branching", yBranchContours()},   {"phantom", phantomContours()}};
   for (const auto& [name, set] : shapes) {
     for (double voxel : {1.0, 0.5}) {
       GridOptions options;
@@ -57,7 +56,8 @@ TEST(Footprint, RemeshingToShortEdgesCounts) {
   const Footprint quarter = estimateFootprint(set, *grid, 0, 0.25);
   EXPECT_EQ(voxel.surfaceVertices, plain.surfaceVertices);
   EXPECT_GT(voxel.hostBytes, plain.hostBytes + 1000 * plain.surfaceVertices);
-  EXPECT_GT(quarter.hostBytes - plain.hostBytes, 3.9 * (voxel.hostBytes - plain.hostBytes));
+  EXPECT_GT(static_cast<double>(quarter.hostBytes - plain.hostBytes),
+            3.9 * static_cast<double>(voxel.hostBytes - plain.hostBytes));
 }
 
 // Nested features pay for their depth: each enclosing surface copies the triangles of its
@@ -65,10 +65,13 @@ TEST(Footprint, RemeshingToShortEdgesCounts) {
 // grid-bounded estimate of 2 GB and ran out of memory in the feature surfaces).
 TEST(Footprint, NestedFeaturesCountTheirEnclosingSurfaces) {
   ContourSet rings;
-  for (int i = 0; i < 200; ++i)
-    rings.features.push_back(Feature{"r" + std::to_string(i), std::nullopt,
-                                     {FeatureSlice{0, {circleContour({0, 0}, 1 + 0.5 * i, 64)}},
-                                      FeatureSlice{2, {circleContour({0, 0}, 1 + 0.5 * i, 64)}}}});
+  for (int i = 0; i < 200; ++i) {
+    const Contour ring = circleContour({0, 0}, 1 + 0.5 * i, 64);
+    Feature f;
+    f.name = std::to_string(i);  // a name of its own (GCC 12 warns, wrongly, on "r" + string)
+    f.slices = {FeatureSlice{0, {ring}}, FeatureSlice{2, {ring}}};
+    rings.features.push_back(std::move(f));
+  }
   GridOptions options;
   options.voxelSize = 1;
   const auto grid = makeGrid(rings, options);
@@ -82,7 +85,7 @@ TEST(Footprint, NestedFeaturesCountTheirEnclosingSurfaces) {
   const Footprint f = estimateFootprint(rings, *grid);
   const double meshBytes = 300.0 * static_cast<double>(mesh.vertexCount());
   std::printf("200 nested rings: %zu mesh vertices, %zu triangle indices in the feature surfaces, estimate %.0f MB\n",
-              mesh.vertexCount(), copies, f.hostBytes / 1e6);
+              mesh.vertexCount(), copies, static_cast<double>(f.hostBytes) / 1e6);
   EXPECT_GT(static_cast<double>(f.hostBytes), meshBytes + 4.0 * static_cast<double>(copies));
   EXPECT_GT(4.0 * static_cast<double>(copies), 3 * meshBytes) << "the feature surfaces are what costs here";
 }

@@ -31,8 +31,7 @@ BuildResult cpuBuild(const ContourSet& contours) {
   EXPECT_TRUE(grid) << grid.error().message;
   b.volume.grid = *grid;
   b.subPixelBits = 8;
-  b.overlaps = analyzeOverlaps(contours, *grid, b.nesting,
-                               rasterizeFeatures(contours, *grid, 8, 1), {});
+  b.overlaps = analyzeOverlaps(contours, *grid, b.nesting, rasterizeFeatures(contours, *grid, 8, 1), {});
   return b;
 }
 
@@ -75,7 +74,8 @@ void expectMasksOnCt(const fs::path& file, const ContourSet& contours, const Bui
       const int gk = nearestLayer(grid, ct.sliceZ[k]);  // CT slices between contour planes: the nearer plane
       for (int j = 0; j < ct.ny; ++j)
         for (int i = 0; i < ct.nx; ++i) {
-          const std::size_t at = layers * (static_cast<std::size_t>(i) + ct.nx * (static_cast<std::size_t>(j) + ct.ny * k)) + layer;
+          const std::size_t at =
+              layers * (static_cast<std::size_t>(i) + ct.nx * (static_cast<std::size_t>(j) + ct.ny * k)) + layer;
           const bool inFile = static_cast<unsigned char>(n.data[at]) == value;
           const bool inReference = expected.at(i + ox, j + oy, gk) != 0;
           mismatches += inFile != inReference;

@@ -38,8 +38,8 @@ TEST(Nesting, NestedSpheres) {
 }
 
 TEST(Nesting, SiblingsKeepInputOrder) {
-  const Nesting n = computeNesting(
-      setOf({squareFeature("a", 0, 0, 1), squareFeature("b", 5, 0, 1), squareFeature("c", -5, 0, 1)}));
+  const Nesting n =
+      computeNesting(setOf({squareFeature("a", 0, 0, 1), squareFeature("b", 5, 0, 1), squareFeature("c", -5, 0, 1)}));
   EXPECT_EQ(n.parent, (std::vector<int>{-1, -1, -1}));
   EXPECT_EQ(n.order, (std::vector<int>{0, 1, 2}));
 }
@@ -78,8 +78,8 @@ TEST(Nesting, HoleIsOutside) {
 }
 
 TEST(Nesting, IdenticalFeaturesDoNotCycle) {
-  const Nesting n = computeNesting(
-      setOf({squareFeature("a", 0, 0, 3), squareFeature("b", 0, 0, 3), squareFeature("c", 0, 0, 3)}));
+  const Nesting n =
+      computeNesting(setOf({squareFeature("a", 0, 0, 3), squareFeature("b", 0, 0, 3), squareFeature("c", 0, 0, 3)}));
   // The lower index is the inner one.
   EXPECT_EQ(n.parent, (std::vector<int>{1, 2, -1}));
   EXPECT_EQ(n.order, (std::vector<int>{0, 1, 2}));
@@ -88,8 +88,8 @@ TEST(Nesting, IdenticalFeaturesDoNotCycle) {
 }
 
 TEST(Nesting, SmallestContainerIsParent) {
-  const Nesting n = computeNesting(setOf({squareFeature("small", 0, 0, 1), squareFeature("big", 0, 0, 9),
-                                          squareFeature("mid", 0, 0, 4)}));
+  const Nesting n =
+      computeNesting(setOf({squareFeature("small", 0, 0, 1), squareFeature("big", 0, 0, 9), squareFeature("mid", 0, 0, 4)}));
   EXPECT_EQ(n.parent, (std::vector<int>{2, -1, 1}));
   EXPECT_EQ(n.order, (std::vector<int>{0, 2, 1}));
 }

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <png.h>
 #include <sys/resource.h>
-#include <unistd.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -32,15 +31,15 @@
 #include "io/mesh_writers.h"
 #include "io/nrrd_writer.h"
 #include "io/png_writer.h"
+#include "scansurf/nesting.h"
 #include "scansurf/outputs.h"
-#include "support/nrrd_reader.h"
+#include "scansurf/palette.h"
 #include "scansurf/report.h"
 #include "scansurf/version.h"
-#include "scansurf/nesting.h"
-#include "scansurf/palette.h"
+#include "support/nrrd_reader.h"
 #include "support/reference_rasterizer.h"
-#include "support/shapes.h"
 #include "support/scratch_dir_test.h"
+#include "support/shapes.h"
 
 namespace scansurf {
 namespace {
@@ -66,8 +65,8 @@ Built buildOnCpu(ContourSet set, double voxelSize) {
   b.volume = test::referenceScanConvert(b.set, *grid, nesting.order, 8);
   const std::vector<CellCase> cells = classifyCellsReference(b.volume);
   b.surfaces.mesh = assembleMesh(*grid, cells, 1);
-  b.surfaces.features = extractFeatureSurfaces(b.surfaces.mesh, static_cast<int>(b.set.features.size()), nesting,
-                                               SurfaceConvention::Enclosing);
+  b.surfaces.features =
+      extractFeatureSurfaces(b.surfaces.mesh, static_cast<int>(b.set.features.size()), nesting, SurfaceConvention::Enclosing);
   for (const FeatureSurface& f : b.surfaces.features) {
     auto m = compactSurface(b.surfaces.mesh, f);
     EXPECT_TRUE(m);
@@ -122,7 +121,8 @@ void expectSameSurface(const CompactMesh& original, const CompactMesh& read, dou
   double worst = 0;
   for (std::size_t v = 0; v < read.vertexCount(); ++v) {
     const float* p = &read.positions[3 * v];
-    auto it = std::lower_bound(sorted.begin(), sorted.end(), std::array<float, 3>{static_cast<float>(p[0] - bound), -1e30f, -1e30f});
+    auto it =
+        std::lower_bound(sorted.begin(), sorted.end(), std::array<float, 3>{static_cast<float>(p[0] - bound), -1e30f, -1e30f});
     double best = 1e30;
     for (; it != sorted.end() && (*it)[0] <= p[0] + bound; ++it) {
       double d = 0;
@@ -209,7 +209,8 @@ void checkGltfStructure(const Glb& glb, bool draco, const std::vector<std::size_
   EXPECT_EQ(has("extensionsUsed"), draco);
   EXPECT_EQ(has("extensionsRequired"), draco);
   ASSERT_EQ(j["buffers"].size(), 1u);
-  EXPECT_EQ(j["buffers"][0]["byteLength"].get<std::size_t>(), glb.bin.size() - (glb.bin.size() - j["buffers"][0]["byteLength"].get<std::size_t>()));
+  EXPECT_EQ(j["buffers"][0]["byteLength"].get<std::size_t>(),
+            glb.bin.size() - (glb.bin.size() - j["buffers"][0]["byteLength"].get<std::size_t>()));
   EXPECT_LE(j["buffers"][0]["byteLength"].get<std::size_t>(), glb.bin.size());
   for (const auto& view : j["bufferViews"])
     EXPECT_LE(view.value("byteOffset", std::size_t{0}) + view["byteLength"].get<std::size_t>(),
@@ -345,14 +346,20 @@ TEST_F(OutputFormatsTest, GlbSceneShowsRightInAViewer) {
 // UTF-8 formats; the invalid byte becomes U+FFFD in the GLB and the report.
 TEST_F(OutputFormatsTest, NamesThatAreNotUtf8StillWrite) {
   Built b = nested();
-  b.set.features[0].name = "R\xFC" "ckenmark";
+  b.set.features[0].name =
+      "R\xFC"
+      "ckenmark";
   ASSERT_TRUE(writeScene(dir_ / "latin1.glb", b.set, b.surfaces));
   const Glb glb = parseGlb(readFile(dir_ / "latin1.glb"));
-  EXPECT_EQ(glb.json["meshes"][0]["name"], "R\xEF\xBF\xBD" "ckenmark");
+  EXPECT_EQ(glb.json["meshes"][0]["name"],
+            "R\xEF\xBF\xBD"
+            "ckenmark");
   RunReport r;
   r.features.push_back({b.set.features[0].name, 1, {1, 2, 3}, {}, {}});
   ASSERT_TRUE(writeReport(dir_ / "latin1.json", r));
-  EXPECT_EQ(nlohmann::json::parse(readFile(dir_ / "latin1.json"))["features"][0]["name"], "R\xEF\xBF\xBD" "ckenmark");
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir_ / "latin1.json"))["features"][0]["name"],
+            "R\xEF\xBF\xBD"
+            "ckenmark");
 }
 
 CompactMesh readObj(const fs::path& path);
@@ -446,12 +453,14 @@ TEST_F(OutputFormatsTest, BinaryStlRoundTripWithOutwardNormals) {
     // Exactly the original triangle's corners, in order.
     for (int k = 0; k < 3; ++k)
       for (int ax = 0; ax < 3; ++ax)
-        EXPECT_EQ(rec[3 + 3 * k + ax], m.positions[3 * m.triangles[3 * t + static_cast<std::size_t>(k)] + static_cast<std::size_t>(ax)]);
+        EXPECT_EQ(rec[3 + 3 * k + ax],
+                  m.positions[3 * m.triangles[3 * t + static_cast<std::size_t>(k)] + static_cast<std::size_t>(ax)]);
     const double ux = b2[0] - a[0], uy = b2[1] - a[1], uz = b2[2] - a[2];
     const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
     const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
     outward += (nx * rec[0] + ny * rec[1] + nz * rec[2]) > 0;
-    volume += (a[0] * (b2[1] * c[2] - b2[2] * c[1]) - a[1] * (b2[0] * c[2] - b2[2] * c[0]) + a[2] * (b2[0] * c[1] - b2[1] * c[0])) / 6;
+    volume +=
+        (a[0] * (b2[1] * c[2] - b2[2] * c[1]) - a[1] * (b2[0] * c[2] - b2[2] * c[0]) + a[2] * (b2[0] * c[1] - b2[1] * c[0])) / 6;
   }
   EXPECT_EQ(outward, static_cast<int>(count)) << "stored normals agree with the winding";
   EXPECT_NEAR(volume, computeMeshStats(m.positions, m.triangles).volume, 1e-6 * volume);
@@ -497,13 +506,14 @@ TEST_F(OutputFormatsTest, NrrdGeometryPutsKnownPointsInTheirFeature) {
   auto labelAt = [&](double x, double y, double z) {
     const double p[3] = {x, y, z};
     long idx[3];
-    for (int a = 0; a < 3; ++a) idx[a] = std::lround((p[a] - origin[static_cast<std::size_t>(a)]) / dirs[static_cast<std::size_t>(4 * a)]);
-    return static_cast<int>(static_cast<unsigned char>(
-        n.data[static_cast<std::size_t>(idx[0] + static_cast<long>(sizes[0]) * (idx[1] + static_cast<long>(sizes[1]) * idx[2]))]));
+    for (int a = 0; a < 3; ++a)
+      idx[a] = std::lround((p[a] - origin[static_cast<std::size_t>(a)]) / dirs[static_cast<std::size_t>(4 * a)]);
+    return static_cast<int>(static_cast<unsigned char>(n.data[static_cast<std::size_t>(
+        idx[0] + static_cast<long>(sizes[0]) * (idx[1] + static_cast<long>(sizes[1]) * idx[2]))]));
   };
   // Spheres centred at the origin, slices at z = ±0.75, ±2.25, ...: inner r = 5, outer r = 12.
-  EXPECT_EQ(labelAt(0, 0, 0.75), 2);   // inside "inner"
-  EXPECT_EQ(labelAt(8, 0, 0.75), 1);   // between the spheres: "outer"
+  EXPECT_EQ(labelAt(0, 0, 0.75), 2);  // inside "inner"
+  EXPECT_EQ(labelAt(8, 0, 0.75), 1);  // between the spheres: "outer"
   EXPECT_EQ(labelAt(0, -9, -2.25), 1);
   EXPECT_EQ(labelAt(14, 0, 0.75), 0);  // outside both
   // The label table beside it.

@@ -82,8 +82,8 @@ TEST(PixelRuns, SharedAndTouchingRuns) {
   const std::vector<PixelRun> a{{2, 0, 5}, {3, 1, 4}};
   EXPECT_EQ(sharedPixels(a, {{2, 3, 9}, {3, 0, 2}}), 3u);
   EXPECT_FALSE(touchInPlane(a, {{2, 7, 9}}));
-  EXPECT_TRUE(touchInPlane(a, {{2, 5, 9}}));  // side by side on a row
-  EXPECT_TRUE(touchInPlane(a, {{4, 3, 4}}));  // the row below
+  EXPECT_TRUE(touchInPlane(a, {{2, 5, 9}}));   // side by side on a row
+  EXPECT_TRUE(touchInPlane(a, {{4, 3, 4}}));   // the row below
   EXPECT_FALSE(touchInPlane(a, {{4, 4, 6}}));  // only diagonally
 }
 

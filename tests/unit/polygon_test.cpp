@@ -115,8 +115,7 @@ TEST(Polygon, SharedEdgePointBelongsToExactlyOne) {
 
 TEST(Polygon, EdgeCrossingIsDirectionIndependent) {
   const Point2 a{0.1, 0.3}, b{7.7, 9.1};
-  for (double y : {0.3, 1.0, 4.4, 9.0})
-    EXPECT_EQ(edgeCrossingX(a, b, y), edgeCrossingX(b, a, y));
+  for (double y : {0.3, 1.0, 4.4, 9.0}) EXPECT_EQ(edgeCrossingX(a, b, y), edgeCrossingX(b, a, y));
 }
 
 TEST(Polygon, OnBoundary) {
@@ -166,10 +165,10 @@ TEST(Coverage, FindsContoursBetweenPixelCentres) {
 
 TEST(Coverage, HalfOpenRuleAtPixelCentres) {
   const Grid g = unitGrid(8);
-  EXPECT_TRUE(coversPixelCentre(square(2, 2, 2.5, 2.5), g));    // centre (2,2) on the lower-left corner
-  EXPECT_FALSE(coversPixelCentre(square(1.5, 1.5, 2, 2), g));   // centre on the upper-right corner
-  EXPECT_FALSE(coversPixelCentre(square(20, 20, 30, 30), g));   // off the grid
-  EXPECT_TRUE(coversPixelCentre(square(-5, -5, 50, 50), g));    // covers the whole grid
+  EXPECT_TRUE(coversPixelCentre(square(2, 2, 2.5, 2.5), g));   // centre (2,2) on the lower-left corner
+  EXPECT_FALSE(coversPixelCentre(square(1.5, 1.5, 2, 2), g));  // centre on the upper-right corner
+  EXPECT_FALSE(coversPixelCentre(square(20, 20, 30, 30), g));  // off the grid
+  EXPECT_TRUE(coversPixelCentre(square(-5, -5, 50, 50), g));   // covers the whole grid
   // A thin sliver along a row of centres but between columns.
   EXPECT_FALSE(coversPixelCentre(square(3.1, 0, 3.9, 7), g));
 }

@@ -112,7 +112,8 @@ Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& opti
   const auto t3 = std::chrono::steady_clock::now();
   EXPECT_TRUE(r.ran);
   EXPECT_TRUE(b.mesh.keys.empty());
-  for (const auto& [convention, before] : {std::pair{SurfaceConvention::Enclosing, enclosing}, std::pair{SurfaceConvention::Partition, partition}}) {
+  for (const auto& [convention, before] :
+       {std::pair{SurfaceConvention::Enclosing, enclosing}, std::pair{SurfaceConvention::Partition, partition}}) {
     const std::vector<MeshStats> after = surfaceStats(b, convention);
     for (std::size_t f = 0; f < after.size(); ++f) {
       const MeshStats &s = after[f], &o = before[f];
@@ -143,13 +144,15 @@ Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& opti
   EXPECT_NEAR(a.min, r.anglesAfter.min, 1e-4);  // float vs double acos
   EXPECT_GE(r.anglesAfter.min, kMinAngleTarget) << set.source;
   EXPECT_GE(r.anglesAfter.p5, p5Target) << set.source;
-  std::printf("[ figure   ] %-14s triangles %7zu -> %7zu, min angle %5.1f -> %5.1f, 5%% %5.1f -> %5.1f, mean %5.1f -> %5.1f, "
-              "max distance %.4f, %zu pairs tested exactly, %zu crossing\n",
-              set.source.c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min, r.anglesAfter.min, r.anglesBefore.p5,
-              r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance, x.pairsTested, x.crossings);
-  std::printf("[ figure   ] %-14s %zu splits, %zu collapses, %zu flips, %zu moves, %zu refused; smoothing %.3f s, remeshing %.3f s\n",
-              set.source.c_str(), r.splits, r.collapses, r.flips, r.moves, r.rejected,
-              std::chrono::duration<double>(t1 - t0).count(), std::chrono::duration<double>(t3 - t2).count());
+  std::printf(
+      "[ figure   ] %-14s triangles %7zu -> %7zu, min angle %5.1f -> %5.1f, 5%% %5.1f -> %5.1f, mean %5.1f -> %5.1f, "
+      "max distance %.4f, %zu pairs tested exactly, %zu crossing\n",
+      set.source.c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min, r.anglesAfter.min, r.anglesBefore.p5,
+      r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance, x.pairsTested, x.crossings);
+  std::printf(
+      "[ figure   ] %-14s %zu splits, %zu collapses, %zu flips, %zu moves, %zu refused; smoothing %.3f s, remeshing %.3f s\n",
+      set.source.c_str(), r.splits, r.collapses, r.flips, r.moves, r.rejected, std::chrono::duration<double>(t1 - t0).count(),
+      std::chrono::duration<double>(t3 - t2).count());
   return b;
 }
 
@@ -321,10 +324,14 @@ void reportAccuracy(const ContourSet& set, const Distance& distance, double anal
   remesh(b);
   const Accuracy r = accuracy(b, distance);
   const Angles ar = minAngles(b.mesh);
-  std::printf("[ figure   ] %-14s smooth:   %7zu triangles, distance mean %.4f max %.4f mm, volume %+.3f %%, min angle %4.1f (5%% %4.1f)\n",
-              set.source.c_str(), trianglesBefore, s.mean, s.max, 100 * (s.volume / analyticVolume - 1), as.min, as.p5);
-  std::printf("[ figure   ] %-14s remeshed: %7zu triangles, distance mean %.4f max %.4f mm, volume %+.3f %%, min angle %4.1f (5%% %4.1f)\n",
-              set.source.c_str(), b.mesh.triangleCount(), r.mean, r.max, 100 * (r.volume / analyticVolume - 1), ar.min, ar.p5);
+  std::printf(
+      "[ figure   ] %-14s smooth:   %7zu triangles, distance mean %.4f max %.4f mm, volume %+.3f %%, min angle %4.1f (5%% "
+      "%4.1f)\n",
+      set.source.c_str(), trianglesBefore, s.mean, s.max, 100 * (s.volume / analyticVolume - 1), as.min, as.p5);
+  std::printf(
+      "[ figure   ] %-14s remeshed: %7zu triangles, distance mean %.4f max %.4f mm, volume %+.3f %%, min angle %4.1f (5%% "
+      "%4.1f)\n",
+      set.source.c_str(), b.mesh.triangleCount(), r.mean, r.max, 100 * (r.volume / analyticVolume - 1), ar.min, ar.p5);
   // The targets: no worse than before remeshing by more than 10 % (volume error: or
   // by more than 0.05 % of the volume, below which the analytic volume's own rounding shows).
   EXPECT_LE(r.mean, 1.1 * s.mean);
@@ -334,14 +341,16 @@ void reportAccuracy(const ContourSet& set, const Distance& distance, double anal
 }
 
 TEST(RemeshAccuracy, Sphere20mmAt1mmPixels2mmSlices) {
-  reportAccuracy(sphereContours(10, 2.0), [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 10; },
-                 4.0 / 3.0 * std::numbers::pi * 1000);
+  reportAccuracy(
+      sphereContours(10, 2.0), [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 10; },
+      4.0 / 3.0 * std::numbers::pi * 1000);
 }
 
 TEST(RemeshAccuracy, TorusAt1mmPixels2mmSlices) {
   const double R = 10, r = 4;
-  reportAccuracy(torusContours(R, r, 2.0), [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - R, z) - r; },
-                 2 * std::numbers::pi * std::numbers::pi * R * r * r);
+  reportAccuracy(
+      torusContours(R, r, 2.0), [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - R, z) - r; },
+      2 * std::numbers::pi * std::numbers::pi * R * r * r);
 }
 
 TEST(Remesh, SameResultForAnyThreadCount) {
@@ -503,7 +512,8 @@ TEST(RemeshReference, NearestAndWithinMatchAScanOfEveryPrimitive) {
     net.neighbours(v, nb);
     for (std::uint32_t w : nb) {
       net.edgeTriangles(v, w, et);
-      if (w > v && net.isJunctionEdge(et)) shapes.push_back({curveKey(net, et), {net.pos[v], net.pos[w]}}), curves.push_back(shapes.back().key);
+      if (w > v && net.isJunctionEdge(et))
+        shapes.push_back({curveKey(net, et), {net.pos[v], net.pos[w]}}), curves.push_back(shapes.back().key);
     }
   }
   ASSERT_FALSE(curves.empty());  // the halves meet the outside along a junction curve

@@ -6,13 +6,13 @@
 #include <dcmtk/dcmdata/dcxfer.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <unistd.h>
 
 #include "geometry/assembly.h"
 #include "geometry/cell_cases.h"
@@ -21,11 +21,11 @@
 #include "io/ct_series.h"
 #include "io/dicom_nesting.h"
 #include "io/rtstruct_reader.h"
-#include "support/scratch_dir_test.h"
 #include "scansurf/grid.h"
 #include "scansurf/nesting.h"
 #include "support/reference_rasterizer.h"
 #include "support/rtstruct_builder.h"
+#include "support/scratch_dir_test.h"
 #include "support/shapes.h"
 
 namespace scansurf {
@@ -46,9 +46,7 @@ class Dicom : public test::ScratchDirTest {
     test::writeTestRtStruct(rt, p);
     return p;
   }
-  Result<RtStructure> readBack(const TestRtStruct& rt, RtStructOptions options = {}) {
-    return readRtStruct(write(rt), options);
-  }
+  Result<RtStructure> readBack(const TestRtStruct& rt, RtStructOptions options = {}) { return readRtStruct(write(rt), options); }
   // The error message of reading rt, which must fail with `code`.
   std::string errorOf(const TestRtStruct& rt, Errc code = Errc::InvalidInput) {
     auto r = readBack(rt);
@@ -205,8 +203,18 @@ TEST_F(Dicom, HoleAndKeyholeGiveTheSameLabels) {
   for (double z : {0.0, 2.0, 4.0, 6.0}) {
     holes.contours.push_back(closedContour(square(-12, -12, 12, 12), z));
     holes.contours.push_back(closedContour(square(-5.5, -5.5, 5.5, 5.5), z));
-    keyhole.contours.push_back(closedContour({{-12, -12}, {12, -12}, {12, 0.37}, {5.5, 0.37}, {5.5, -5.5}, {-5.5, -5.5},
-                                              {-5.5, 5.5}, {5.5, 5.5}, {5.5, 0.37}, {12, 0.37}, {12, 12}, {-12, 12}},
+    keyhole.contours.push_back(closedContour({{-12, -12},
+                                              {12, -12},
+                                              {12, 0.37},
+                                              {5.5, 0.37},
+                                              {5.5, -5.5},
+                                              {-5.5, -5.5},
+                                              {-5.5, 5.5},
+                                              {5.5, 5.5},
+                                              {5.5, 0.37},
+                                              {12, 0.37},
+                                              {12, 12},
+                                              {-12, 12}},
                                              z));
   }
   TestRtStruct a, b;
@@ -346,8 +354,7 @@ TEST_F(Dicom, FileWithoutPart10HeaderReads) {
 }
 
 TEST(SlicePlanes, GroupByToleranceAndMostFrequentValue) {
-  EXPECT_EQ(groupSlicePlanes({12.5, 12.4999, 12.5, 10, 10.004}, 0.01),
-            (std::vector<double>{12.5, 12.5, 12.5, 10, 10}));
+  EXPECT_EQ(groupSlicePlanes({12.5, 12.4999, 12.5, 10, 10.004}, 0.01), (std::vector<double>{12.5, 12.5, 12.5, 10, 10}));
   // Values further apart than the tolerance stay apart.
   EXPECT_EQ(groupSlicePlanes({1, 1.02}, 0.01), (std::vector<double>{1, 1.02}));
   EXPECT_EQ(groupSlicePlanes({7.4999, 7.5}, 0.01), (std::vector<double>{7.5, 7.5}));
@@ -425,8 +432,9 @@ TEST_F(Dicom, MissingRequiredAttributes) {
 
 TEST_F(Dicom, ContourDataNotTriplets) {
   const auto rt = oneRoi(TestContour{"CLOSED_PLANAR", {}, std::string("0\\0\\1\\4\\0\\1\\4\\4")});
-  EXPECT_NE(errorOf(rt).find("rt.dcm: ROI \"PTV\" (#3), contour item 2: Contour Data (3006,0050) holds 8 values, not a multiple of 3"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf(rt).find("rt.dcm: ROI \"PTV\" (#3), contour item 2: Contour Data (3006,0050) holds 8 values, not a multiple of 3"),
+      std::string::npos);
 }
 
 TEST_F(Dicom, NonFiniteAndNonNumericValues) {
@@ -750,8 +758,7 @@ TEST_F(Dicom, ReferenceSeriesErrors) {
   test::writeTestCtSeries(oblique, dir_ / "oblique");
   r = readCtSeries(dir_ / "oblique");
   ASSERT_FALSE(r);
-  EXPECT_NE(r.error().message.find("Image Orientation (Patient) is 1\\0\\0\\0\\0.8660254\\-0.5; only axial"),
-            std::string::npos)
+  EXPECT_NE(r.error().message.find("Image Orientation (Patient) is 1\\0\\0\\0\\0.8660254\\-0.5; only axial"), std::string::npos)
       << r.error().message;
 
   // Issue 15, cause 2: one slice moved by 1e12 mm is refused, naming the file.

@@ -48,7 +48,8 @@ TEST(Intersections, OrientationIsExactOnNearlyCoplanarPoints) {
   // Four points in one axis plane other than z: exactly 0 (the shortcut), however far out.
   EXPECT_EQ(orient3d({big, 0.1, 0.3}, {big, 0.7, 0.2}, {big, 0.3, 0.9}, {big, 0.5, 0.5}), 0);
   EXPECT_EQ(orient3d({big, 0.1, 0.3}, {big, 0.7, 0.2}, {big, 0.3, 0.9}, {std::nextafter(big, 2 * big), 0.5, 0.5}), -1);
-  EXPECT_EQ(orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1), orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1));
+  EXPECT_EQ(orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1),
+            orient2d({0.1, 0.1, 0}, {0.2, 0.2, 0}, {0.3, 0.3, 0}, 0, 1));
   EXPECT_EQ(orient2d({1, 1, 0}, {2, 2, 0}, {3, 3, 0}, 0, 1), 0);
 }
 
@@ -97,7 +98,7 @@ TEST(Intersections, PlaneSideGivesOrient3dsSigns) {
       }
     }
   }
-  EXPECT_GE(zero, 600 * 6);  // at least the corners and the points built on the plane
+  EXPECT_GE(zero, 600 * 6);            // at least the corners and the points built on the plane
   EXPECT_GE(checked - zero, 600 * 2);  // at least the random points
 }
 
@@ -124,7 +125,7 @@ TEST(Intersections, SharedEdgesAndVerticesAreNotCrossings) {
   // Shares vertex (0,0,0).
   EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {-1, 0, 1}, {0, -1, 1}}}));
   EXPECT_FALSE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {-1, 0, 0}, {0, -1, 0}}}));
-  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {1, 1, 1}, {1, 1, -1}}}));  // slices through a
+  EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {1, 1, 1}, {1, 1, -1}}}));   // slices through a
   EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {1, 0.5, 0}, {1, 1, 1}}}));  // an edge inside a's angle
   EXPECT_TRUE(trianglesCross({0, 1, 2}, a, {0, 3, 4}, {{{0, 0, 0}, {3, 0, 0}, {1, -1, 1}}}));   // along a's edge
   // Far side: b's opposite edge passes through a.
@@ -134,7 +135,7 @@ TEST(Intersections, SharedEdgesAndVerticesAreNotCrossings) {
 
 TEST(Intersections, FindsEveryCrossingPairInAMesh) {
   // Two fans of two triangles each; one triangle of the second pierces one of the first.
-  const std::vector<float> p = {0, 0, 0, 2, 0, 0, 0, 2, 0, 2, 2, 0,            // square at z = 0
+  const std::vector<float> p = {0,    0,    0,  2,    0,    0, 0,    2,  0,    2, 2, 0,  // square at z = 0
                                 0.5f, 0.5f, -1, 0.5f, 0.5f, 1, 1.5f, -1, 0.2f, 5, 5, 5};
   const std::vector<std::uint32_t> t = {0, 1, 2, 1, 3, 2, 4, 5, 6, 5, 6, 7};
   const IntersectionReport r = findCrossings(p, t);
@@ -146,7 +147,6 @@ TEST(Intersections, FindsEveryCrossingPairInAMesh) {
 
 // ---------------------------------------------------------------- the CPU pipeline
 
-
 SmoothingOptions on() {
   SmoothingOptions o;
   o.enabled = true;
@@ -156,7 +156,6 @@ SmoothingOptions on() {
 SmoothingReport smooth(Built& b, const SmoothingOptions& options = on(), int threads = 0) {
   return smoothMesh(b.mesh, b.grid, &b.set, options, threads);
 }
-
 
 // Feature surfaces closed, manifold, oriented, with the expected genus each, and no two
 // triangles of the whole multi-label mesh crossing.
@@ -210,7 +209,7 @@ TEST(Smoothing, CarrierOfEveryVertexHasItAsBarycentre) {
   }
   EXPECT_EQ(counts, (std::set<int>{2, 3, 4}));  // edges, face centroids, tetrahedron centroids
   EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5 + 6, 12 * 2, 12 * 7)).count, 2);
-  EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5, 12 * 2, 12 * 7)).count, 0);       // a voxel centre
+  EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5, 12 * 2, 12 * 7)).count, 0);          // a voxel centre
   EXPECT_EQ(carrierOfKey(packVertexKey(12 * 5 + 4, 12 * 2 + 6, 12 * 7)).count, 0);  // mixed thirds and halves
 }
 
@@ -288,17 +287,19 @@ TEST(Smoothing, OptionsSwitchEachPartOff) {
 
 // ---------------------------------------------------------------- accuracy
 
-
-
 void reportAccuracy(const char* name, const Built& raw, const Built& smooth, const Distance& distance, double analyticVolume,
                     double meanLimit, double maxLimit) {
   const Accuracy r = accuracy(raw, distance), s = accuracy(smooth, distance);
   const Angles ar = minAngles(raw.mesh), as = minAngles(smooth.mesh);
   const double xr = crossSectionError(raw), xs = crossSectionError(smooth);
-  std::printf("[ figure   ] %s raw:    distance mean %.4f max %.4f mm, volume %+.2f %%, cross-section %.4f px, min angle %.1f (5%% %.1f)\n",
-              name, r.mean, r.max, 100 * (r.volume / analyticVolume - 1), xr, ar.min, ar.p5);
-  std::printf("[ figure   ] %s smooth: distance mean %.4f max %.4f mm, volume %+.2f %%, cross-section %.4f px, min angle %.1f (5%% %.1f)\n",
-              name, s.mean, s.max, 100 * (s.volume / analyticVolume - 1), xs, as.min, as.p5);
+  std::printf(
+      "[ figure   ] %s raw:    distance mean %.4f max %.4f mm, volume %+.2f %%, cross-section %.4f px, min angle %.1f (5%% "
+      "%.1f)\n",
+      name, r.mean, r.max, 100 * (r.volume / analyticVolume - 1), xr, ar.min, ar.p5);
+  std::printf(
+      "[ figure   ] %s smooth: distance mean %.4f max %.4f mm, volume %+.2f %%, cross-section %.4f px, min angle %.1f (5%% "
+      "%.1f)\n",
+      name, s.mean, s.max, 100 * (s.volume / analyticVolume - 1), xs, as.min, as.p5);
   EXPECT_LE(s.mean, meanLimit);
   EXPECT_LE(s.max, maxLimit);
   EXPECT_LE(s.mean, r.mean / 3);
@@ -312,8 +313,9 @@ TEST(SmoothingAccuracy, Sphere20mmAt1mmPixels2mmSlices) {
   const Built raw = buildCpu(sphereContours(10, 2.0), 1.0);
   Built smoothed = raw;
   smooth(smoothed);
-  reportAccuracy("sphere r10", raw, smoothed, [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 10; },
-                 4.0 / 3.0 * std::numbers::pi * 1000, 0.05, 0.35);
+  reportAccuracy(
+      "sphere r10", raw, smoothed, [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 10; },
+      4.0 / 3.0 * std::numbers::pi * 1000, 0.05, 0.35);
 }
 
 TEST(SmoothingAccuracy, TorusAt1mmPixels2mmSlices) {
@@ -321,9 +323,9 @@ TEST(SmoothingAccuracy, TorusAt1mmPixels2mmSlices) {
   const Built raw = buildCpu(torusContours(R, r, 2.0), 1.0);
   Built smoothed = raw;
   smooth(smoothed);
-  reportAccuracy("torus R10 r4", raw, smoothed,
-                 [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - R, z) - r; },
-                 2 * std::numbers::pi * std::numbers::pi * R * r * r, 0.05, 0.35);
+  reportAccuracy(
+      "torus R10 r4", raw, smoothed, [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - R, z) - r; },
+      2 * std::numbers::pi * std::numbers::pi * R * r * r, 0.05, 0.35);
 }
 
 }  // namespace
@@ -364,10 +366,11 @@ TEST(ContourFit, SegmentsAreFiledUnderTheCellsTheyTouch) {
     const std::set<std::uint64_t> filed(cells.begin(), cells.end());
     EXPECT_EQ(filed.size(), cells.size()) << "each cell once";
     for (int cj = 0; cj < n; ++cj)
-      for (int ci = 0; ci < n; ++ci)
-        if (touchesSquare(s[0], s[1], s[2], s[3], ci, cj))
-          EXPECT_TRUE(filed.count(std::uint64_t(ci) | (std::uint64_t(cj) << 32)))
-              << "cell " << ci << "," << cj << " of (" << s[0] << "," << s[1] << ")-(" << s[2] << "," << s[3] << ")";
+      for (int ci = 0; ci < n; ++ci) {
+        if (!touchesSquare(s[0], s[1], s[2], s[3], ci, cj)) continue;
+        EXPECT_TRUE(filed.count(std::uint64_t(ci) | (std::uint64_t(cj) << 32)))
+            << "cell " << ci << "," << cj << " of (" << s[0] << "," << s[1] << ")-(" << s[2] << "," << s[3] << ")";
+      }
     const double length = std::abs(s[2] - s[0]) + std::abs(s[3] - s[1]);
     EXPECT_LE(cells.size(), 2 * length + 8) << "O(length), not the bounding box";
   }

@@ -369,7 +369,8 @@ TEST_F(DicomSeg, SegmentsFramesAndReferencesReadBackWithDcmseg) {
     int differences = 0;
     for (int j = 0; j < ct_.rows; ++j)
       for (int i = 0; i < ct_.columns; ++i)
-        differences += (pixels->pixData[j * ct_.columns + i] != 0) != (ctVoxel(c.volume, i, j, ct_.sliceZ[k]) == labelOfFeature(f));
+        differences +=
+            (pixels->pixData[j * ct_.columns + i] != 0) != (ctVoxel(c.volume, i, j, ct_.sliceZ[k]) == labelOfFeature(f));
     EXPECT_EQ(differences, 0) << "frame " << frame << ", feature " << f << ", slice " << k;
   }
   EXPECT_EQ(seen.size(), expectedFrames.size());

@@ -24,8 +24,8 @@ struct StageTime {
 
 // What interpolation did (BuildOptions::interpolation).
 struct InterpolationSummary {
-  int planeLayers = 0;    // layers of the grid (contour planes and padding)
-  int surfacedLayers = 0;  // layers of the volume that was surfaced: planeLayers when off
+  int planeLayers = 0;               // layers of the grid (contour planes and padding)
+  int surfacedLayers = 0;            // layers of the volume that was surfaced: planeLayers when off
   int minFactor = 1, maxFactor = 1;  // layers per gap, the gaps' smallest and largest
   CapShape caps = CapShape::Round;
   bool used() const { return surfacedLayers > planeLayers; }
@@ -35,9 +35,9 @@ struct BuildResult {
   Nesting nesting;
   // The label volume of the contour planes as scan conversion made it, incidental overlaps
   // split (OverlapTolerance): the single partition, or with several layers the volume of
-  // layer 0 (OverlapReport::features[f].layer says which features it holds). With interpolation the surfaces come from a volume with more layers
-  // (interpolation says how many), which is not kept. Without BuildOptions::keepLabelVolume,
-  // only its grid (labels empty, unless interpolation or the partition mode needed them).
+  // layer 0 (OverlapReport::features[f].layer says which features it holds). With interpolation the surfaces come from a volume
+  // with more layers (interpolation says how many), which is not kept. Without BuildOptions::keepLabelVolume, only its grid
+  // (labels empty, unless interpolation or the partition mode needed them).
   LabelVolume volume;
   InterpolationSummary interpolation;
   // Every feature's surface; with several layers the layers' meshes side by side in one mesh

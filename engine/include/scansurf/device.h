@@ -26,7 +26,7 @@ struct DeviceInfo {
   std::string type;  // "discrete", "integrated", "virtual", "cpu" or "other"
   std::string driver;
   std::uint32_t apiVersion = 0;
-  bool borrowed = false;  // the application's device (Engine::adopt)
+  bool borrowed = false;           // the application's device (Engine::adopt)
   std::uint64_t deviceMemory = 0;  // bytes of the largest device-local memory heap
 };
 

@@ -43,7 +43,6 @@ namespace scansurf {
 struct ExternalVulkan;     // scansurf/vulkan_interop.h
 struct DeviceLabelVolume;  // scansurf/vulkan_interop.h
 
-
 // Everything that shapes a run, for build() and for each stage call alike. An option out of
 // its range is refused (Errc::InvalidArgument, naming it), never clamped.
 struct BuildOptions {

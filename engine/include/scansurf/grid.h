@@ -58,7 +58,8 @@ struct Grid {
   }
   std::size_t index(int i, int j, int k) const {
     return static_cast<std::size_t>(i) +
-           static_cast<std::size_t>(nx) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
+           static_cast<std::size_t>(nx) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(ny) * static_cast<std::size_t>(k));
   }
 };
 

@@ -66,21 +66,21 @@ Result<void> validateContours(ContourSet& contours);
 
 // One ROI of a structure set as the file holds it.
 struct RoiInfo {
-  int number = 0;               // ROI Number (3006,0022)
-  std::string name;             // ROI Name (3006,0026)
-  std::string interpretedType;  // RT ROI Interpreted Type (3006,00A4), e.g. EXTERNAL, ORGAN; may be empty
-  std::optional<Rgb> color;     // ROI Display Color (3006,002A)
+  int number = 0;                             // ROI Number (3006,0022)
+  std::string name;                           // ROI Name (3006,0026)
+  std::string interpretedType;                // RT ROI Interpreted Type (3006,00A4), e.g. EXTERNAL, ORGAN; may be empty
+  std::optional<Rgb> color;                   // ROI Display Color (3006,002A)
   std::map<std::string, int> contoursByType;  // Contour Geometric Type -> count
-  int slices = 0;               // distinct planes of its CLOSED_PLANAR contours
-  double zMin = 0;              // z range of all its contour points (mm); valid when any
+  int slices = 0;                             // distinct planes of its CLOSED_PLANAR contours
+  double zMin = 0;                            // z range of all its contour points (mm); valid when any
   double zMax = 0;
-  bool selected = true;         // matched by the ROI patterns
-  int feature = -1;             // index of its feature among the surfaced ones, or -1
+  bool selected = true;  // matched by the ROI patterns
+  int feature = -1;      // index of its feature among the surfaced ones, or -1
 };
 
 struct StructureSetInfo {
-  std::string label;           // Structure Set Label
-  std::vector<RoiInfo> rois;   // in Structure Set ROI Sequence order
+  std::string label;          // Structure Set Label
+  std::vector<RoiInfo> rois;  // in Structure Set ROI Sequence order
 };
 
 // The ROIs of an RTSTRUCT file, with whether `roiPatterns` select each; a file with nothing

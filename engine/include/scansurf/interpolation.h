@@ -11,7 +11,7 @@ namespace scansurf {
 // How a feature closes beyond its first and last contour plane (with interpolation). Both hold
 // the volume the slab rule gives the end plane beyond it: its contour's area times half the gap.
 enum class CapShape {
-  Flat,   // the end contour extruded half a gap, then a flat lid
+  Flat,  // the end contour extruded half a gap, then a flat lid
   // A dome as high as the whole gap, its cross-section shrinking linearly in area to nothing at
   // the next plane (a paraboloid over a disc), so it holds a flat half slab's volume; where
   // another feature begins over the end contour on the next plane, flat.

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "scansurf/contours.h"
 #include "scansurf/build_result.h"
+#include "scansurf/contours.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/preview.h"
 #include "scansurf/result.h"
@@ -142,14 +142,14 @@ struct OutputPlan {
   std::filesystem::path dir;        // per-feature files and multilabel.ply; empty = none
   std::vector<MeshFormat> formats;  // in dir: Glb = one scene dir/<sceneName>.glb, others per feature
   std::string sceneName = "surfaces";
-  std::filesystem::path glbFile;    // a scene at this exact path; empty = none
-  bool multilabel = true;           // dir/multilabel.ply when Ply is among the formats
-  SceneOptions scene;               // GLB (dracoOptions also for .drc; maxError from the grid when 0)
+  std::filesystem::path glbFile;          // a scene at this exact path; empty = none
+  bool multilabel = true;                 // dir/multilabel.ply when Ply is among the formats
+  SceneOptions scene;                     // GLB (dracoOptions also for .drc; maxError from the grid when 0)
   std::filesystem::path labelVolume;      // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
   std::filesystem::path dicomSeg;         // .dcm DICOM Segmentation on referenceSeries' grid; empty = none
   std::filesystem::path referenceSeries;  // the CT folder the label volume lies on (for dicomSeg)
-  std::filesystem::path report;       // .json; empty = none
-  std::filesystem::path preview;      // .png; empty = none
+  std::filesystem::path report;           // .json; empty = none
+  std::filesystem::path preview;          // .png; empty = none
 };
 
 // Every directory the plan writes into (for OutputStaging::lock), each once.
@@ -195,9 +195,9 @@ class OutputStaging {
  private:
   Result<std::filesystem::path> reserve(const std::filesystem::path& target);
   std::vector<std::filesystem::path> dirs_;
-  std::vector<std::pair<std::filesystem::path, int>> locks_;  // directory, open lock file
+  std::vector<std::pair<std::filesystem::path, int>> locks_;                    // directory, open lock file
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // staged, target
-  std::set<std::filesystem::path> targets_;  // the targets of files_, to find a clash at once
+  std::set<std::filesystem::path> targets_;                                     // the targets of files_, to find a clash at once
   unsigned long id_ = 0;  // names this staging's folders: .scansurf-staging-<pid>-<id>
 };
 

@@ -14,7 +14,8 @@ struct Grid;  // scansurf/grid.h
 
 enum class OverlapMode {
   // Default: features are assigned to the fewest layers such that no two features of a layer
-  // partly overlap (incidental overlaps aside: OverlapTolerance), and each layer is surfaced on its own; every feature's surface encloses its
+  // partly overlap (incidental overlaps aside: OverlapTolerance), and each layer is surfaced on its own; every feature's surface
+  // encloses its
   // own contours' region. Abutting features of one layer share their interface; surfaces of
   // different layers may intersect exactly as their contours do.
   Layers,
@@ -91,13 +92,13 @@ struct VolumeLoss {
 
 struct OverlapReport {
   OverlapMode mode = OverlapMode::Layers;
-  std::vector<FeatureVolumes> features;        // one per input feature
-  std::vector<SharedVolume> shared;            // every pair sharing voxels
-  std::vector<std::pair<int, int>> touching;   // pairs whose regions abut without sharing voxels
-  int layers = 1;                              // surface layers
-  int maskLayers = 1;                          // label volume layers (nested features apart too)
-  std::vector<VolumeLoss> losses;              // Partition mode only
-  OverlapTolerance tolerance;                  // the rule the verdicts used
+  std::vector<FeatureVolumes> features;       // one per input feature
+  std::vector<SharedVolume> shared;           // every pair sharing voxels
+  std::vector<std::pair<int, int>> touching;  // pairs whose regions abut without sharing voxels
+  int layers = 1;                             // surface layers
+  int maskLayers = 1;                         // label volume layers (nested features apart too)
+  std::vector<VolumeLoss> losses;             // Partition mode only
+  OverlapTolerance tolerance;                 // the rule the verdicts used
 
   // Partly overlapping pairs (shared and not nested), incidental ones included.
   std::vector<SharedVolume> partialOverlaps() const {

@@ -43,7 +43,7 @@ struct RemeshReport {
   bool ran = false;
   std::size_t trianglesBefore = 0, trianglesAfter = 0;
   AngleFigures anglesBefore, anglesAfter;
-  double edgeLength = 0;   // the target used, input units
+  double edgeLength = 0;  // the target used, input units
   // Largest distance of the remeshed surface (vertices, edge midpoints and centroids) from
   // the smoothed surface it replaced, input units.
   double maxDistance = 0;
@@ -51,7 +51,7 @@ struct RemeshReport {
   // the mesh was remeshed whole; with overlaps as layers, summed over the layers).
   std::size_t slabs = 1, bands = 0;
   std::size_t splits = 0, collapses = 0, flips = 0, moves = 0;  // operations applied
-  std::size_t rejected = 0;  // operations refused by a validity check
+  std::size_t rejected = 0;                                     // operations refused by a validity check
 };
 
 }  // namespace scansurf

@@ -9,9 +9,9 @@
 #include <variant>
 #include <vector>
 
+#include "scansurf/build_result.h"
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
-#include "scansurf/build_result.h"
 #include "scansurf/grid.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"
@@ -22,11 +22,11 @@ struct ReportFeature {
   std::string name;
   int label = 0;
   Rgb color{};
-  MeshStats stats;                 // stats.volume: the surface volume
-  std::vector<std::string> files;  // outputs holding this feature's surface
-  FeatureVolumes volumes;          // contour and labelled voxel volume, layer, mask layer
-  std::vector<std::string> sharesSurfaceWith;                  // features across its separating surfaces
-  std::vector<std::pair<std::string, double>> overlaps;        // partly overlapping features, shared volume
+  MeshStats stats;                                       // stats.volume: the surface volume
+  std::vector<std::string> files;                        // outputs holding this feature's surface
+  FeatureVolumes volumes;                                // contour and labelled voxel volume, layer, mask layer
+  std::vector<std::string> sharesSurfaceWith;            // features across its separating surfaces
+  std::vector<std::pair<std::string, double>> overlaps;  // partly overlapping features, shared volume
 };
 
 using ReportValue = std::variant<bool, std::int64_t, double, std::string>;
@@ -65,7 +65,7 @@ struct RunReport {
   };
   std::vector<Overlap> partialOverlaps;
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
-  RemeshReport remeshing;  // BuildResult::surfaces.remeshing
+  RemeshReport remeshing;                               // BuildResult::surfaces.remeshing
   std::vector<std::string> warnings;
   std::vector<std::string> outputs;
 };
@@ -82,8 +82,8 @@ struct ReportContext {
 // The report of a build: statistics of every feature surface (computeMeshStats), the grid,
 // nesting order, device, warnings; `stats` may hold them already (one per feature), else they
 // are computed.
-RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device,
-                     ReportContext context, std::vector<MeshStats> stats = {});
+RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device, ReportContext context,
+                     std::vector<MeshStats> stats = {});
 
 // Writes the report as JSON (format "scansurf-report", version 1): areas in units², volumes in
 // units³, times in seconds. Staged and renamed. Errors: Errc::Io naming the path.

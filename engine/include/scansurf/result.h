@@ -49,9 +49,7 @@ struct Unexpected {
   Error error;
 };
 
-inline Unexpected makeError(Errc code, std::string message) {
-  return Unexpected{Error{code, std::move(message)}};
-}
+inline Unexpected makeError(Errc code, std::string message) { return Unexpected{Error{code, std::move(message)}}; }
 
 template <typename T>
 class [[nodiscard]] Result {
@@ -71,7 +69,9 @@ class [[nodiscard]] Result {
   const T& operator*() const& { return value(); }
 
   template <typename U>
-  T value_or(U&& fallback) const& { return has_value() ? value() : static_cast<T>(std::forward<U>(fallback)); }
+  T value_or(U&& fallback) const& {
+    return has_value() ? value() : static_cast<T>(std::forward<U>(fallback));
+  }
 
   const Error& error() const { return std::get<1>(state_); }
   Unexpected takeError() && { return Unexpected{std::get<1>(std::move(state_))}; }
@@ -102,15 +102,14 @@ class [[nodiscard]] Result<void> {
 #define SCANSURF_CONCAT(a, b) SCANSURF_CONCAT_INNER(a, b)
 
 // Evaluates a Result-returning expression; on error returns the error from the caller.
-#define SCANSURF_TRY(expr)                                        \
-  do {                                                            \
-    auto scansurfTryResult_ = (expr);                             \
+#define SCANSURF_TRY(expr)                                                     \
+  do {                                                                         \
+    auto scansurfTryResult_ = (expr);                                          \
     if (!scansurfTryResult_) return std::move(scansurfTryResult_).takeError(); \
   } while (false)
 
 // `SCANSURF_ASSIGN_OR_RETURN(auto x, f());` declares x from f()'s value or returns its error.
-#define SCANSURF_ASSIGN_OR_RETURN(lhs, expr) \
-  SCANSURF_ASSIGN_OR_RETURN_IMPL(SCANSURF_CONCAT(scansurfResult_, __LINE__), lhs, expr)
+#define SCANSURF_ASSIGN_OR_RETURN(lhs, expr) SCANSURF_ASSIGN_OR_RETURN_IMPL(SCANSURF_CONCAT(scansurfResult_, __LINE__), lhs, expr)
 #define SCANSURF_ASSIGN_OR_RETURN_IMPL(tmp, lhs, expr) \
   auto tmp = (expr);                                   \
   if (!tmp) return std::move(tmp).takeError();         \

@@ -15,7 +15,7 @@ namespace scansurf {
 
 // One mesh holding every separating surface, vertices shared between all of them.
 struct MultiLabelMesh {
-  std::vector<float> positions;        // x, y, z per vertex, input units
+  std::vector<float> positions;          // x, y, z per vertex, input units
   std::vector<std::uint32_t> triangles;  // 3 vertex indices per triangle
   // 2 labels per triangle, {a, b} with a < b; the triangle's normal (counter-clockwise
   // winding, right-hand rule) points out of a's region into b's.
