@@ -193,15 +193,8 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
   // The lattice the contours were drawn on, unless the options choose a grid of their own.
   if (contours.reference && !haveSize && !haveCounts) return gridOnReference(contours, *contours.reference, tol);
 
-  std::vector<double> zs;
-  for (const Feature& f : contours.features)
-    for (const FeatureSlice& s : f.slices) zs.push_back(s.z);
-  if (zs.empty()) return makeError(Errc::InvalidInput, contours.source + ": no slices to build a grid from");
-  std::sort(zs.begin(), zs.end());
-  std::vector<double> planes;
-  // Each plane is the lowest z of its group; later z within tol of it join it.
-  for (double z : zs)
-    if (planes.empty() || z - planes.back() > tol) planes.push_back(z);
+  const std::vector<double> planes = contourPlanes(contours, tol);
+  if (planes.empty()) return makeError(Errc::InvalidInput, contours.source + ": no slices to build a grid from");
 
   const Box2 box = boundingBox(contours);
   if (box.empty()) return makeError(Errc::InvalidInput, contours.source + ": no contour points");
@@ -264,6 +257,17 @@ int nearestLayer(const Grid& grid, double z) {
   if (it == layers.begin()) return 0;
   if (it == layers.end()) return static_cast<int>(layers.size()) - 1;
   return static_cast<int>(it - layers.begin()) - (z - *(it - 1) <= *it - z ? 1 : 0);
+}
+
+std::vector<double> contourPlanes(const ContourSet& contours, double tolerance) {
+  std::vector<double> zs;
+  for (const Feature& f : contours.features)
+    for (const FeatureSlice& s : f.slices) zs.push_back(s.z);
+  std::sort(zs.begin(), zs.end());
+  std::vector<double> planes;
+  for (double z : zs)
+    if (planes.empty() || z - planes.back() > tolerance) planes.push_back(z);
+  return planes;
 }
 
 int Grid::layerOfPlane(double z) const { return layerOfZ(*this, z, planeTolerance); }

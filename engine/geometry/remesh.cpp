@@ -72,18 +72,6 @@ constexpr double kHigh = 4.0 / 3.0, kLow = 4.0 / 5.0;  // Botsch & Kobbelt's spl
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
 
-std::vector<double> contourPlanes(const ContourSet* contours, double tolerance) {
-  std::vector<double> z;
-  if (!contours) return z;
-  for (const Feature& f : contours->features)
-    for (const FeatureSlice& s : f.slices) z.push_back(s.z);
-  std::sort(z.begin(), z.end());
-  std::vector<double> merged;
-  for (double v : z)
-    if (merged.empty() || v - merged.back() > tolerance) merged.push_back(v);
-  return merged;
-}
-
 // The target edge length: the option's if usable, else kDefaultLength pixels or
 // kPlaneGapFraction of the median gap between contour planes, whichever is longer.
 double targetLength(const RemeshOptions& options, const Grid& grid, const std::vector<double>& planes) {
@@ -781,7 +769,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   report.ran = true;
   report.trianglesBefore = mesh.triangleCount();
   report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles);
-  std::vector<double> planes = contourPlanes(contours, sliceTolerance);
+  std::vector<double> planes = contours ? contourPlanes(*contours, sliceTolerance) : std::vector<double>{};
   report.edgeLength = targetLength(options, grid, planes);
   const SurfaceTable surfaces(mesh, nesting);
   const SlabPlan plan = planSlabs(mesh, report.edgeLength, trianglesPerSlab);

@@ -59,10 +59,10 @@
 #include <cstring>
 #include <vector>
 
+#include "core/huge_pages.h"
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
-#include "geometry/huge_pages.h"
 #include "geometry/overlap_split.h"
 #include "geometry/vec3.h"
 #include "geometry/vertex_roles.h"

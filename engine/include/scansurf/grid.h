@@ -70,6 +70,11 @@ struct Grid {
 // neighbouring slice spacing. Errors: options out of range, or a degenerate extent.
 Result<Grid> makeGrid(const ContourSet& contours, const GridOptions& options);
 
+// The contour planes of a set: its slices' distinct z, each the lowest of a group within
+// `tolerance` (validation has already moved the slices of one plane onto one z; this groups an
+// unvalidated set the same way). Sorted.
+std::vector<double> contourPlanes(const ContourSet& contours, double tolerance);
+
 // The layer whose plane is within tolerance of z, or -1 (Grid::layerOfPlane with another
 // tolerance).
 int layerOfZ(const Grid& grid, double z, double tolerance);
