@@ -8,7 +8,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev
   libdraco-dev libeigen3-dev libpng-dev zlib1g-dev
   libdcmtk-dev libpugixml-dev libnifti2-dev libglm-dev
-  clang-format  # tests/build/format_check.sh (the build.format test)
+  clang-format  # tests/checks/format_check.sh (the build.format test)
   dicom3tools  # dciodvfy: the tests validate the DICOM SEG output with it (skipped when missing)
   clang libclang-rt-14-dev  # .ci/run's sanitizer and fuzzing build (libFuzzer, ASan, UBSan runtimes)
 )
