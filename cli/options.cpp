@@ -221,8 +221,9 @@ void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
 void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
   DracoOptions& draco = o.scene.dracoOptions;
   app.add_option("--format", o.formats,
-                 "per-feature formats in OUTDIR: ply (default, with multilabel.ply), drc, obj, stl, "
-                 "glb (one scene OUTDIR/<input name>.glb); comma-separated")
+                 "per-feature formats in OUTDIR: ply (default, with multilabel.ply), drc, obj, stl, vtp (with "
+                 "multilabel.vtp); scenes: glb (OUTDIR/<input name>.glb), seg.vtm (3D Slicer's closed-surface "
+                 "segmentation OUTDIR/<input name>.seg.vtm with one .vtp per segment); comma-separated")
       ->delimiter(',');
   app.add_flag("--no-draco", f.noDraco, "GLB without KHR_draco_mesh_compression (plain float accessors)");
   app.add_option("--gltf-frame", f.gltfFrame,

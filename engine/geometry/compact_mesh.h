@@ -35,6 +35,10 @@ class SurfaceCompactor {
   std::vector<std::uint32_t> used_;
 };
 
+// Area-weighted vertex normals of a closed, outward surface (smooth within the feature), xyz
+// per vertex; (0, 0, 1) for a vertex of no area.
+std::vector<float> vertexNormals(const CompactMesh& mesh);
+
 // One surface on its own (O(mesh vertices) set-up; to compact many, reuse a SurfaceCompactor).
 Result<CompactMesh> compactSurface(const MultiLabelMesh& mesh, const FeatureSurface& surface);
 

@@ -23,27 +23,6 @@
 namespace scansurf {
 namespace {
 
-// Area-weighted vertex normals of a closed, outward surface: smooth within the feature.
-std::vector<float> vertexNormals(const CompactMesh& mesh) {
-  std::vector<double> sum(mesh.positions.size(), 0.0);
-  const auto at = [&](std::uint32_t v, int axis) { return static_cast<double>(mesh.positions[3 * std::size_t{v} + axis]); };
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    const std::uint32_t a = mesh.triangles[3 * t], b = mesh.triangles[3 * t + 1], c = mesh.triangles[3 * t + 2];
-    const double u[3] = {at(b, 0) - at(a, 0), at(b, 1) - at(a, 1), at(b, 2) - at(a, 2)};
-    const double w[3] = {at(c, 0) - at(a, 0), at(c, 1) - at(a, 1), at(c, 2) - at(a, 2)};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    for (std::uint32_t v : {a, b, c})
-      for (int axis = 0; axis < 3; ++axis) sum[3 * std::size_t{v} + axis] += n[axis];
-  }
-  std::vector<float> normals(sum.size());
-  for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
-    const double length = std::hypot(sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]);
-    for (int axis = 0; axis < 3; ++axis)
-      normals[3 * v + axis] = length > 0 ? static_cast<float>(sum[3 * v + axis] / length) : (axis == 2 ? 1.0f : 0.0f);
-  }
-  return normals;
-}
-
 void addNormals(draco::Mesh& mesh, const std::vector<float>& normals) {
   const auto vertices = static_cast<std::uint32_t>(normals.size() / 3);
   draco::GeometryAttribute normal;

@@ -85,9 +85,11 @@ Result<MeshFormat> parseMeshFormat(std::string_view name) {
   std::string n;
   for (unsigned char c : name) n += static_cast<char>(std::tolower(c));
   if (!n.empty() && n.front() == '.') n.erase(0, 1);
-  for (MeshFormat f : {MeshFormat::Ply, MeshFormat::Drc, MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Glb})
+  for (MeshFormat f :
+       {MeshFormat::Ply, MeshFormat::Drc, MeshFormat::Obj, MeshFormat::Stl, MeshFormat::Glb, MeshFormat::Vtp, MeshFormat::SegVtm})
     if ("." + n == extensionOf(f)) return f;
-  return makeError(Errc::InvalidArgument, "unknown output format \"" + std::string(name) + "\" (known: ply, drc, obj, stl, glb)");
+  return makeError(Errc::InvalidArgument,
+                   "unknown output format \"" + std::string(name) + "\" (known: ply, drc, obj, stl, glb, vtp, seg.vtm)");
 }
 
 const char* extensionOf(MeshFormat format) {
@@ -97,6 +99,8 @@ const char* extensionOf(MeshFormat format) {
     case MeshFormat::Obj: return ".obj";
     case MeshFormat::Stl: return ".stl";
     case MeshFormat::Glb: return ".glb";
+    case MeshFormat::Vtp: return ".vtp";
+    case MeshFormat::SegVtm: return ".seg.vtm";
   }
   return "";
 }

@@ -18,6 +18,7 @@
 #include "io/ply_writer.h"
 #include "io/png_writer.h"
 #include "io/run_volumes.h"
+#include "io/vtk_writer.h"
 #include "scansurf/nesting.h"
 #include "scansurf/palette.h"
 
@@ -59,7 +60,7 @@ std::vector<LabelEntry> labelTable(const ContourSet& contours) {
 }
 
 Result<void> writeCompact(const fs::path& path, const CompactMesh& mesh, int feature, MeshFormat format, const std::string& name,
-                          const DracoOptions& draco) {
+                          const std::string& units, const DracoOptions& draco) {
   if (format != MeshFormat::Ply && mesh.triangles.empty())
     return makeError(Errc::InvalidArgument, "feature \"" + name + "\" has no surface: " + extensionOf(format) +
                                                 " cannot hold an empty mesh (" + path.string() + ")");
@@ -68,9 +69,12 @@ Result<void> writeCompact(const fs::path& path, const CompactMesh& mesh, int fea
     case MeshFormat::Drc: return writeDrc(path, mesh, draco);
     case MeshFormat::Obj: return writeObj(path, mesh, name);
     case MeshFormat::Stl: return writeStl(path, mesh);
-    case MeshFormat::Glb: break;
+    case MeshFormat::Vtp: return writeFeatureVtp(path, mesh, name, labelOfFeature(feature), units);
+    case MeshFormat::Glb:
+    case MeshFormat::SegVtm: break;
   }
-  return makeError(Errc::InvalidArgument, "writeSurface writes one feature; a GLB scene is writeScene's (" + path.string() + ")");
+  return makeError(Errc::InvalidArgument,
+                   "writeSurface writes one feature; a scene (GLB, .seg.vtm) is not one (" + path.string() + ")");
 }
 
 DracoOptions dracoFor(const DracoOptions& options, const Grid& grid) {
@@ -105,18 +109,42 @@ bool has(const std::vector<MeshFormat>& formats, MeshFormat f) {
 
 // The per-feature files of one feature in the plan's directory.
 Result<void> stageFeatureFiles(OutputStaging& staging, const OutputPlan& plan, const CompactMesh& mesh, int feature,
-                               const std::string& name, const std::string& stem, const DracoOptions& draco, SurfaceOutputs& out) {
+                               const std::string& name, const std::string& stem, const std::string& units,
+                               const DracoOptions& draco, SurfaceOutputs& out) {
   for (MeshFormat format : plan.formats) {
-    if (format == MeshFormat::Glb) continue;
+    if (format == MeshFormat::Glb || format == MeshFormat::SegVtm) continue;
     if (format != MeshFormat::Ply && mesh.triangles.empty()) {
       out.warnings.push_back("feature \"" + name + "\" has no surface: no " + extensionOf(format) + " written for it");
       continue;
     }
     const fs::path target = plan.dir / (stem + extensionOf(format));
-    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeCompact(p, mesh, feature, format, name, draco); }));
+    SCANSURF_TRY(
+        staging.stage(target, [&](const fs::path& p) { return writeCompact(p, mesh, feature, format, name, units, draco); }));
     out.files[static_cast<std::size_t>(feature)].push_back(target);
   }
   return {};
+}
+
+// 3D Slicer's closed-surface segmentation: one segment per feature with a surface (VTK drops
+// empty blocks, so an empty feature is left out, with a warning), its .vtp files and the .vtm.
+Result<void> stageSlicerSegmentation(OutputStaging& staging, const fs::path& vtm, const ContourSet& contours,
+                                     const std::vector<CompactMesh>& meshes, SurfaceOutputs& out) {
+  const std::vector<Rgb> colors = featureColors(contours);
+  std::vector<std::string> blocks;
+  for (std::size_t f = 0; f < meshes.size(); ++f) {
+    const std::string& name = contours.features[f].name;
+    if (meshes[f].triangles.empty()) {
+      out.warnings.push_back("feature \"" + name + "\" has no surface: no segment for it in " + vtm.filename().string());
+      continue;
+    }
+    const SlicerSegment segment{"Segment_" + std::to_string(f + 1), name, colors[f], slicerTerminology(), &meshes[f]};
+    const fs::path target = slicerSegmentPath(vtm, blocks.size());
+    blocks.push_back(target.filename().string());
+    SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeSlicerSegmentVtp(p, segment); }));
+    out.files[f].push_back(target);
+    out.files[f].push_back(vtm);
+  }
+  return staging.stage(vtm, [&](const fs::path& p) { return writeSlicerSegmentationVtm(p, blocks); });
 }
 
 std::vector<fs::path> sceneTargets(const OutputPlan& plan) {
@@ -136,7 +164,8 @@ Result<void> writeSurface(const fs::path& path, const Surfaces& surfaces, int fe
                                                 std::to_string(surfaces.features.size()) + " surfaces of the contour set");
   SurfaceCompactor compactor(surfaces.mesh);
   SCANSURF_ASSIGN_OR_RETURN(const CompactMesh mesh, compactor.compact(surfaces.features[static_cast<std::size_t>(feature)]));
-  return writeCompact(path, mesh, feature, format, contours.features[static_cast<std::size_t>(feature)].name, draco);
+  return writeCompact(path, mesh, feature, format, contours.features[static_cast<std::size_t>(feature)].name, contours.units,
+                      draco);
 }
 
 Result<void> writeMultiLabelMesh(const fs::path& path, const Surfaces& surfaces) {
@@ -228,13 +257,18 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
     if (!plan.dir.empty()) {
       const std::string stem = fileStem(name, used);
       warnAboutFileStem(name, stem, out.warnings);
-      SCANSURF_TRY(stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, draco, out));
+      SCANSURF_TRY(stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, contours.units, draco, out));
     }
-    if (!scenes.empty()) compact.push_back(std::move(mesh));
+    if (!scenes.empty() || has(plan.formats, MeshFormat::SegVtm)) compact.push_back(std::move(mesh));
   }
+  if (!plan.dir.empty() && has(plan.formats, MeshFormat::SegVtm))
+    SCANSURF_TRY(stageSlicerSegmentation(staging, plan.dir / (plan.sceneName + ".seg.vtm"), contours, compact, out));
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)
     SCANSURF_TRY(
         staging.stage(plan.dir / "multilabel.ply", [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh); }));
+  if (!plan.dir.empty() && has(plan.formats, MeshFormat::Vtp) && plan.multilabel)
+    SCANSURF_TRY(staging.stage(plan.dir / "multilabel.vtp",
+                               [&](const fs::path& p) { return writeMultiLabelVtp(p, surfaces.mesh, contours.units); }));
   const GlbOptions glb = glbOptions(plan.scene, draco, contours);
   const std::vector<float> opacity = scenes.empty() ? std::vector<float>{} : sceneOpacity(contours, plan.scene);
   for (const fs::path& target : scenes) {

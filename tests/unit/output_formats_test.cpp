@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
+#include <pugixml.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -679,6 +680,116 @@ TEST_F(OutputFormatsTest, FullDiskLeavesThePreviousFileIntact) {
   EXPECT_EQ(r.error().code, Errc::Io);
   EXPECT_EQ(readFile(path), "previous");
   EXPECT_EQ(fileCount(), 1u) << "the temporary file is removed";
+}
+
+}  // namespace
+}  // namespace scansurf
+
+namespace scansurf {
+namespace {
+
+// A small reader of VTK's XML files as VTK reads them: inline binary arrays are base64 of a
+// UInt32 byte count and the values; string arrays are decimal byte codes, each ended by 0.
+std::vector<std::uint8_t> unbase64(std::string_view text) {
+  std::vector<std::uint8_t> out;
+  std::uint32_t acc = 0;
+  int bits = 0;
+  for (char c : text) {
+    int v = c >= 'A' && c <= 'Z'   ? c - 'A'
+            : c >= 'a' && c <= 'z' ? c - 'a' + 26
+            : c >= '0' && c <= '9' ? c - '0' + 52
+            : c == '+'             ? 62
+            : c == '/'             ? 63
+                                   : -1;
+    if (v < 0) continue;
+    acc = acc << 6 | static_cast<std::uint32_t>(v), bits += 6;
+    if (bits >= 8) out.push_back(static_cast<std::uint8_t>(acc >> (bits -= 8)));
+  }
+  return out;
+}
+
+template <typename T>
+std::vector<T> binaryArray(const pugi::xml_node& array) {
+  const std::vector<std::uint8_t> bytes = unbase64(array.child_value());
+  std::uint32_t size = 0;
+  std::memcpy(&size, bytes.data(), sizeof size);
+  std::vector<T> values(size / sizeof(T));
+  std::memcpy(values.data(), bytes.data() + sizeof size, size);
+  return values;
+}
+
+std::string stringValue(const pugi::xml_node& fields, const char* name) {
+  const pugi::xml_node array = fields.find_child_by_attribute("Array", "Name", name);
+  std::istringstream codes(array.child_value());
+  std::string out;
+  for (int code; codes >> code && code != 0;) out += static_cast<char>(code);
+  return out;
+}
+
+// VTK PolyData per feature and for the multi-label mesh, and 3D Slicer's closed-surface
+// segmentation, read back as VTK reads them: the same points and triangles as the PLY, normals
+// per point, the name and label as field data, the label pair per face; the segmentation's
+// blocks in order, in RAS, with the keys Slicer's storage node requires.
+TEST_F(OutputFormatsTest, VtkFilesCarryTheSurfacesAndWhatTheyAre) {
+  const Built& b = nested();
+  OutputPlan plan;
+  plan.dir = dir_;
+  plan.formats = {MeshFormat::Vtp, MeshFormat::SegVtm};
+  plan.sceneName = "plan";
+  OutputStaging staging;
+  BuildResult built;
+  built.surfaces = b.surfaces;
+  built.volume.grid = b.volume.grid;
+  built.overlaps.features.resize(b.set.features.size());
+  auto staged = stageSurfaceOutputs(staging, plan, b.set, built);
+  ASSERT_TRUE(staged) << staged.error().message;
+  ASSERT_TRUE(staging.commit());
+
+  const CompactMesh inner = *compactSurface(b.surfaces.mesh, b.surfaces.features[1]);
+  pugi::xml_document doc;
+  ASSERT_TRUE(doc.load_file((dir_ / "inner.vtp").c_str()));
+  const pugi::xml_node poly = doc.child("VTKFile").child("PolyData");
+  const pugi::xml_node piece = poly.child("Piece");
+  EXPECT_EQ(piece.attribute("NumberOfPoints").as_ullong(), inner.vertexCount());
+  EXPECT_EQ(piece.attribute("NumberOfPolys").as_ullong(), inner.triangleCount());
+  EXPECT_EQ(binaryArray<float>(piece.child("Points").child("DataArray")), inner.positions);
+  const std::vector<std::int64_t> connectivity =
+      binaryArray<std::int64_t>(piece.child("Polys").find_child_by_attribute("DataArray", "Name", "connectivity"));
+  EXPECT_EQ(std::vector<std::uint32_t>(connectivity.begin(), connectivity.end()), inner.triangles);
+  EXPECT_EQ(binaryArray<float>(piece.child("PointData").child("DataArray")).size(), inner.positions.size());
+  EXPECT_EQ(stringValue(poly.child("FieldData"), "Name"), "inner");
+  EXPECT_EQ(binaryArray<std::int32_t>(poly.child("FieldData").find_child_by_attribute("DataArray", "Name", "Label")),
+            std::vector<std::int32_t>{2});
+
+  ASSERT_TRUE(doc.load_file((dir_ / "multilabel.vtp").c_str()));
+  const pugi::xml_node cells = doc.child("VTKFile").child("PolyData").child("Piece").child("CellData");
+  const std::vector<std::uint16_t> inside =
+      binaryArray<std::uint16_t>(cells.find_child_by_attribute("DataArray", "Name", "label_inside"));
+  ASSERT_EQ(inside.size(), b.surfaces.mesh.triangleCount());
+  for (std::size_t t = 0; t < inside.size(); ++t) ASSERT_EQ(inside[t], b.surfaces.mesh.labels[2 * t]);
+
+  ASSERT_TRUE(doc.load_file((dir_ / "plan.seg.vtm").c_str()));
+  std::vector<std::string> blocks;
+  for (const pugi::xml_node set : doc.child("VTKFile").child("vtkMultiBlockDataSet").children("DataSet"))
+    blocks.push_back(set.attribute("file").value());
+  ASSERT_EQ(blocks, (std::vector<std::string>{"plan.seg_0.vtp", "plan.seg_1.vtp"}));
+  ASSERT_TRUE(doc.load_file((dir_ / blocks[1]).c_str()));
+  const pugi::xml_node segment = doc.child("VTKFile").child("PolyData");
+  const pugi::xml_node fields = segment.child("FieldData");
+  EXPECT_EQ(stringValue(fields, "Segmentation_MasterRepresentation"), "Closed surface");
+  EXPECT_EQ(stringValue(fields, "Segment_Name"), "inner");
+  EXPECT_EQ(stringValue(fields, "Segment_ID"), "Segment_2");
+  EXPECT_EQ(stringValue(fields, "Segmentation_ContainedRepresentationNames"), "Closed surface|");
+  EXPECT_EQ(stringValue(fields, "Segment_Tags").rfind("TerminologyEntry:Segmentation category and type", 0), 0u);
+  EXPECT_EQ(std::string(fields.find_child_by_attribute("DataArray", "Name", "Segment_Color").attribute("type").value()),
+            "Float64");
+  const std::vector<float> ras = binaryArray<float>(segment.child("Piece").child("Points").child("DataArray"));
+  ASSERT_EQ(ras.size(), inner.positions.size());
+  for (std::size_t v = 0; v < inner.vertexCount(); ++v) {
+    ASSERT_EQ(ras[3 * v], -inner.positions[3 * v]) << "x to right-to-left";
+    ASSERT_EQ(ras[3 * v + 1], -inner.positions[3 * v + 1]) << "y to posterior-to-anterior";
+    ASSERT_EQ(ras[3 * v + 2], inner.positions[3 * v + 2]);
+  }
 }
 
 }  // namespace

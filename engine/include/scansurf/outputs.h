@@ -18,11 +18,13 @@
 
 namespace scansurf {
 
-// Per-feature surface formats (one file per feature) and the scene of every feature.
-enum class MeshFormat { Ply, Drc, Obj, Stl, Glb };
+// Per-feature surface formats (one file per feature: PLY, Draco, OBJ, STL, VTK PolyData) and
+// the scenes of every feature (GLB; 3D Slicer's closed-surface segmentation, .seg.vtm with one
+// .vtp per segment beside it).
+enum class MeshFormat { Ply, Drc, Obj, Stl, Glb, Vtp, SegVtm };
 
-// "ply", "drc", "obj", "stl", "glb" (case-insensitive, a leading '.' allowed); else an
-// Errc::InvalidArgument error naming the known formats.
+// "ply", "drc", "obj", "stl", "glb", "vtp", "seg.vtm" (case-insensitive, a leading '.'
+// allowed); else an Errc::InvalidArgument error naming the known formats.
 Result<MeshFormat> parseMeshFormat(std::string_view name);
 const char* extensionOf(MeshFormat format);  // ".ply", ...
 
@@ -62,9 +64,10 @@ struct SceneOptions {
 // so a failure never leaves a partial file; errors are Errc::Io naming the path (Errc::Internal
 // when an encoder refuses the mesh).
 
-// One feature's closed surface in `format` (not Glb). Positions in input units; PLY exact
-// floats, Draco quantized by `draco`, OBJ with 6 decimals, STL float32 with unit normals.
-// Draco, OBJ and STL refuse an empty surface (Errc::InvalidArgument); PLY writes it empty.
+// One feature's closed surface in `format` (not a scene). Positions in input units; PLY exact
+// floats, Draco quantized by `draco`, OBJ with 6 decimals, STL float32 with unit normals, VTP
+// float32 with point normals and the feature's name and label as field data. Draco, OBJ, STL
+// and VTP refuse an empty surface (Errc::InvalidArgument); PLY writes it empty.
 Result<void> writeSurface(const std::filesystem::path& path, const Surfaces& surfaces, int feature, MeshFormat format,
                           const ContourSet& contours, const DracoOptions& draco = {});
 // Every separating surface in one binary PLY, each face with label_inside / label_outside.
