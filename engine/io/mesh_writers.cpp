@@ -17,22 +17,24 @@
 
 namespace scansurf {
 
-Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name) {
+Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name,
+                      const std::string& units) {
   std::unique_ptr<draco::Mesh> dm = toDracoMesh(mesh);
   dm->SetName(name);
   draco::ObjEncoder encoder;
   draco::EncoderBuffer buffer;
   if (!encoder.EncodeToBuffer(*dm, &buffer))
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco's OBJ encoder failed");
-  const std::string comment =
-      std::string("# scansurf ") + version() + ": surface of \"" + oneLineText(name, "\"") + "\", input units\n";
+  const std::string comment = std::string("# scansurf ") + version() + ": surface of \"" + oneLineText(name, "\"") +
+                              "\", coordinates in " + (units.empty() ? std::string("the input's units") : oneLineText(units)) +
+                              "\n";
   return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
     SCANSURF_TRY(file.write(comment.data(), comment.size()));
     return file.write(buffer.data(), buffer.size());
   });
 }
 
-Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh) {
+Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& units) {
   std::unique_ptr<draco::Mesh> dm = toDracoMesh(mesh);
   draco::StlEncoder encoder;
   draco::EncoderBuffer buffer;
@@ -40,7 +42,8 @@ Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': " + s.error_msg_string());
   // The 80-byte header names the generator (never starting with "solid", which marks ASCII STL).
   std::vector<char> bytes(buffer.data(), buffer.data() + buffer.size());
-  const std::string header = std::string("scansurf ") + version() + " binary STL, input units";
+  const std::string header =
+      std::string("scansurf ") + version() + " binary STL, " + (units.empty() ? std::string("input units") : oneLineText(units));
   if (bytes.size() >= 80) {
     std::fill(bytes.begin(), bytes.begin() + 80, ' ');
     std::copy_n(header.begin(), std::min<std::size_t>(header.size(), 80), bytes.begin());

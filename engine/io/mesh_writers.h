@@ -13,12 +13,14 @@
 
 namespace scansurf {
 
-// Wavefront OBJ: `v x y z` (6 decimals, input units) and `f a b c` wound outward; `name`
+// Wavefront OBJ: `v x y z` (6 decimals, in `units`, named in the header comment; empty: "the
+// input's units") and `f a b c` wound outward; `name`
 // becomes the object name. Replaced atomically. Errors: Errc::Io naming the path.
-Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name);
+Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name,
+                      const std::string& units = {});
 
 // Binary STL: one facet per triangle with its unit normal, float32 input units (STL has no
 // unit field: viewers usually assume mm). Replaced atomically. Errors: Errc::Io naming the path.
-Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh);
+Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& units = {});
 
 }  // namespace scansurf

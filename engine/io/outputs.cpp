@@ -65,10 +65,10 @@ Result<void> writeCompact(const fs::path& path, const CompactMesh& mesh, int fea
     return makeError(Errc::InvalidArgument, "feature \"" + name + "\" has no surface: " + extensionOf(format) +
                                                 " cannot hold an empty mesh (" + path.string() + ")");
   switch (format) {
-    case MeshFormat::Ply: return writeSurfacePly(path, mesh, feature);
+    case MeshFormat::Ply: return writeSurfacePly(path, mesh, feature, units);
     case MeshFormat::Drc: return writeDrc(path, mesh, draco);
-    case MeshFormat::Obj: return writeObj(path, mesh, name);
-    case MeshFormat::Stl: return writeStl(path, mesh);
+    case MeshFormat::Obj: return writeObj(path, mesh, name, units);
+    case MeshFormat::Stl: return writeStl(path, mesh, units);
     case MeshFormat::Vtp: return writeFeatureVtp(path, mesh, name, labelOfFeature(feature), units);
     case MeshFormat::Glb:
     case MeshFormat::SegVtm: break;
@@ -264,8 +264,8 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::SegVtm))
     SCANSURF_TRY(stageSlicerSegmentation(staging, plan.dir / (plan.sceneName + ".seg.vtm"), contours, compact, out));
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)
-    SCANSURF_TRY(
-        staging.stage(plan.dir / "multilabel.ply", [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh); }));
+    SCANSURF_TRY(staging.stage(plan.dir / "multilabel.ply",
+                               [&](const fs::path& p) { return writeMultiLabelPly(p, surfaces.mesh, contours.units); }));
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Vtp) && plan.multilabel)
     SCANSURF_TRY(staging.stage(plan.dir / "multilabel.vtp",
                                [&](const fs::path& p) { return writeMultiLabelVtp(p, surfaces.mesh, contours.units); }));

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/text_fields.h"
 #include "geometry/compact_mesh.h"
 #include "io/atomic_file.h"
 #include "scansurf/version.h"
@@ -53,19 +54,25 @@ Result<void> checkIndexRange(const std::filesystem::path& path, std::size_t vert
   return {};
 }
 
-const char* kUnitsComment = "comment units: the input contours' units (x, y in-plane, z along the slices)\n";
+// The unit every coordinate is in: the contour set's (mm for DICOM), else "the input's".
+std::string unitsComment(const std::string& units) {
+  return "comment units: " + (units.empty() ? std::string("the input contours' units") : oneLineText(units)) +
+         " (x, y in-plane, z along the slices)\n";
+}
 
 // Which program and version made the file.
 std::string generatorComment() { return std::string("comment generator: scansurf ") + version() + "\n"; }
 
 }  // namespace
 
-Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh, const FeatureSurface& surface) {
+Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh, const FeatureSurface& surface,
+                             const std::string& units) {
   SCANSURF_ASSIGN_OR_RETURN(const CompactMesh compact, compactSurface(mesh, surface));
-  return writeSurfacePly(path, compact, surface.feature);
+  return writeSurfacePly(path, compact, surface.feature, units);
 }
 
-Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMesh& compact, int feature) {
+Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMesh& compact, int feature,
+                             const std::string& units) {
   const std::size_t used = compact.vertexCount();
   SCANSURF_TRY(checkIndexRange(path, used));
 
@@ -73,7 +80,7 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMes
     LittleEndianWriter out(file);
     const std::string header = "ply\nformat binary_little_endian 1.0\ncomment scansurf separating surface of feature " +
                                std::to_string(feature) + " (label " + std::to_string(feature + 1) +
-                               "), faces wound counter-clockwise seen from outside\n" + generatorComment() + kUnitsComment +
+                               "), faces wound counter-clockwise seen from outside\n" + generatorComment() + unitsComment(units) +
                                "element vertex " + std::to_string(used) +
                                "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
                                std::to_string(compact.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
@@ -91,7 +98,7 @@ Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMes
   });
 }
 
-Result<void> writeMultiLabelPly(const std::filesystem::path& path, const MultiLabelMesh& mesh) {
+Result<void> writeMultiLabelPly(const std::filesystem::path& path, const MultiLabelMesh& mesh, const std::string& units) {
   SCANSURF_TRY(checkIndexRange(path, mesh.vertexCount()));
   return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
     LittleEndianWriter out(file);
@@ -100,7 +107,7 @@ Result<void> writeMultiLabelPly(const std::filesystem::path& path, const MultiLa
         "comment scansurf multi-label separating surfaces; label 0 = background, label L = feature L-1\n"
         "comment label_inside < label_outside; each face's normal (counter-clockwise) points from "
         "label_inside's region into label_outside's\n" +
-        generatorComment() + kUnitsComment + "element vertex " + std::to_string(mesh.vertexCount()) +
+        generatorComment() + unitsComment(units) + "element vertex " + std::to_string(mesh.vertexCount()) +
         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(mesh.triangleCount()) +
         "\nproperty list uchar int vertex_indices\nproperty ushort label_inside\nproperty ushort label_outside\n"
         "end_header\n";

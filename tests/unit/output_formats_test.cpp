@@ -794,3 +794,33 @@ TEST_F(OutputFormatsTest, VtkFilesCarryTheSurfacesAndWhatTheyAre) {
 
 }  // namespace
 }  // namespace scansurf
+
+namespace scansurf {
+namespace {
+
+// The mesh files name the unit their coordinates are in (the contour set's: mm for DICOM, µm
+// for an EM series), not "input units".
+TEST_F(OutputFormatsTest, MeshHeadersNameTheUnit) {
+  Built b = nested();
+  b.set.units = "um";
+  OutputPlan plan;
+  plan.dir = dir_;
+  plan.formats = {MeshFormat::Ply, MeshFormat::Obj, MeshFormat::Stl};
+  OutputStaging staging;
+  BuildResult built;
+  built.surfaces = b.surfaces;
+  built.volume.grid = b.volume.grid;
+  built.overlaps.features.resize(b.set.features.size());
+  ASSERT_TRUE(stageSurfaceOutputs(staging, plan, b.set, built));
+  ASSERT_TRUE(staging.commit());
+  EXPECT_NE(readFile(dir_ / "inner.ply").find("comment units: um (x, y in-plane"), std::string::npos);
+  EXPECT_NE(readFile(dir_ / "multilabel.ply").find("comment units: um (x, y in-plane"), std::string::npos);
+  EXPECT_EQ(readFile(dir_ / "inner.obj").rfind("# scansurf", 0), 0u);
+  EXPECT_NE(readFile(dir_ / "inner.obj").find("coordinates in um\n"), std::string::npos);
+  EXPECT_EQ(
+      readFile(dir_ / "inner.stl").substr(0, 80).rfind(std::string("scansurf ") + SCANSURF_VERSION_STRING + " binary STL, um", 0),
+      0u);
+}
+
+}  // namespace
+}  // namespace scansurf
