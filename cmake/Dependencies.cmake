@@ -29,9 +29,8 @@ find_package(pugixml REQUIRED CONFIG)
 # directory), so find_package(NIFTI CONFIG) stops with a fatal error; and the packages ship no
 # pkg-config file. Hence a plain header and library search.
 find_path(SCANSURF_NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)
-find_library(SCANSURF_NIFTIIO_LIBRARY niftiio REQUIRED)
-find_library(SCANSURF_ZNZ_LIBRARY znz REQUIRED)
-set(SCANSURF_NIFTI_LIBRARIES "${SCANSURF_NIFTIIO_LIBRARY}" "${SCANSURF_ZNZ_LIBRARY}" ZLIB::ZLIB)
+include("${CMAKE_CURRENT_LIST_DIR}/NiftiTargets.cmake")
+set(SCANSURF_NIFTI_LIBRARIES scansurf_nifti::niftiio)
 # The CPU geometry's vectors (engine/geometry/vec3.h): GLM, header-only (libglm-dev).
 find_path(SCANSURF_GLM_INCLUDE_DIR glm/vec3.hpp REQUIRED)
 if(SCANSURF_BUILD_TESTS)

@@ -21,7 +21,7 @@ configure_package_config_file("${CMAKE_CURRENT_LIST_DIR}/scansurfConfig.cmake.in
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/scansurfConfigVersion.cmake"
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)  # 0.x: minor versions may break the API
 install(FILES "${PROJECT_BINARY_DIR}/scansurfConfig.cmake" "${PROJECT_BINARY_DIR}/scansurfConfigVersion.cmake"
-  DESTINATION "${SCANSURF_CMAKE_DIR}")
+  "${CMAKE_CURRENT_LIST_DIR}/NiftiTargets.cmake" DESTINATION "${SCANSURF_CMAKE_DIR}")
 
 if(SCANSURF_BUILD_CLI)
   install(TARGETS scansurf_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

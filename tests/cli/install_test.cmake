@@ -35,6 +35,18 @@ foreach(h IN LISTS headers)
   endforeach()
 endforeach()
 
+# The package is relocatable: it names imported targets, never this machine's library paths,
+# and works from wherever the prefix is moved.
+file(GLOB_RECURSE exported "${prefix}/*/scansurfTargets*.cmake")
+foreach(file IN LISTS exported)
+  file(READ "${file}" text)
+  if(text MATCHES "/usr/lib/[^\"]*\\.(so|a)")
+    message(FATAL_ERROR "${file} names a library by its absolute path: ${CMAKE_MATCH_0}")
+  endif()
+endforeach()
+set(moved "${WORK}/moved-prefix")
+file(RENAME "${prefix}" "${moved}")
+set(prefix "${moved}")
 run("configure examples/embed" ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/embed" -B "${WORK}/embed" -G "${GENERATOR}"
     -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
 run("build examples/embed" ${CMAKE_COMMAND} --build "${WORK}/embed")
