@@ -55,6 +55,11 @@ std::string inFlags(std::string message) {
 }
 
 int fail(const Error& error) {
+  if (cli::Progress* progress = cli::activeProgress()) {
+    progress->error(inFlags(error.message));
+    progress->finish(exitCode(error.code));
+    return exitCode(error.code);
+  }
   if (::isatty(STDERR_FILENO)) std::fputs("\r\033[K", stderr);  // over a progress line
   std::fprintf(stderr, "scansurf: error: %s\n", cli::printable(inFlags(error.message)).c_str());
   return exitCode(error.code);
@@ -120,12 +125,22 @@ class Laps {
     progress_.done(stage, timings.back().seconds);
     start_ = now;
   }
-  // A stage the engine timed itself (progress only; add() records them after the build).
-  void report(const std::string& stage, double seconds) { progress_.done(stage, seconds); }
-  void add(const std::vector<StageTime>& stages) {
-    timings.insert(timings.end(), stages.begin(), stages.end());
-    start_ = std::chrono::steady_clock::now();
+  // A stage of the engine's, within "surfaces" (progress only; add() records them after the build).
+  void report(const BuildOptions::StageEvent& e) {
+    const cli::StagePlace place{"surfaces", e.layer, e.layers};
+    if (e.done)
+      progress_.done(e.stage, e.seconds, place);
+    else
+      progress_.begin(e.stage, place);
   }
+  // The engine's stages, recorded; "surfaces", which holds them, is done.
+  void add(const char* stage, const std::vector<StageTime>& stages) {
+    timings.insert(timings.end(), stages.begin(), stages.end());
+    const auto now = std::chrono::steady_clock::now();
+    progress_.done(stage, std::chrono::duration<double>(now - start_).count());
+    start_ = now;
+  }
+  void warn(const std::string& message) { progress_.warning(message); }
   std::vector<StageTime> timings;
 
  private:
@@ -158,10 +173,10 @@ Result<Built> buildSurfaces(const cli::CliOptions& o, const ContourSet& contours
   if (!o.quiet) std::printf("device: %s (%s, %s)\n", info.name.c_str(), info.type.c_str(), info.driver.c_str());
   BuildOptions options = o.build;
   options.keepLabelVolume = false;  // the outputs rasterize their own label volumes (runVolumes)
-  options.onStage = [&](const std::string& stage, double seconds) { laps.report(stage, seconds); };
+  options.onStageEvent = [&](const BuildOptions::StageEvent& e) { laps.report(e); };
   laps.begin("surfaces");
   SCANSURF_ASSIGN_OR_RETURN(BuildResult built, engine.build(contours, options));
-  laps.add(built.timings);
+  laps.add("surfaces", built.timings);
   return Built{std::move(engine), std::move(built)};
 }
 
@@ -202,12 +217,13 @@ int run(const cli::CliOptions& o) {
   for (const fs::path& dir : outputDirectories(*plan))
     if (auto locked = staging.lock(dir); !locked) return fail(locked.error());
   cli::Progress progress(cli::chooseProgressMode(o.quiet, o.jsonProgress));
+  cli::setActiveProgress(&progress);
   Laps laps(progress);
 
   laps.begin("read");
   auto contours = readContours(o.input, o.read);
   if (!contours) return fail(contours.error());
-  for (const std::string& w : contours->warnings) std::fprintf(stderr, "scansurf: warning: %s\n", cli::printable(w).c_str());
+  for (const std::string& w : contours->warnings) progress.warning(w);
   if (!o.quiet)
     for (const std::string& note : contours->notes) std::printf("%s\n", cli::printable(note).c_str());
   laps.lap("read");
@@ -220,9 +236,12 @@ int run(const cli::CliOptions& o) {
 
   // Each feature's statistics, once, for the report and the summary (when either is wanted).
   std::vector<MeshStats> stats;
-  if (!o.quiet || !o.report.empty())
+  if (!o.quiet || !o.report.empty()) {
+    laps.begin("statistics");
     for (const FeatureSurface& f : result.surfaces.features)
       stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
+    laps.lap("statistics");
+  }
 
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
@@ -248,10 +267,9 @@ int run(const cli::CliOptions& o) {
     return fail({Errc::Vulkan, std::to_string(messages) + " Vulkan validation message(s); see above"});
   auto written = interruptible.commit();
   if (!written) return fail(written.error());
-  progress.finish(0);
-
   std::fflush(stdout);  // warnings after what was already printed
-  for (const std::string& w : result.warnings) std::fprintf(stderr, "scansurf: warning: %s\n", cli::printable(w).c_str());
+  for (const std::string& w : result.warnings) progress.warning(w);
+  progress.finish(0);
   if (!o.quiet)
     cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
   return 0;

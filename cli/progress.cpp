@@ -3,13 +3,32 @@
 
 #include <unistd.h>
 
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "safe_text.h"
+
 namespace scansurf::cli {
 
 namespace {
 constexpr double kQuietSeconds = 1.0;  // short runs print no progress at all
+Progress* gActive = nullptr;
 
-// Stage names are ours (no quotes or control characters), so no JSON escaping is needed.
+std::string placeText(const StagePlace& place) {
+  return place.layer >= 0 ? " (layer " + std::to_string(place.layer + 1) + " of " + std::to_string(place.layers) + ")" : "";
+}
+
+nlohmann::ordered_json stageJson(const char* event, const std::string& stage, const StagePlace& place, double elapsed) {
+  nlohmann::ordered_json j{{"event", event}, {"stage", stage}};
+  if (place.within) j["within"] = place.within;
+  if (place.layer >= 0) j["layer"] = place.layer, j["layers"] = place.layers;
+  j["elapsed"] = std::round(elapsed * 1000) / 1000;
+  return j;
+}
 }  // namespace
+
+Progress* activeProgress() { return gActive; }
+void setActiveProgress(Progress* progress) { gActive = progress; }
 
 ProgressMode chooseProgressMode(bool quiet, bool json) {
   if (json) return ProgressMode::Json;
@@ -19,7 +38,10 @@ ProgressMode chooseProgressMode(bool quiet, bool json) {
 
 Progress::Progress(ProgressMode mode, std::FILE* out) : mode_(mode), out_(out), start_(std::chrono::steady_clock::now()) {}
 
-Progress::~Progress() { clearLine(); }
+Progress::~Progress() {
+  clearLine();
+  if (gActive == this) gActive = nullptr;
+}
 
 double Progress::elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
@@ -28,27 +50,51 @@ void Progress::clearLine() {
   lineShown_ = false;
 }
 
-void Progress::begin(const std::string& stage) {
-  if (mode_ == ProgressMode::Json) {
-    std::fprintf(out_, "{\"event\":\"begin\",\"stage\":\"%s\",\"elapsed\":%.3f}\n", stage.c_str(), elapsed());
-    std::fflush(out_);
-  } else if (mode_ == ProgressMode::Terminal && elapsed() > kQuietSeconds) {
-    std::fprintf(out_, "\r\033[Kscansurf: %s... (%.1f s)", stage.c_str(), elapsed());
-    std::fflush(out_);
-    lineShown_ = true;
-  }
+void Progress::line(const std::string& text) {
+  if (mode_ != ProgressMode::Terminal || elapsed() <= kQuietSeconds) return;
+  std::fprintf(out_, "\r\033[Kscansurf: %s (%.1f s)", text.c_str(), elapsed());
+  std::fflush(out_);
+  lineShown_ = true;
 }
 
-void Progress::done(const std::string& stage, double seconds) {
-  if (mode_ == ProgressMode::Terminal && elapsed() > kQuietSeconds) {
-    std::fprintf(out_, "\r\033[Kscansurf: %s done in %.1f s, working... (%.1f s)", stage.c_str(), seconds, elapsed());
-    std::fflush(out_);
-    lineShown_ = true;
-  }
-  if (mode_ != ProgressMode::Json) return;
-  std::fprintf(out_, "{\"event\":\"done\",\"stage\":\"%s\",\"seconds\":%.3f,\"elapsed\":%.3f}\n", stage.c_str(), seconds,
-               elapsed());
+// Invalid UTF-8 in a message (a Latin-1 ROI name) is replaced, never a broken record.
+void Progress::record(const std::string& json) {
+  std::fprintf(out_, "%s\n", json.c_str());
   std::fflush(out_);
+}
+
+void Progress::begin(const std::string& stage, const StagePlace& place) {
+  if (mode_ == ProgressMode::Json) return record(stageJson("begin", stage, place, elapsed()).dump());
+  line(stage + placeText(place) + "...");
+}
+
+void Progress::done(const std::string& stage, double seconds, const StagePlace& place) {
+  if (mode_ == ProgressMode::Json) {
+    nlohmann::ordered_json j = stageJson("done", stage, place, elapsed());
+    j["seconds"] = std::round(seconds * 1000) / 1000;
+    return record(j.dump());
+  }
+  char took[32];
+  std::snprintf(took, sizeof took, " done in %.1f s", seconds);
+  line(stage + placeText(place) + took + ", working...");
+}
+
+void Progress::warning(const std::string& message) {
+  if (mode_ == ProgressMode::Json) {
+    return record(nlohmann::ordered_json{{"event", "warning"}, {"message", message}}.dump(
+        -1, ' ', false, nlohmann::ordered_json::error_handler_t::replace));
+  }
+  clearLine();
+  std::fprintf(out_, "scansurf: warning: %s\n", printable(message).c_str());
+}
+
+void Progress::error(const std::string& message) {
+  if (mode_ == ProgressMode::Json) {
+    return record(nlohmann::ordered_json{{"event", "error"}, {"message", message}}.dump(
+        -1, ' ', false, nlohmann::ordered_json::error_handler_t::replace));
+  }
+  clearLine();
+  std::fprintf(out_, "scansurf: error: %s\n", printable(message).c_str());
 }
 
 void Progress::finish(int exitCode) {
@@ -56,8 +102,8 @@ void Progress::finish(int exitCode) {
   finished_ = true;
   clearLine();
   if (mode_ == ProgressMode::Json) {
-    std::fprintf(out_, "{\"event\":\"finish\",\"exit_code\":%d,\"elapsed\":%.3f}\n", exitCode, elapsed());
-    std::fflush(out_);
+    record(nlohmann::ordered_json{{"event", "finish"}, {"exit_code", exitCode}, {"elapsed", std::round(elapsed() * 1000) / 1000}}
+               .dump());
   }
 }
 

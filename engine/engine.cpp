@@ -74,22 +74,30 @@ struct Engine::Impl : EngineState {};
 
 namespace {
 
-// Times each stage into `out` and reports it through options.onStage.
+// Times each stage into `out` and reports it through options.onStage and onStageEvent: begin
+// announces a stage, lap ends it (stages follow each other: a stage's time runs from the
+// previous lap).
 class StageClock {
  public:
   StageClock(std::vector<StageTime>& out, const BuildOptions& options)
       : out_(out), options_(options), start_(std::chrono::steady_clock::now()) {}
+  void begin(const char* stage) {
+    if (options_.onStageEvent) options_.onStageEvent({stage, false, 0, layer_, layers_});
+  }
   void lap(const char* stage) {
     const auto now = std::chrono::steady_clock::now();
     out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
     if (options_.onStage) options_.onStage(out_.back().stage, out_.back().seconds);
+    if (options_.onStageEvent) options_.onStageEvent({stage, true, out_.back().seconds, layer_, layers_});
     start_ = now;
   }
+  void setLayer(int layer, int layers) { layer_ = layer, layers_ = layers; }
 
  private:
   std::vector<StageTime>& out_;
   const BuildOptions& options_;
   std::chrono::steady_clock::time_point start_;
+  int layer_ = -1, layers_ = 1;
 };
 
 Result<void> checkNesting(const Nesting& nesting) {
@@ -106,17 +114,21 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
                            const MedialCrossings* medial = nullptr) {
   Surfaces surfaces;
   surfaces.convention = options.convention;
+  clock.begin("assembly");
   surfaces.mesh = assembleMesh(grid, cells, options.threads);
   cells = {};
   clock.lap("assembly");
   if (options.smoothing.enabled) {
+    clock.begin("smoothing");
     smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, medial);
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {
+    clock.begin("remeshing");
     surfaces.remeshing = remeshMesh(surfaces.mesh, grid, contours, nesting, options.remeshing, options.threads);
     clock.lap("remeshing");
   }
+  clock.begin("feature surfaces");
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
   clock.lap("feature surfaces");
   return surfaces;
@@ -136,6 +148,7 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
 template <typename Volume>
 Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
                                   const BuildOptions& options, StageClock& clock) {
+  clock.begin("classification");
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
   clock.lap("classification");
@@ -147,6 +160,7 @@ Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const
 // upperIsData: 32-bit label | clearance words (interpolation).
 Result<std::vector<CellCase>> classifyOwnBuffer(EngineState& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
                                                 bool upperIsData, StageClock& clock) {
+  clock.begin("classification");
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->runInPlace(DeviceLabelVolume{buffer.handle(), 0, bits, grid},
                                                                                 buffer.size(), upperIsData));
@@ -171,6 +185,7 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
                                       std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                       const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
                                       StageClock& clock, const MedialCrossings* medial) {
+  clock.begin("interpolation");
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
@@ -199,6 +214,7 @@ Result<Surfaces> surfacesOfPlanes(EngineState& impl, const LabelVolume& planes,
   if (interpolates(factors))
     return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock, medial);
   if (!device) {
+    clock.begin("classification");
     SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
     SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(planes));
     clock.lap("classification");
@@ -275,6 +291,8 @@ Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Gr
   out.surfaces.features.resize(contours.features.size());
   for (std::size_t f = 0; f < contours.features.size(); ++f) out.surfaces.features[f].feature = static_cast<int>(f);
   for (int layer = 0; layer < out.overlaps.layers; ++layer) {
+    clock.setLayer(layer, out.overlaps.layers);
+    clock.begin("scan conversion");
     const ContourSet subset = layerContours(contours, out.overlaps, layer);
     const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
     const std::vector<int> subFactors = factorsOf(sub, grid, factors);
@@ -288,6 +306,7 @@ Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Gr
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
+  clock.setLayer(-1, 1);
   return {};
 }
 
@@ -445,6 +464,7 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     const ContourSet& input = validated.get();
     BuildResult out;
     StageClock clock(out.timings, options);
+    clock.begin("grid");
     // The grid and the budget first: a run that cannot fit is refused before any real work.
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
@@ -456,8 +476,10 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
     const ContourSet& contours = filled ? *filled : input;
     clock.lap("grid");
+    clock.begin("nesting");
     out.nesting = computeNesting(contours, options.grid.sliceTolerance);
     clock.lap("nesting");
+    clock.begin("overlap analysis");
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
     out.subPixelBits = scanner->subPixelBits();
     out.threads = options.threads > 0 ? options.threads : defaultThreadCount();
@@ -469,6 +491,7 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
         options.overlaps == OverlapMode::Layers ? MedialCrossings(contours, grid, out.overlaps) : MedialCrossings();
     clock.lap("overlap analysis");
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
+      clock.begin("scan conversion");
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
       SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order, interpolates(factors),
                                                           toHost, split.empty() ? kNoSplit : split[0], out.volume));

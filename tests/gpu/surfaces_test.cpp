@@ -224,6 +224,42 @@ TEST_F(SurfacesTest, BuildValidatesContoursMadeInMemory) {
   EXPECT_EQ(a->surfaces.mesh.triangles, b->surfaces.mesh.triangles);
 }
 
+// Progress: every stage begins and then ends once, in order, per surface layer, labelled with
+// its layer when the build has several (two circles half over each other: two layers).
+TEST_F(SurfacesTest, EveryStageBeginsAndEndsOncePerLayer) {
+  ContourSet set = sphereContours(6, 1.0);
+  Feature b = set.features[0];
+  b.name = "half over";
+  for (FeatureSlice& slice : b.slices)
+    for (Contour& c : slice.contours)
+      for (Point2& p : c.points) p.x += 6;
+  set.features.push_back(b);
+  BuildOptions options;
+  options.grid.voxelSize = 0.5;
+  options.smoothing.enabled = true;
+  std::vector<BuildOptions::StageEvent> events;
+  options.onStageEvent = [&](const BuildOptions::StageEvent& e) { events.push_back(e); };
+  auto built = engine_->build(set, options);
+  ASSERT_TRUE(built) << built.error().message;
+  ASSERT_EQ(built->overlaps.layers, 2);
+  ASSERT_EQ(events.size(), 2 * (3 + 2 * 5)) << "grid, nesting, overlap analysis; per layer scan conversion, "
+                                               "classification, assembly, smoothing, feature surfaces";
+  std::vector<std::string> layered;
+  for (std::size_t i = 0; i + 1 < events.size(); i += 2) {
+    EXPECT_FALSE(events[i].done) << events[i].stage;
+    EXPECT_TRUE(events[i + 1].done) << events[i + 1].stage;
+    EXPECT_EQ(events[i].stage, events[i + 1].stage);
+    EXPECT_EQ(events[i].layer, events[i + 1].layer);
+    if (events[i].layer >= 0) {
+      EXPECT_EQ(events[i].layers, 2);
+      layered.push_back(std::to_string(events[i].layer) + " " + events[i].stage);
+    }
+  }
+  EXPECT_EQ(layered.front(), "0 scan conversion");
+  EXPECT_EQ(layered.back(), "1 feature surfaces");
+  EXPECT_EQ(events.front().stage, "grid");
+}
+
 // A feature left without a surface is reported by name, never dropped in silence.
 TEST_F(SurfacesTest, FeaturesWithoutASurfaceAreReported) {
   ContourSet set = sphereContours(5, 1.0);

@@ -79,6 +79,16 @@ struct BuildOptions {
   bool keepLabelVolume = true;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
+  // Called as each stage begins and when it is done, on the calling thread: every stage begins
+  // and ends once per surface layer, labelled with its layer when the build has several.
+  struct StageEvent {
+    std::string stage;
+    bool done = false;
+    double seconds = 0;  // when done: the stage's time
+    int layer = -1;      // the surface layer, or -1 when the build has one
+    int layers = 1;
+  };
+  std::function<void(const StageEvent& event)> onStageEvent;
 };
 
 class Engine {
