@@ -162,14 +162,14 @@ shared::PreviewPush fitCamera(const CameraBasis& camera, const PreviewScene& sce
   const double offset[3] = {-cx / halfW, cy / halfH, -depthLo / depthSpan};
   const Vec3 rows[3] = {rowX, rowY, rowZ};
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) push.clip[c * 4 + r] = static_cast<float>(rows[r][static_cast<std::size_t>(c)]);
+    for (int c = 0; c < 3; ++c) push.clip[c * 4 + r] = static_cast<float>(rows[r][c]);
     push.clip[12 + r] = static_cast<float>(offset[r]);
   }
   push.clip[15] = 1.0f;
   // A light over the viewer's shoulder (up and to the left of the camera).
   const Vec3 light = normalized({-forward[0] + 0.35 * up[0] - 0.25 * right[0], -forward[1] + 0.35 * up[1] - 0.25 * right[1],
                                  -forward[2] + 0.35 * up[2] - 0.25 * right[2]});
-  for (int a = 0; a < 3; ++a) push.light[a] = static_cast<float>(light[static_cast<std::size_t>(a)]);
+  for (int a = 0; a < 3; ++a) push.light[a] = static_cast<float>(light[a]);
   return push;
 }
 
