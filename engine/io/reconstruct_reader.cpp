@@ -195,6 +195,12 @@ Result<Section> readSection(const fs::path& path) {
       for (std::size_t i = 0; i < values->size(); i += 2) {
         auto p = transform->inverse({(*values)[i], (*values)[i + 1]});
         if (!p) return invalid(traceWhere + ", point " + std::to_string(i / 2 + 1) + ": " + p.error().message);
+        // A Transform far off (a translation of 1e20) maps every point of a trace onto one double:
+        // the trace would vanish as degenerate and its section with it, so it is refused here.
+        if (!(std::abs(p->x) <= kMaxCoordinate && std::abs(p->y) <= kMaxCoordinate))
+          return invalid(traceWhere + ", point " + std::to_string(i / 2 + 1) + ": its Transform maps it to (" +
+                         formatNumber(p->x) + ", " + formatNumber(p->y) + "), beyond " + formatNumber(kMaxCoordinate) +
+                         " units from the origin");
         trace.points.push_back(*p);
       }
       section.traces.push_back(std::move(trace));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 
 #include "geometry/assembly.h"
@@ -315,6 +316,25 @@ TEST_F(Reconstruct, SeriesReadsObjectsSectionsTransformsAndColours) {
   EXPECT_DOUBLE_EQ(r->objects[0].zMin, z.front());
   EXPECT_DOUBLE_EQ(r->objects[0].zMax, z.back());
   EXPECT_EQ(r->objects[0].slices, 7);
+}
+
+// A Transform far off (a translation of 1e20) maps every point of a trace onto one double:
+// refused naming the section, trace and point, where the trace once vanished as degenerate and
+// took its section with it (exit 0).
+TEST_F(Reconstruct, ATransformBeyondTheCoordinateLimitIsRefused) {
+  for (const char* name : {"tiny.ser", "tiny.1", "tiny.2", "tiny.3"})
+    fs::copy_file(fs::path(SCANSURF_TEST_DATA) / "reconstruct" / name, dir_ / name);
+  std::ifstream in(dir_ / "tiny.2");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::size_t at = text.find("xcoef=\" 0.1 1 0 0 0 0\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("xcoef=\" 0.1 1 0 0 0 0\"").size(), "xcoef=\" 1e20 1 0 0 0 0\"");
+  std::ofstream(dir_ / "tiny.2", std::ios::trunc) << text;
+  const std::string message = errorOf(dir_ / "tiny.ser");
+  EXPECT_NE(message.find("tiny.2: section 2, trace \"soma\""), std::string::npos) << message;
+  EXPECT_NE(message.find("point 1: its Transform maps it to (-1e+20"), std::string::npos) << message;
+  EXPECT_NE(message.find("beyond 1e+07 units from the origin"), std::string::npos) << message;
 }
 
 TEST_F(Reconstruct, ZMidSectionPlacesSectionsAtTheirMiddles) {
