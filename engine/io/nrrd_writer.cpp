@@ -13,6 +13,7 @@
 
 #include "core/text_fields.h"
 #include "io/atomic_file.h"
+#include "io/slicer_terminology.h"
 
 namespace scansurf {
 namespace {
@@ -167,7 +168,7 @@ std::string segmentationHeader(const std::vector<RegularLabelVolume>& layers, co
       << p
       << "Extent:=" << (extent == extents[static_cast<std::size_t>(layer)].end() ? std::string("0 -1 0 -1 0 -1") : extent->second)
       << "\n"
-      << p << "Tags:=|\n";
+      << p << "Tags:=" << slicerTags() << "\n";
   }
   h << "\n";
   return h.str();

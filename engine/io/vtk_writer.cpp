@@ -159,9 +159,4 @@ Result<void> writeSlicerSegmentationVtm(const std::filesystem::path& path, const
   return writeText(path, text);
 }
 
-std::string slicerTerminology() {
-  return "Segmentation category and type - 3D Slicer General Anatomy list~SCT^85756007^Tissue~SCT^85756007^Tissue~^^~"
-         "Anatomic codes - DICOM master list~^^~^^";
-}
-
 }  // namespace scansurf

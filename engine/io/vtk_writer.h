@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/compact_mesh.h"
+#include "io/slicer_terminology.h"
 #include "scansurf/contours.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"
@@ -44,9 +45,5 @@ std::filesystem::path slicerSegmentPath(const std::filesystem::path& vtm, std::s
 Result<void> writeSlicerSegmentVtp(const std::filesystem::path& path, const SlicerSegment& segment);
 // The .vtm listing the segments' files (names relative to the .vtm's folder), in order.
 Result<void> writeSlicerSegmentationVtm(const std::filesystem::path& path, const std::vector<std::string>& blockFiles);
-
-// The terminology every segment gets: SNOMED CT 85756007 "Tissue" as category and type, the
-// codes the DICOM SEG uses, in Slicer's TerminologyEntry form.
-std::string slicerTerminology();
 
 }  // namespace scansurf

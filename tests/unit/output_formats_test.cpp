@@ -496,6 +496,10 @@ TEST_F(OutputFormatsTest, NrrdGeometryPutsKnownPointsInTheirFeature) {
   EXPECT_EQ(n.fields.at("space"), "left-posterior-superior");
   EXPECT_EQ(n.fields.at("Segment1_Name"), "inner");
   EXPECT_EQ(n.fields.at("Segment1_LabelValue"), "2");
+  // Slicer's terminology tag, the codes the DICOM SEG gives: seven fields, ended by '|'.
+  EXPECT_EQ(n.fields.at("Segment1_Tags"),
+            "TerminologyEntry:Segmentation category and type - 3D Slicer General Anatomy list~SCT^85756007^Tissue~"
+            "SCT^85756007^Tissue~^^~Anatomic codes - DICOM master list~^^~^^|");
   const std::vector<double> sizes = numbers(n.fields.at("sizes"));
   const std::vector<double> dirs = numbers(n.fields.at("space directions"));
   const std::vector<double> origin = numbers(n.fields.at("space origin"));
