@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -114,6 +115,16 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
   return plan;
 }
 
+// The time now as ISO 8601 UTC, "2026-12-01T22:07:11Z", for the report.
+std::string utcNow() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
 // Stage times of the CLI's own steps, beside the engine's.
 class Laps {
  public:
@@ -216,6 +227,7 @@ int run(const cli::CliOptions& o) {
   cli::InterruptScope interruptible(staging);
   for (const fs::path& dir : outputDirectories(*plan))
     if (auto locked = staging.lock(dir); !locked) return fail(locked.error());
+  const std::string started = utcNow();
   cli::Progress progress(cli::chooseProgressMode(o.quiet, o.jsonProgress));
   cli::setActiveProgress(&progress);
   Laps laps(progress);
@@ -257,8 +269,10 @@ int run(const cli::CliOptions& o) {
   if (!o.report.empty()) {
     std::vector<fs::path> outputs = staging.targets();
     outputs.push_back(o.report);
-    const RunReport report = makeReport(*contours, result, built->engine.device(),
-                                        {o.input, cli::reportParameters(o, result), laps.timings, files->files, outputs}, stats);
+    ReportContext context{o.input, cli::reportParameters(o, result), laps.timings, files->files, outputs};
+    context.commandLine = o.commandLine;
+    context.started = started;
+    const RunReport report = makeReport(*contours, result, built->engine.device(), std::move(context), stats);
     if (auto ok = staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); }); !ok)
       return fail(ok.error());
   }

@@ -291,6 +291,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   app.footer(kFooter);
   app.set_version_flag("--version", std::string("scansurf ") + version());
   ParsedCommandLine parsed;
+  parsed.options.commandLine.assign(argv, argv + argc);
   Flags flags;
   addGeneral(app, parsed.options, flags);
   addInterpolation(app, flags);

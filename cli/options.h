@@ -16,6 +16,7 @@
 namespace scansurf::cli {
 
 struct CliOptions {
+  std::vector<std::string> commandLine;  // argv as given, for the report
   std::string input;
   std::string output;  // a directory, or NAME.glb
   bool listRois = false;

@@ -61,6 +61,8 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   RunReport r;
   r.generator = std::string("scansurf ") + version();
   r.input = std::move(context.input);
+  r.commandLine = std::move(context.commandLine);
+  r.started = std::move(context.started);
   r.units = contours.units;
   r.parameters = std::move(context.parameters);
   r.deviceName = device.name, r.deviceType = device.type, r.driver = device.driver;
@@ -218,7 +220,12 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
   j["version"] = 1;
   j["generator"] = report.generator.empty() ? std::string("scansurf ") + version() : report.generator;
   j["input"] = report.input;
+  if (!report.commandLine.empty()) j["command_line"] = report.commandLine;
+  if (!report.started.empty()) j["started"] = report.started;
   j["units"] = report.units;
+  j["length_unit"] = report.units;
+  j["area_unit"] = report.units + "^2";
+  j["volume_unit"] = report.units + "^3";
   ordered_json params = ordered_json::object();
   for (const auto& parameter : report.parameters)
     std::visit([&](const auto& v) { params[parameter.first] = v; }, parameter.second);

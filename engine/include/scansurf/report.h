@@ -34,6 +34,8 @@ using ReportValue = std::variant<bool, std::int64_t, double, std::string>;
 struct RunReport {
   std::string generator;  // "scansurf <version>"
   std::string input;
+  std::vector<std::string> commandLine;
+  std::string started;
   std::string units = "mm";
   std::vector<std::pair<std::string, ReportValue>> parameters;
   std::string deviceName, deviceType, driver;
@@ -77,6 +79,8 @@ struct ReportContext {
   std::vector<StageTime> timings;                               // every stage, in order
   std::vector<std::vector<std::filesystem::path>> files;        // per feature: files with its surface (may be empty)
   std::vector<std::filesystem::path> outputs;                   // every file the run writes
+  std::vector<std::string> commandLine;                         // the program's arguments, when it has them
+  std::string started;                                          // when the run started, ISO 8601 UTC
 };
 
 // The report of a build: statistics of every feature surface (computeMeshStats), the grid,
@@ -85,8 +89,9 @@ struct ReportContext {
 RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device, ReportContext context,
                      std::vector<MeshStats> stats = {});
 
-// Writes the report as JSON (format "scansurf-report", version 1): areas in units², volumes in
-// units³, times in seconds. Staged and renamed. Errors: Errc::Io naming the path.
+// Writes the report as JSON (format "scansurf-report", version 1): the unit of lengths, areas
+// and volumes stated (length_unit, area_unit, volume_unit: areas in units², volumes in units³),
+// times in seconds, the command line and start time when known. Staged and renamed. Errors: Errc::Io naming the path.
 Result<void> writeReport(const std::filesystem::path& path, const RunReport& report);
 
 }  // namespace scansurf
