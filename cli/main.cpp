@@ -206,6 +206,27 @@ int listOverlaps(const cli::CliOptions& o) {
   return 0;
 }
 
+// What the report is made from.
+struct ReportInputs {
+  const ContourSet& contours;
+  const BuildResult& result;
+  const DeviceInfo& device;
+  const std::vector<std::vector<fs::path>>& files;
+  const std::vector<MeshStats>& stats;
+  const std::vector<StageTime>& timings;
+  const std::string& started;
+};
+
+Result<void> stageReport(OutputStaging& staging, const cli::CliOptions& o, const ReportInputs& in) {
+  std::vector<fs::path> outputs = staging.targets();
+  outputs.push_back(o.report);
+  ReportContext context{o.input, cli::reportParameters(o, in.result), in.timings, in.files, outputs};
+  context.commandLine = o.commandLine;
+  context.started = in.started;
+  const RunReport report = makeReport(in.contours, in.result, in.device, std::move(context), in.stats);
+  return staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); });
+}
+
 int run(const cli::CliOptions& o) {
   if (o.listOverlaps) return listOverlaps(o);
   if (o.listRois) {
@@ -267,14 +288,8 @@ int run(const cli::CliOptions& o) {
     laps.lap("preview");
   }
   if (!o.report.empty()) {
-    std::vector<fs::path> outputs = staging.targets();
-    outputs.push_back(o.report);
-    ReportContext context{o.input, cli::reportParameters(o, result), laps.timings, files->files, outputs};
-    context.commandLine = o.commandLine;
-    context.started = started;
-    const RunReport report = makeReport(*contours, result, built->engine.device(), std::move(context), stats);
-    if (auto ok = staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); }); !ok)
-      return fail(ok.error());
+    const ReportInputs inputs{*contours, result, built->engine.device(), files->files, stats, laps.timings, started};
+    if (auto ok = stageReport(staging, o, inputs); !ok) return fail(ok.error());
   }
   // With --validation, a validation message means the device's results are suspect: write nothing.
   if (const auto messages = built->engine.validationMessageCount(); messages > 0)
