@@ -57,7 +57,6 @@ void Progress::line(const std::string& text) {
   lineShown_ = true;
 }
 
-// Invalid UTF-8 in a message (a Latin-1 ROI name) is replaced, never a broken record.
 void Progress::record(const std::string& json) {
   std::fprintf(out_, "%s\n", json.c_str());
   std::fflush(out_);
@@ -79,23 +78,18 @@ void Progress::done(const std::string& stage, double seconds, const StagePlace& 
   line(stage + placeText(place) + took + ", working...");
 }
 
-void Progress::warning(const std::string& message) {
+// Invalid UTF-8 in a message (a Latin-1 ROI name) is replaced, never a broken record.
+void Progress::message(const char* kind, const std::string& text) {
   if (mode_ == ProgressMode::Json) {
-    return record(nlohmann::ordered_json{{"event", "warning"}, {"message", message}}.dump(
+    return record(nlohmann::ordered_json{{"event", kind}, {"message", text}}.dump(
         -1, ' ', false, nlohmann::ordered_json::error_handler_t::replace));
   }
   clearLine();
-  std::fprintf(out_, "scansurf: warning: %s\n", printable(message).c_str());
+  std::fprintf(out_, "scansurf: %s: %s\n", kind, printable(text).c_str());
 }
 
-void Progress::error(const std::string& message) {
-  if (mode_ == ProgressMode::Json) {
-    return record(nlohmann::ordered_json{{"event", "error"}, {"message", message}}.dump(
-        -1, ' ', false, nlohmann::ordered_json::error_handler_t::replace));
-  }
-  clearLine();
-  std::fprintf(out_, "scansurf: error: %s\n", printable(message).c_str());
-}
+void Progress::warning(const std::string& text) { message("warning", text); }
+void Progress::error(const std::string& text) { message("error", text); }
 
 void Progress::finish(int exitCode) {
   if (finished_) return;

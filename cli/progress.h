@@ -45,6 +45,7 @@ class Progress {
   void clearLine();
   void line(const std::string& text);
   void record(const std::string& json);
+  void message(const char* kind, const std::string& text);
 
   ProgressMode mode_;
   std::FILE* out_;

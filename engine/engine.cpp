@@ -373,32 +373,14 @@ OverlapReport overlapAnalysis(const ContourSet& contours, const Grid& grid, cons
   return report;
 }
 
-// The contours a run uses: the caller's own when validated (readContours, validateContours),
-// else a validated copy, so that an application's contours made in memory meet the same checks.
-class Validated {
- public:
-  static Validated borrowed(const ContourSet& original) {
-    Validated v;
-    v.original_ = &original;
-    return v;
-  }
-  static Validated owned(ContourSet copy) {
-    Validated v;
-    v.copy_ = std::move(copy);
-    return v;
-  }
-  const ContourSet& get() const { return copy_ ? *copy_ : *original_; }
-
- private:
-  const ContourSet* original_ = nullptr;
-  std::optional<ContourSet> copy_;
-};
-
-Result<Validated> validatedCopy(const ContourSet& contours) {
-  if (contours.planeTolerance > 0) return Validated::borrowed(contours);
-  ContourSet copy = contours;
-  SCANSURF_TRY(validateContours(copy));
-  return Validated::owned(std::move(copy));
+// A validated copy of contours not yet validated (readContours and validateContours set
+// planeTolerance), so that an application's contours made in memory meet the same checks;
+// nothing when they are validated already: the caller's own are used.
+Result<std::optional<ContourSet>> validatedCopyIfNeeded(const ContourSet& contours) {
+  if (contours.planeTolerance > 0) return std::optional<ContourSet>{};
+  std::optional<ContourSet> copy = contours;
+  SCANSURF_TRY(validateContours(*copy));
+  return copy;
 }
 
 }  // namespace
@@ -460,8 +442,8 @@ Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const Previ
 Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOptions& options) {
   return guarded("building the surfaces of " + givenContours.source, [&]() -> Result<BuildResult> {
     SCANSURF_TRY(checkOptions(options));
-    SCANSURF_ASSIGN_OR_RETURN(const Validated validated, validatedCopy(givenContours));
-    const ContourSet& input = validated.get();
+    SCANSURF_ASSIGN_OR_RETURN(const std::optional<ContourSet> copy, validatedCopyIfNeeded(givenContours));
+    const ContourSet& input = copy ? *copy : givenContours;
     BuildResult out;
     StageClock clock(out.timings, options);
     clock.begin("grid");
@@ -515,8 +497,8 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
 Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, const BuildOptions& options) {
   return guarded("analyzing the overlaps of " + givenContours.source, [&]() -> Result<OverlapReport> {
     SCANSURF_TRY(checkOptions(options));
-    SCANSURF_ASSIGN_OR_RETURN(const Validated validated, validatedCopy(givenContours));
-    const ContourSet& input = validated.get();
+    SCANSURF_ASSIGN_OR_RETURN(const std::optional<ContourSet> copy, validatedCopyIfNeeded(givenContours));
+    const ContourSet& input = copy ? *copy : givenContours;
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
     const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
     const ContourSet& contours = filled ? *filled : input;

@@ -34,6 +34,17 @@ inline std::optional<ContourSet::Extent> extentOf(const Box2& box) {
   return ContourSet::Extent{box.minX, box.minY, box.maxX, box.maxY};
 }
 
+// The file extent of a reader's items (ROIs, objects: anything with `closed` contours of
+// `points`), selected or not (ContourSet::fileExtent).
+template <typename Items>
+std::optional<ContourSet::Extent> closedContoursExtent(const Items& items) {
+  Box2 box;
+  for (const auto& item : items)
+    for (const auto& contour : item.closed)
+      for (const Point2& p : contour.points) box.add(p);
+  return extentOf(box);
+}
+
 Box2 boundingBox(const Contour& contour);
 Box2 boundingBox(std::span<const Contour> contours);
 // Of every point of every feature; empty when there is none.

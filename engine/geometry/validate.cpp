@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "scansurf/grid.h"
 #include "scansurf/input.h"
 #include "scansurf/label_volume.h"
 
@@ -122,23 +123,22 @@ double planeToleranceOf(const ContourSet& contours) {
 // group), across features, so that later stages compare planes exactly. Merging distinct
 // values is worth a warning: the slices may have been meant as planes of their own.
 void snapToSharedPlanes(ContourSet& contours) {
-  std::vector<double> z;
-  for (const Feature& f : contours.features)
-    for (const FeatureSlice& s : f.slices) z.push_back(s.z);
-  std::sort(z.begin(), z.end());
-  z.erase(std::unique(z.begin(), z.end()), z.end());
-  std::vector<double> plane(z.size());
-  std::size_t merged = 0;
-  double firstFrom = 0, firstTo = 0;
-  for (std::size_t i = 0; i < z.size(); ++i) {
-    plane[i] = i > 0 && z[i] - plane[i - 1] <= contours.planeTolerance ? plane[i - 1] : z[i];
-    if (plane[i] == z[i]) continue;
-    if (merged++ == 0) firstFrom = z[i], firstTo = plane[i];
-  }
-  if (merged == 0) return;
+  const std::vector<double> planes = contourPlanes(contours, contours.planeTolerance);
+  std::vector<double> moved;  // the distinct positions that merged, for the warning
+  double firstTo = 0;
   for (Feature& f : contours.features)
-    for (FeatureSlice& s : f.slices) s.z = plane[static_cast<std::size_t>(std::lower_bound(z.begin(), z.end(), s.z) - z.begin())];
-  contours.warnings.push_back(sourceName(contours) + ": " + std::to_string(merged) + " slice position(s) within " +
+    for (FeatureSlice& s : f.slices) {
+      const double plane = *(std::upper_bound(planes.begin(), planes.end(), s.z) - 1);  // its group's lowest z
+      if (plane == s.z) continue;
+      if (moved.empty()) firstTo = plane;
+      moved.push_back(s.z);
+      s.z = plane;
+    }
+  if (moved.empty()) return;
+  const double firstFrom = moved.front();
+  std::sort(moved.begin(), moved.end());
+  moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+  contours.warnings.push_back(sourceName(contours) + ": " + std::to_string(moved.size()) + " slice position(s) within " +
                               formatNumber(contours.planeTolerance) + " " + contours.units +
                               " (a thousandth of the median slice spacing) of a lower one were merged into its plane, e.g. z=" +
                               formatNumber(firstFrom) + " into z=" + formatNumber(firstTo));

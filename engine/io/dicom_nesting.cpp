@@ -247,15 +247,17 @@ Result<void> checkDicomNesting(const std::filesystem::path& path, bool stopAtPix
   int deepest = 0;
   if (syntax == Syntax::DeflatedLittle) {
     // The parser holds the data set a few times over, as for a file of that size (checkInputFile).
-    HostMemory memory{inflateLimit * 4, "the limit asked for"};
-    if (inflateLimit == 0) memory = availableHostMemory();
+    const HostMemory memory = inflateLimit > 0 ? HostMemory{} : availableHostMemory();
+    const std::uint64_t limit = inflateLimit > 0 ? inflateLimit : memory.bytes / 4;
     bool over = false;
-    std::istringstream inflated(inflateRest(stream, memory.bytes / 4, over));
+    std::istringstream inflated(inflateRest(stream, limit, over));
     if (over)
       return makeError(Errc::ResourceLimit, path.string() + ": its deflated data set inflates to more than " +
-                                                formatBytes(memory.bytes / 4) + ", a quarter of the " +
-                                                formatBytes(memory.bytes) + " of memory available (" + memory.source +
-                                                "); not read");
+                                                formatBytes(limit) +
+                                                (inflateLimit > 0 ? std::string(", the limit asked for")
+                                                                  : ", a quarter of the " + formatBytes(memory.bytes) +
+                                                                        " of memory available (" + memory.source + ")") +
+                                                "; not read");
     Reader in(inflated, false);
     deepest = deepestNesting(in, Syntax::ExplicitLittle, stopAtPixelData, maxDepth);
   } else {

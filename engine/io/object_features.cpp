@@ -50,19 +50,6 @@ void makeObjectNamesUnique(std::vector<RawObject>& objects, const std::string& f
   }
 }
 
-namespace {
-
-// The in-plane box of every object's closed contours, selected or not (ContourSet::fileExtent).
-std::optional<ContourSet::Extent> fileExtentOf(const std::vector<RawObject>& objects) {
-  Box2 box;
-  for (const RawObject& o : objects)
-    for (const ObjectContour& c : o.closed)
-      for (const Point2& p : c.points) box.add(p);
-  return extentOf(box);
-}
-
-}  // namespace
-
 Result<std::vector<ObjectInfo>> buildObjectFeatures(std::vector<RawObject>& objects, const ObjectFeatureOptions& options,
                                                     ContourSet& out) {
   const std::string& file = out.source;
@@ -75,7 +62,7 @@ Result<std::vector<ObjectInfo>> buildObjectFeatures(std::vector<RawObject>& obje
                                                   "\" matches no object; the file holds " + quotedNames(objects));
   }
 
-  if (!options.patterns.empty()) out.fileExtent = fileExtentOf(objects);  // the default grid's lattice
+  if (!options.patterns.empty()) out.fileExtent = closedContoursExtent(objects);  // the default grid's lattice
   std::vector<ObjectInfo> infos;
   for (RawObject& o : objects) {
     ObjectInfo& info = o.info;

@@ -308,15 +308,6 @@ Result<void> readAllRoiContours(const std::string& file, DcmDataset& dataset, co
   return {};
 }
 
-// The in-plane box of every ROI's closed contours, selected or not (ContourSet::fileExtent).
-std::optional<ContourSet::Extent> fileExtentOf(const std::vector<RawRoi>& rois) {
-  Box2 box;
-  for (const RawRoi& r : rois)
-    for (const RawContour& c : r.closed)
-      for (const Point2& p : c.points) box.add(p);
-  return extentOf(box);
-}
-
 // Slice planes shared by every selected ROI, so abutting structures meet on one plane: the
 // plane of each closed contour of the selected ROIs, in ROI order.
 std::vector<double> sharedSlicePlanes(const std::vector<RawRoi>& rois, double tolerance) {
@@ -494,7 +485,7 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
   readInterpretedTypes(dataset, byNumber, rois);
   SCANSURF_TRY(selectRois(file, options.roiPatterns, rois));
   SCANSURF_TRY(readAllRoiContours(file, dataset, options, byNumber, rois, out.warnings));
-  if (!options.roiPatterns.empty()) out.contours.fileExtent = fileExtentOf(rois);
+  if (!options.roiPatterns.empty()) out.contours.fileExtent = closedContoursExtent(rois);
   addFeatures(file, options.sliceTolerance, rois, out);
   for (RawRoi& r : rois) out.rois.push_back(std::move(r.info));
 

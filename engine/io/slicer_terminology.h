@@ -14,6 +14,6 @@ inline std::string slicerTerminology() {
 }
 
 // The tags value: "TerminologyEntry:<entry>|" (each tag ends with '|', as Slicer parses them).
-inline std::string slicerTags() { return "TerminologyEntry:" + slicerTerminology() + "|"; }
+inline std::string slicerTags(const std::string& entry = slicerTerminology()) { return "TerminologyEntry:" + entry + "|"; }
 
 }  // namespace scansurf
