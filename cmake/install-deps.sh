@@ -9,6 +9,7 @@ packages=(
   libdraco-dev libeigen3-dev libpng-dev zlib1g-dev
   libdcmtk-dev libpugixml-dev libnifti2-dev libglm-dev
   clang-format  # tests/checks/format_check.sh (the build.format test)
+  python3  # tests/checks/function_length.py (build.function_length) and tests/hostile/hostile.py
   dicom3tools  # dciodvfy: the tests validate the DICOM SEG output with it (skipped when missing)
   clang libclang-rt-14-dev  # .ci/run's sanitizer and fuzzing build (libFuzzer, ASan, UBSan runtimes)
 )
