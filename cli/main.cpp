@@ -220,7 +220,8 @@ struct ReportInputs {
 Result<void> stageReport(OutputStaging& staging, const cli::CliOptions& o, const ReportInputs& in) {
   std::vector<fs::path> outputs = staging.targets();
   outputs.push_back(o.report);
-  ReportContext context{o.input, cli::reportParameters(o, in.result), in.timings, in.files, outputs};
+  const RunSettings settings{o.build, o.scene, o.read.referenceSeries, o.engine.validation};
+  ReportContext context{o.input, runParameters(settings, in.result), in.timings, in.files, outputs};
   context.commandLine = o.commandLine;
   context.started = in.started;
   const RunReport report = makeReport(in.contours, in.result, in.device, std::move(context), in.stats);

@@ -312,47 +312,4 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   return parsed;
 }
 
-std::vector<std::pair<std::string, ReportValue>> reportParameters(const CliOptions& o, const BuildResult& built) {
-  const BuildOptions& b = o.build;
-  const DracoOptions& d = o.scene.dracoOptions;
-  const Grid& grid = built.volume.grid;
-  const auto integer = [](auto v) { return ReportValue{static_cast<std::int64_t>(v)}; };
-  // Every value as the run used it, defaults resolved (the grid's pixel size and counts, the
-  // threads, the remeshing length), lengths in the input's units.
-  return {{"convention", b.convention == SurfaceConvention::Enclosing ? "enclosing" : "partition"},
-          {"overlaps", overlapModeName(b.overlaps)},
-          {"overlap_tolerance", b.overlapTolerance.enabled},  // incidental overlaps split in one layer
-          {"overlap_depth", incidentalDepthLimit(b.overlapTolerance, grid)},
-          {"overlap_percent", b.overlapTolerance.percent},
-          {"voxel_size", grid.spacingX},
-          {"voxel_size_y", grid.spacingY},
-          {"grid_nx", integer(grid.nx)},
-          {"grid_ny", integer(grid.ny)},
-          {"grid_source", b.grid.voxelSize > 0              ? "voxel size"
-                          : b.grid.nx > 0                   ? "pixel counts"
-                          : !o.read.referenceSeries.empty() ? "reference CT"
-                                                            : "default (256 pixels along the longer side)"},
-          {"threads", integer(built.threads)},
-          {"interpolation", b.interpolation.factor == InterpolationOptions::kAuto ? std::string("auto")
-                            : b.interpolation.factor == 1                         ? std::string("off")
-                                                                                  : std::to_string(b.interpolation.factor)},
-          {"layers_per_gap_min", integer(built.interpolation.minFactor)},
-          {"layers_per_gap_max", integer(built.interpolation.maxFactor)},
-          {"caps", b.interpolation.caps == CapShape::Flat ? "flat" : "round"},
-          {"smoothing", b.smoothing.enabled},
-          {"smoothing_iterations", integer(b.smoothing.iterations)},
-          {"smoothing_strength", b.smoothing.strength},
-          {"contour_fit", b.smoothing.contourFit},
-          {"junction_smoothing", b.smoothing.junctions},
-          {"remeshing", b.remeshing.enabled},
-          {"edge_length", built.surfaces.remeshing.ran ? built.surfaces.remeshing.edgeLength : b.remeshing.edgeLength},
-          {"curvature_sizing", b.remeshing.curvatureSizing},
-          {"draco", o.scene.draco},
-          {"draco_bits", integer(d.quantizationBits)},  // 0: enough for draco_max_error
-          {"draco_max_error", d.quantizationBits ? 0.0 : defaultQuantizationError(grid)},
-          {"draco_level", integer(d.compressionLevel)},
-          {"reference", o.read.referenceSeries.empty() ? std::string() : o.read.referenceSeries.string()},
-          {"validation", o.engine.validation}};
-}
-
 }  // namespace scansurf::cli

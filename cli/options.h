@@ -44,7 +44,4 @@ struct ParsedCommandLine {
 
 ParsedCommandLine parseCommandLine(int argc, char** argv);
 
-// The options that shaped the run, for the report.
-std::vector<std::pair<std::string, ReportValue>> reportParameters(const CliOptions& options, const BuildResult& built);
-
 }  // namespace scansurf::cli

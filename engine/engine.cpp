@@ -390,6 +390,10 @@ Engine::Engine(Engine&&) noexcept = default;
 Engine& Engine::operator=(Engine&&) noexcept = default;
 Engine::~Engine() = default;
 
+Result<std::vector<DeviceListing>> listDevices() {
+  return guarded("listing the Vulkan devices", [] { return gpu::Context::listDevices(); });
+}
+
 Result<Engine> Engine::create(const EngineOptions& options) {
   return guarded("creating the Vulkan device", [&]() -> Result<Engine> {
     auto impl = std::make_unique<Impl>();

@@ -123,35 +123,59 @@ bool hasLayer(const char* name) {
                      [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-// The user's selector (an index or part of a name), else the best device type that can run
-// scansurf; the error lists every device and why each was passed over.
-Result<VkPhysicalDevice> choosePhysicalDevice(VkInstance instance, const std::string& selector) {
+struct Candidate {
+  VkPhysicalDevice device;
+  DeviceListing listing;
+  int rank;
+};
+
+// Every physical device with its type and, when scansurf cannot run on it, why.
+Result<std::vector<Candidate>> candidates(VkInstance instance) {
   std::uint32_t count = 0;
   SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, nullptr));
-  if (count == 0)
-    return makeError(Errc::NoDevice, "no Vulkan device found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
   std::vector<VkPhysicalDevice> devices(count);
   SCANSURF_VK_TRY(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
-  std::string report;
-  int chosen = -1, bestRank = -1;
+  std::vector<Candidate> out;
   for (std::uint32_t i = 0; i < count; ++i) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(devices[i], &props);
-    const std::string why = rejection(devices[i]);
-    report += "\n  [" + std::to_string(i) + "] " + props.deviceName + " (" + typeName(props.deviceType) + ")" +
-              (why.empty() ? "" : ": unusable, " + why);
+    out.push_back({devices[i],
+                   {static_cast<int>(i), props.deviceName, typeName(props.deviceType), rejection(devices[i])},
+                   typeRank(props.deviceType)});
+  }
+  return out;
+}
+
+// The candidate the selector (an index or part of a name) picks, else the best device type
+// that can run scansurf; -1 when none.
+int chooseCandidate(const std::vector<Candidate>& all, const std::string& selector) {
+  int chosen = -1, bestRank = -1;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const DeviceListing& d = all[i].listing;
     const bool matches =
-        selector.empty() || (selectorIsIndex(selector) ? selector == std::to_string(i)
-                                                       : lower(props.deviceName).find(lower(selector)) != std::string::npos);
-    if (!matches || !why.empty() || typeRank(props.deviceType) <= bestRank) continue;
-    bestRank = typeRank(props.deviceType);
+        selector.empty() || (selectorIsIndex(selector) ? selector == std::to_string(d.index)
+                                                       : lower(d.name).find(lower(selector)) != std::string::npos);
+    if (!matches || !d.unusable.empty() || all[i].rank <= bestRank) continue;
+    bestRank = all[i].rank;
     chosen = static_cast<int>(i);
   }
-  if (chosen < 0)
-    return makeError(Errc::NoDevice, (selector.empty() ? std::string("no usable Vulkan device")
-                                                       : "no usable Vulkan device matches \"" + selector + "\"") +
-                                         "; devices:" + report);
-  return devices[static_cast<std::size_t>(chosen)];
+  return chosen;
+}
+
+// The chosen device; the error lists every device and why each was passed over.
+Result<VkPhysicalDevice> choosePhysicalDevice(VkInstance instance, const std::string& selector) {
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<Candidate> all, candidates(instance));
+  if (all.empty())
+    return makeError(Errc::NoDevice, "no Vulkan device found (install a GPU driver, or Mesa's lavapipe: mesa-vulkan-drivers)");
+  const int chosen = chooseCandidate(all, selector);
+  if (chosen >= 0) return all[static_cast<std::size_t>(chosen)].device;
+  std::string report;
+  for (const Candidate& c : all)
+    report += "\n  [" + std::to_string(c.listing.index) + "] " + c.listing.name + " (" + c.listing.type + ")" +
+              (c.listing.unusable.empty() ? "" : ": unusable, " + c.listing.unusable);
+  return makeError(Errc::NoDevice, (selector.empty() ? std::string("no usable Vulkan device")
+                                                     : "no usable Vulkan device matches \"" + selector + "\"") +
+                                       "; devices:" + report);
 }
 
 }  // namespace
@@ -263,6 +287,16 @@ Result<std::unique_ptr<Context>> Context::create(const EngineOptions& options) {
   SCANSURF_TRY(ctx->createDevice(physical));
   SCANSURF_TRY(ctx->finishSetup());
   return ctx;
+}
+
+Result<std::vector<DeviceListing>> Context::listDevices() {
+  Context probe;
+  SCANSURF_TRY(probe.createInstance(false));
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<Candidate> all, candidates(probe.instance_));
+  std::vector<DeviceListing> out;
+  for (const Candidate& c : all) out.push_back(c.listing);
+  if (const int best = chooseCandidate(all, {}); best >= 0) out[static_cast<std::size_t>(best)].best = true;
+  return out;
 }
 
 Result<std::unique_ptr<Context>> Context::adopt(const ExternalVulkan& vulkan, const EngineOptions& options) {

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gpu/handle.h"
 #include "scansurf/device.h"
@@ -22,6 +23,7 @@ class Context {
  public:
   static Result<std::unique_ptr<Context>> create(const EngineOptions& options);
   static Result<std::unique_ptr<Context>> adopt(const ExternalVulkan& vulkan, const EngineOptions& options);
+  static Result<std::vector<DeviceListing>> listDevices();
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;

@@ -213,7 +213,7 @@ nlohmann::ordered_json timingsJson(const RunReport& report, double& total) {
 
 }  // namespace
 
-Result<void> writeReport(const std::filesystem::path& path, const RunReport& report) {
+std::string reportJson(const RunReport& report) {
   using nlohmann::ordered_json;
   ordered_json j;
   j["format"] = "scansurf-report";
@@ -245,7 +245,11 @@ Result<void> writeReport(const std::filesystem::path& path, const RunReport& rep
   j["warnings"] = report.warnings;
   j["outputs"] = report.outputs;
   // Names are bytes from the input (an ROI name may be Latin-1): invalid UTF-8 is replaced.
-  const std::string text = j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+}
+
+Result<void> writeReport(const std::filesystem::path& path, const RunReport& report) {
+  const std::string text = reportJson(report);
   return writeFileAtomically(path, text.data(), text.size());
 }
 

@@ -1,9 +1,10 @@
-// scansurf: the label volumes a run writes (see run_volumes.h).
+// scansurf: the label volumes a run writes (see run_volumes.h), and labelImage (scansurf/outputs.h).
 #include "io/run_volumes.h"
 
 #include "geometry/label_layers.h"
 #include "geometry/overlaps.h"
 #include "geometry/own_slabs.h"
+#include "scansurf/outputs.h"
 
 #include <cmath>
 
@@ -60,6 +61,14 @@ Result<RunVolumes> runVolumes(const ContourSet& input, const BuildResult& built,
       out.warnings.push_back("feature \"" + contours.features[f].name + "\": " + std::to_string(dropped[f]) +
                              " voxel(s) beyond the reference CT are not in the label volume (it lies on the CT's grid)");
   return out;
+}
+
+Result<LabelImage> labelImage(const ContourSet& contours, const BuildResult& built) {
+  SCANSURF_ASSIGN_OR_RETURN(RunVolumes volumes, runVolumes(contours, built, true));
+  RegularLabelVolume& p = volumes.partition;
+  LabelImage image{
+      p.nx, p.ny, p.nz, std::move(p.labels), p.geometry.origin, p.geometry.axes, p.resampled, std::move(volumes.warnings)};
+  return image;
 }
 
 }  // namespace scansurf

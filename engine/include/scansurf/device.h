@@ -5,6 +5,9 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "scansurf/result.h"
 
 namespace scansurf {
 
@@ -29,5 +32,18 @@ struct DeviceInfo {
   bool borrowed = false;           // the application's device (Engine::adopt)
   std::uint64_t deviceMemory = 0;  // bytes of the largest device-local memory heap
 };
+
+// One Vulkan device as scansurf sees it (listDevices).
+struct DeviceListing {
+  int index = 0;  // what EngineOptions::device takes
+  std::string name;
+  std::string type;      // as DeviceInfo::type
+  std::string unusable;  // why scansurf cannot run on it; empty when it can
+  bool best = false;     // the one Engine::create picks when no device is named
+};
+
+// Every Vulkan device of the machine, whether scansurf can use it, and which it picks by
+// default (SCANSURF_DEVICE aside). Errors: Errc::NoDevice (no Vulkan driver), Errc::Vulkan.
+Result<std::vector<DeviceListing>> listDevices();
 
 }  // namespace scansurf

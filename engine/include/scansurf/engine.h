@@ -89,6 +89,16 @@ struct BuildOptions {
     int layers = 1;
   };
   std::function<void(const StageEvent& event)> onStageEvent;
+
+  // What scansurf recommends and its command-line tool and Python package start from:
+  // smoothing on, interpolation kAuto with round caps, everything else as declared above (the
+  // library's own defaults leave smoothing and interpolation off).
+  static BuildOptions recommended() {
+    BuildOptions options;
+    options.smoothing.enabled = true;
+    options.interpolation.factor = InterpolationOptions::kAuto;
+    return options;
+  }
 };
 
 class Engine {

@@ -2,6 +2,7 @@
 // output of a run at once (all or nothing).
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <set>
@@ -114,6 +115,20 @@ Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSe
 // as it is, with a warning.
 Result<void> writeLabelVolume(const std::filesystem::path& path, const ContourSet& contours, const BuildResult& built,
                               std::vector<std::string>* warnings = nullptr);
+
+// A run's label volume in memory, as the NIfTI output holds it: one label per voxel (label =
+// feature index + 1, inner features first where they share voxels, 0 = background) on a
+// regular lattice: the reference CT's when the grid lies on it, else the grid's (unevenly
+// spaced layers resampled along z, as writeLabelVolume does).
+struct LabelImage {
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<Label> labels;                    // x fastest, then y, then z
+  std::array<double, 3> origin{};               // centre of voxel (0, 0, 0), input units (LPS)
+  std::array<std::array<double, 3>, 3> axes{};  // the step along i, j and k
+  bool resampled = false;                       // layers were resampled onto even planes
+  std::vector<std::string> warnings;            // voxels beyond the reference CT
+};
+Result<LabelImage> labelImage(const ContourSet& contours, const BuildResult& built);
 
 // What writeDicomSeg wrote.
 struct DicomSegSummary {

@@ -18,6 +18,9 @@
 
 namespace scansurf {
 
+struct BuildOptions;  // scansurf/engine.h
+struct SceneOptions;  // scansurf/outputs.h
+
 struct ReportFeature {
   std::string name;
   int label = 0;
@@ -93,5 +96,20 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
 // and volumes stated (length_unit, area_unit, volume_unit: areas in units², volumes in units³),
 // times in seconds, the command line and start time when known. Staged and renamed. Errors: Errc::Io naming the path.
 Result<void> writeReport(const std::filesystem::path& path, const RunReport& report);
+// The same JSON text, for an application that keeps the report in memory (the Python package's
+// BuildResult.report).
+std::string reportJson(const RunReport& report);
+
+// The options that shaped a run, as its report records them: every default resolved to the
+// value used (the grid's pixel size and counts, the threads, the remeshing length), lengths in
+// the input's units. `referenceSeries` is the CT folder the contours were read with (empty:
+// none); `validation` whether the Vulkan validation layers were on.
+struct RunSettings {
+  const BuildOptions& build;
+  const SceneOptions& scene;
+  std::filesystem::path referenceSeries;
+  bool validation = false;
+};
+std::vector<std::pair<std::string, ReportValue>> runParameters(const RunSettings& settings, const BuildResult& built);
 
 }  // namespace scansurf
