@@ -59,3 +59,20 @@ file(SIZE "${WORK}/phantom.glb" size)
 if(size LESS 10000)
   message(FATAL_ERROR "examples/embed wrote a GLB of only ${size} bytes")
 endif()
+
+# The Python package, installed under the prefix (PYTHON_DIR relative to it), imports and builds
+# from there, away from the build tree.
+if(PYTHON AND PYTHON_DIR)
+  set(ENV{PYTHONPATH} "${prefix}/${PYTHON_DIR}")
+  # (Newlines, not semicolons, between the statements: a semicolon would split the argument.)
+  run("import the installed Python package" "${PYTHON}" -c [=[
+import scansurf, sys
+r = scansurf.build(scansurf.read(sys.argv[1]), voxel_size=2.0)
+assert r.surfaces['BODY'].closed
+print(scansurf.__file__, end='')
+]=] "${SOURCE_DIR}/examples/phantom.json")
+  if(NOT output MATCHES "^${prefix}/")
+    message(FATAL_ERROR "the Python package was imported from ${output}, not from the installed prefix")
+  endif()
+  message("Python package: ${output}")
+endif()

@@ -1,0 +1,244 @@
+"""Whole cohorts: many contour sets surfaced on Dask, one output folder each, and a summary.
+
+    import scansurf
+    summary = scansurf.batch(["a/RS.dcm", "b/RS.dcm"], "out/")            # a local cluster
+    summary = scansurf.batch(inputs, "out/", client=Client("tcp://sched:8786"))  # an existing one
+
+Each input gets OUT/<name>/ with its surfaces and report.json, written all or nothing (the
+report last, so a folder with a report is complete); OUT/summary.csv has one row per structure
+and OUT/batch.json one entry per input. A rerun skips the inputs whose folder is complete, so a
+batch killed half way finishes only the rest. Each worker process keeps one engine (one Vulkan
+device) for all its inputs (scansurf.engine); a failing input is recorded with its error and
+does not stop the others.
+"""
+
+import argparse
+import csv
+import json
+import os
+import sys
+import tempfile
+import time
+
+from . import _errors
+
+SUMMARY_COLUMNS = ["input", "roi", "label", "contour_volume", "voxel_volume", "surface_volume", "triangles",
+                   "status", "seconds"]
+INPUT_SUFFIXES = (".json", ".dcm", ".ser", ".mod")
+
+
+class BatchSummary(list):
+    """The summary rows (dicts with SUMMARY_COLUMNS), with the per-input records in .inputs."""
+
+    def __init__(self, rows, inputs):
+        super().__init__(rows)
+        self.inputs = inputs
+
+    @property
+    def failed(self):
+        return [i for i in self.inputs if i["status"] == "failed"]
+
+
+def _task_of(item):
+    """An input as a dict: {"input": path, "reference": CT folder or None, "rois": [...]}."""
+    if isinstance(item, dict):
+        task = dict(item)
+    else:
+        task = {"input": os.fspath(item)}
+    task["input"] = os.fspath(task["input"])
+    return task
+
+
+def inputs_in(folder):
+    """The contour sets of a folder, sorted: .json, .dcm (RTSTRUCT), .ser, .mod files."""
+    names = sorted(os.listdir(folder))
+    return [os.path.join(folder, n) for n in names if n.lower().endswith(INPUT_SUFFIXES)
+            and os.path.isfile(os.path.join(folder, n))]
+
+
+def _names(tasks):
+    """Each input's folder name: its file name up to the first ".", made a safe file name and
+    unique ignoring case, as the command-line batch names them."""
+    from . import _scansurf
+    stems = [os.path.basename(t["input"]).split(".")[0] or "input" for t in tasks]
+    return _scansurf._file_stems(stems)
+
+
+def _rows_of_report(input_path, report, status, seconds):
+    rows = []
+    for f in report["features"]:
+        rows.append({"input": input_path, "roi": f["name"], "label": f["label"],
+                     "contour_volume": f["contour_volume"], "voxel_volume": f["labelled_volume"],
+                     "surface_volume": f["surface_volume"], "triangles": f["triangles"], "status": status,
+                     "seconds": round(seconds, 3)})
+    return rows
+
+
+def _complete(folder):
+    return os.path.isfile(os.path.join(folder, "report.json"))
+
+
+def run_one(task, folder, formats, options):
+    """Surfaces one input into `folder` on this process's engine; never raises for the input's
+    own failure (it is returned as the record's error)."""
+    from . import build, engine, read  # imported on the worker
+    start = time.perf_counter()
+    record = {"input": task["input"], "output": folder, "status": "done", "error": "", "rows": []}
+    if _complete(folder):
+        with open(os.path.join(folder, "report.json")) as f:
+            record["rows"] = _rows_of_report(task["input"], json.load(f), "done", 0.0)
+        record["status"] = "skipped"
+        return record
+    try:
+        cs = read(task["input"], reference=task.get("reference"), rois=task.get("rois"), objects=task.get("objects"))
+        result = build(cs, engine=engine(options.pop("device", None)), **options)
+        result.write(folder, formats=formats, report="report.json")
+        seconds = time.perf_counter() - start
+        with open(os.path.join(folder, "report.json")) as f:
+            record["rows"] = _rows_of_report(task["input"], json.load(f), "done", seconds)
+    except _errors.Error as e:
+        record["status"], record["error"] = "failed", "%s: %s" % (type(e).__name__, e)
+    record["seconds"] = time.perf_counter() - start
+    return record
+
+
+def _write_atomically(path, write):
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, staged = tempfile.mkstemp(prefix=".scansurf-", dir=folder)
+    try:
+        with os.fdopen(fd, "w", newline="") as f:
+            write(f)
+        os.replace(staged, path)
+    except BaseException:
+        os.unlink(staged)
+        raise
+
+
+def write_summary(out_dir, records):
+    """OUT/summary.csv (one row per structure; a failed input one row with its error) and
+    OUT/batch.json (one entry per input)."""
+    rows = []
+    for r in records:
+        if r["status"] == "failed":
+            rows.append({"input": r["input"], "roi": "", "label": "", "contour_volume": "", "voxel_volume": "",
+                         "surface_volume": "", "triangles": "", "status": "failed: " + r["error"],
+                         "seconds": round(r.get("seconds", 0), 3)})
+        rows.extend(r["rows"])
+
+    def csv_out(f):
+        w = csv.DictWriter(f, fieldnames=SUMMARY_COLUMNS)
+        w.writeheader()
+        w.writerows(rows)
+
+    _write_atomically(os.path.join(out_dir, "summary.csv"), csv_out)
+    entries = [{k: r.get(k) for k in ("input", "output", "status", "error", "seconds")} for r in records]
+    _write_atomically(os.path.join(out_dir, "batch.json"), lambda f: json.dump({"inputs": entries}, f, indent=2))
+    return rows
+
+
+class _Progress:
+    def __init__(self, total, enabled):
+        self.total, self.done, self.failed, self.enabled = total, 0, 0, enabled
+        self.start = time.perf_counter()
+
+    def step(self, record):
+        self.done += 1
+        self.failed += record["status"] == "failed"
+        if not self.enabled:
+            return
+        width = 30
+        filled = width * self.done // max(self.total, 1)
+        elapsed = time.perf_counter() - self.start
+        eta = elapsed / self.done * (self.total - self.done)
+        sys.stderr.write("\r[%s%s] %d/%d inputs, %d failed, %.0f s left " %
+                         ("#" * filled, " " * (width - filled), self.done, self.total, self.failed, eta))
+        if self.done == self.total:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+
+def _local_client(workers):
+    from distributed import Client, LocalCluster
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+    return Client(cluster), cluster
+
+
+def batch(inputs, out_dir, client=None, workers=None, formats=("ply",), progress=True, **options):
+    """Surfaces every input into OUT/<name>/ and writes OUT/summary.csv and OUT/batch.json.
+
+    inputs: paths (or a folder: its .json, .dcm, .ser, .mod files), or dicts {"input": path,
+        "reference": CT folder, "rois": [...], "objects": [...]}.
+    client: a dask.distributed Client to run on (its workers need scansurf installed); None: a
+        LocalCluster of `workers` processes (default: this machine's cores), closed at the end;
+        "serial": one after another in this process.
+    formats: as BuildResult.write; options: as scansurf.build (threads defaults to the cores
+        divided among the local workers). Returns a BatchSummary.
+    """
+    if isinstance(inputs, (str, os.PathLike)) and os.path.isdir(inputs):
+        inputs = inputs_in(inputs)
+    tasks = [_task_of(i) for i in inputs]
+    os.makedirs(out_dir, exist_ok=True)
+    folders = [os.path.join(os.fspath(out_dir), n) for n in _names(tasks)]
+    formats = [formats] if isinstance(formats, str) else list(formats)
+    bar = _Progress(len(tasks), progress)
+    if client == "serial":
+        records = []
+        for task, folder in zip(tasks, folders):
+            records.append(run_one(task, folder, formats, dict(options)))
+            bar.step(records[-1])
+        return BatchSummary(write_summary(out_dir, records), records)
+    owned = None
+    if client is None:
+        workers = workers or os.cpu_count() or 1
+        options.setdefault("threads", max(1, (os.cpu_count() or 1) // workers))
+        client, owned = _local_client(workers)
+    try:
+        records = _run_on(client, tasks, folders, formats, options, bar)
+    finally:
+        if owned is not None:
+            client.close()
+            owned.close()
+    return BatchSummary(write_summary(out_dir, records), records)
+
+
+def _run_on(client, tasks, folders, formats, options, bar):
+    from distributed import as_completed
+    futures = {client.submit(run_one, t, f, formats, dict(options), pure=False): i
+               for i, (t, f) in enumerate(zip(tasks, folders))}
+    records = [None] * len(tasks)
+    for future in as_completed(futures):
+        i = futures[future]
+        try:
+            records[i] = future.result()
+        except Exception as e:  # the worker itself died or could not import scansurf
+            records[i] = {"input": tasks[i]["input"], "output": folders[i], "status": "failed",
+                          "error": "%s: %s" % (type(e).__name__, e), "rows": [], "seconds": 0}
+        bar.step(records[i])
+    return records
+
+
+def main(argv):
+    """python3 -m scansurf batch INPUT... -o OUT [--workers N] [--serial] [--format F] [--voxel-size V]"""
+    p = argparse.ArgumentParser(prog="python3 -m scansurf batch", description="Surface many contour sets on Dask.")
+    p.add_argument("command", choices=["batch"])
+    p.add_argument("inputs", nargs="+", help="contour sets, or folders of them")
+    p.add_argument("-o", "--output", required=True, help="output folder: OUT/<name>/, summary.csv, batch.json")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: the cores)")
+    p.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler (tcp://host:8786)")
+    p.add_argument("--serial", action="store_true", help="one input after another in this process, no Dask")
+    p.add_argument("--format", default="ply", help="comma-separated output formats (as scansurf --format)")
+    p.add_argument("--voxel-size", type=float, default=None)
+    p.add_argument("-q", "--quiet", action="store_true")
+    a = p.parse_args(argv)
+    inputs = []
+    for i in a.inputs:
+        inputs.extend(inputs_in(i) if os.path.isdir(i) else [i])
+    client = "serial" if a.serial else None
+    if a.scheduler:
+        from distributed import Client
+        client = Client(a.scheduler)
+    summary = batch(inputs, a.output, client=client, workers=a.workers, formats=a.format.split(","),
+                    progress=not a.quiet, voxel_size=a.voxel_size)
+    for r in summary.failed:
+        sys.stderr.write("scansurf batch: %s failed: %s\n" % (r["input"], r["error"]))
+    return 1 if summary.failed else 0

@@ -1,0 +1,207 @@
+// scansurf Python: devices, engines and build() with options as keywords, starting from what
+// the command-line tool uses (BuildOptions::recommended).
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <ctime>
+#include <functional>
+#include <map>
+
+#include "py_errors.h"
+#include "py_types.h"
+
+namespace scansurf::python {
+namespace py = pybind11;
+namespace {
+
+template <typename T>
+T as(const py::handle& value, const std::string& key, const char* what) {
+  try {
+    return value.cast<T>();
+  } catch (const py::cast_error&) {
+    raiseInvalidArgument("option " + key + ": expected " + what + ", got " + py::str(py::type::of(value)).cast<std::string>());
+  }
+}
+
+// "auto", "off" or a whole number of layers per gap.
+int interpolationFactor(const py::handle& v) {
+  if (py::isinstance<py::str>(v)) {
+    const auto text = v.cast<std::string>();
+    if (text == "auto") return InterpolationOptions::kAuto;
+    if (text == "off") return 1;
+    raiseInvalidArgument("option interpolate: '" + text + "' is not \"auto\", \"off\" or a number of layers per gap");
+  }
+  return as<int>(v, "interpolate", "\"auto\", \"off\" or an int");
+}
+
+// "auto", "off", a depth, or (depth, percent).
+OverlapTolerance overlapTolerance(const py::handle& v) {
+  OverlapTolerance t;
+  if (py::isinstance<py::str>(v)) {
+    const auto text = v.cast<std::string>();
+    if (text == "off") t.enabled = false;
+    if (text != "auto" && text != "off") raiseInvalidArgument("option overlap_tolerance: '" + text + "' is not auto or off");
+    return t;
+  }
+  if (py::isinstance<py::tuple>(v) || py::isinstance<py::list>(v)) {
+    const auto pair = as<std::pair<double, double>>(v, "overlap_tolerance", "(depth, percent)");
+    t.depth = pair.first, t.percent = pair.second;
+    return t;
+  }
+  t.depth = as<double>(v, "overlap_tolerance", "\"auto\", \"off\", a depth or (depth, percent)");
+  return t;
+}
+
+template <typename E>
+E choice(const py::handle& v, const std::string& key, std::initializer_list<std::pair<const char*, E>> names) {
+  const auto text = as<std::string>(v, key, "a str");
+  std::string known;
+  for (const auto& [name, value] : names) {
+    if (text == name) return value;
+    known += (known.empty() ? "" : ", ") + std::string(name);
+  }
+  raiseInvalidArgument("option " + key + ": '" + text + "' is not one of " + known);
+}
+
+using Setter = std::function<void(BuildOptions&, const py::handle&)>;
+
+// Every keyword of build(), named as the command-line flags are (without "--", "-" as "_").
+const std::map<std::string, Setter>& setters() {
+  static const std::map<std::string, Setter> table{
+      {"voxel_size", [](BuildOptions& o, const py::handle& v) { o.grid.voxelSize = as<double>(v, "voxel_size", "a number"); }},
+      {"grid",
+       [](BuildOptions& o, const py::handle& v) {
+         const auto n = as<std::pair<int, int>>(v, "grid", "(nx, ny)");
+         o.grid.nx = n.first, o.grid.ny = n.second;
+       }},
+      {"convention",
+       [](BuildOptions& o, const py::handle& v) {
+         o.convention = choice<SurfaceConvention>(
+             v, "convention", {{"enclosing", SurfaceConvention::Enclosing}, {"partition", SurfaceConvention::Partition}});
+       }},
+      {"overlaps",
+       [](BuildOptions& o, const py::handle& v) {
+         o.overlaps =
+             choice<OverlapMode>(v, "overlaps", {{"layers", OverlapMode::Layers}, {"partition", OverlapMode::Partition}});
+       }},
+      {"overlap_tolerance", [](BuildOptions& o, const py::handle& v) { o.overlapTolerance = overlapTolerance(v); }},
+      {"interpolate", [](BuildOptions& o, const py::handle& v) { o.interpolation.factor = interpolationFactor(v); }},
+      {"caps",
+       [](BuildOptions& o, const py::handle& v) {
+         o.interpolation.caps = choice<CapShape>(v, "caps", {{"round", CapShape::Round}, {"flat", CapShape::Flat}});
+       }},
+      {"smooth", [](BuildOptions& o, const py::handle& v) { o.smoothing.enabled = as<bool>(v, "smooth", "a bool"); }},
+      {"smooth_iterations",
+       [](BuildOptions& o, const py::handle& v) { o.smoothing.iterations = as<int>(v, "smooth_iterations", "an int"); }},
+      {"smooth_strength",
+       [](BuildOptions& o, const py::handle& v) { o.smoothing.strength = as<double>(v, "smooth_strength", "a number"); }},
+      {"contour_fit",
+       [](BuildOptions& o, const py::handle& v) { o.smoothing.contourFit = as<bool>(v, "contour_fit", "a bool"); }},
+      {"junction_smoothing",
+       [](BuildOptions& o, const py::handle& v) { o.smoothing.junctions = as<bool>(v, "junction_smoothing", "a bool"); }},
+      {"remesh", [](BuildOptions& o, const py::handle& v) { o.remeshing.enabled = as<bool>(v, "remesh", "a bool"); }},
+      {"edge_length",
+       [](BuildOptions& o, const py::handle& v) { o.remeshing.edgeLength = as<double>(v, "edge_length", "a number"); }},
+      {"curvature_sizing",
+       [](BuildOptions& o, const py::handle& v) { o.remeshing.curvatureSizing = as<bool>(v, "curvature_sizing", "a bool"); }},
+      {"threads", [](BuildOptions& o, const py::handle& v) { o.threads = as<int>(v, "threads", "an int"); }},
+      {"max_memory",
+       [](BuildOptions& o, const py::handle& v) { o.memoryLimit = as<std::uint64_t>(v, "max_memory", "a number of bytes"); }},
+  };
+  return table;
+}
+
+// The recommended options with the given keywords applied; None leaves a default.
+BuildOptions optionsFrom(const py::dict& keywords) {
+  BuildOptions options = BuildOptions::recommended();
+  for (const auto& [key, value] : keywords) {
+    const auto name = key.cast<std::string>();
+    const auto setter = setters().find(name);
+    if (setter == setters().end()) {
+      std::string known;
+      for (const auto& [k, s] : setters()) known += (known.empty() ? "" : ", ") + k;
+      raiseInvalidArgument("build() got an unknown option '" + name + "'; the options are " + known);
+    }
+    if (!value.is_none()) setter->second(options, value);
+  }
+  return options;
+}
+
+std::string utcNow() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+std::shared_ptr<PyResult> build(PyEngine& engine, std::shared_ptr<PyContours> contours, const py::dict& keywords) {
+  auto result = std::make_shared<PyResult>();
+  result->options = optionsFrom(keywords);
+  result->contours = std::move(contours);
+  result->started = utcNow();
+  result->validation = engine.validation;
+  Result<BuildResult> built = [&] {
+    py::gil_scoped_release unlocked;
+    const std::lock_guard<std::mutex> one(engine.mutex);
+    return engine.engine.build(result->contours->set, result->options);
+  }();
+  result->built = valueOrRaise(std::move(built));
+  result->device = engine.engine.device();
+  result->stats.resize(result->built.surfaces.features.size());
+  result->surfaces.resize(result->built.surfaces.features.size());
+  if (const auto messages = engine.engine.validationMessageCount(); messages > 0)
+    raise({Errc::Vulkan, std::to_string(messages) + " Vulkan validation message(s) so far on this engine"});
+  return result;
+}
+
+py::dict deviceDict(const DeviceInfo& d) {
+  py::dict out;
+  out["name"] = d.name, out["type"] = d.type, out["driver"] = d.driver, out["borrowed"] = d.borrowed;
+  out["memory_bytes"] = d.deviceMemory;
+  return out;
+}
+
+py::list devices() {
+  py::list out;
+  for (const DeviceListing& d : valueOrRaise(listDevices())) {
+    py::dict entry;
+    entry["index"] = d.index, entry["name"] = d.name, entry["type"] = d.type;
+    entry["usable"] = d.unusable.empty(), entry["unusable_because"] = d.unusable, entry["default"] = d.best;
+    out.append(entry);
+  }
+  return out;
+}
+
+std::shared_ptr<PyEngine> makeEngine(const std::string& device, bool validation) {
+  EngineOptions options;
+  options.device = device;
+  options.validation = validation;
+  Result<Engine> engine = [&] {
+    py::gil_scoped_release unlocked;
+    return Engine::create(options);
+  }();
+  return std::make_shared<PyEngine>(valueOrRaise(std::move(engine)), validation);
+}
+
+}  // namespace
+
+void registerEngine(py::module_& m) {
+  py::class_<PyEngine, std::shared_ptr<PyEngine>>(m, "Engine",
+                                                  "One Vulkan device; build() on it any number of times (scansurf.build "
+                                                  "keeps one per device for you).")
+      .def(py::init(&makeEngine), py::arg("device") = "", py::arg("validation") = false)
+      .def_property_readonly("device", [](const PyEngine& e) { return deviceDict(e.engine.device()); })
+      .def_property_readonly("validation", [](const PyEngine& e) { return e.validation; })
+      .def_property_readonly("validation_messages", [](const PyEngine& e) { return e.engine.validationMessageCount(); });
+  m.def("_build", &build, py::arg("engine"), py::arg("contours"), py::arg("options"));
+  m.def("devices", &devices, "Every Vulkan device: index, name, type, whether scansurf can use it, and the default.");
+  m.def("_option_names", [] {
+    std::vector<std::string> names;
+    for (const auto& [k, s] : setters()) names.push_back(k);
+    return names;
+  });
+}
+
+}  // namespace scansurf::python

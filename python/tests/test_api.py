@@ -1,0 +1,185 @@
+"""The Python package: reading, contours from Python, build, results as numpy, writing."""
+
+import filecmp
+import gc
+import json
+import os
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import scansurf
+from conftest import EXAMPLE, sphere
+
+
+def test_devices_lists_the_default_device():
+    devices = scansurf.devices()
+    assert devices and all({"index", "name", "type", "usable", "default"} <= set(d) for d in devices)
+    assert sum(d["default"] for d in devices) == 1
+
+
+def test_read_gives_names_units_and_source(phantom):
+    assert phantom.names == ["BODY", "prostate", "rectum", "target", "vessel", "vertebra"]
+    assert phantom.units == "mm" and len(phantom) == 6
+    assert phantom.input == str(EXAMPLE)
+
+
+def test_surfaces_are_numpy_arrays_of_the_right_shapes(phantom_result):
+    body = phantom_result.surfaces["BODY"]
+    assert body.vertices.dtype == np.float32 and body.vertices.ndim == 2 and body.vertices.shape[1] == 3
+    assert body.faces.dtype == np.uint32 and body.faces.shape[1] == 3
+    assert body.faces.max() == len(body.vertices) - 1  # compact: every vertex used
+    assert body.closed and body.manifold and body.oriented and body.genus == 0 and body.components == 1
+    assert body.triangles == len(body.faces)
+    assert abs(body.volume - body.contour_volume) < 0.01 * body.contour_volume
+    for s in phantom_result.surfaces.values():
+        assert s.volume > 0 and len(s.color) == 3
+
+
+def test_the_shared_mesh_carries_two_labels_per_face(phantom_result):
+    vertices, faces, labels = phantom_result.mesh
+    assert vertices.dtype == np.float32 and faces.dtype == np.uint32 and labels.dtype == np.uint16
+    assert faces.shape == (len(labels), 3) and labels.shape[1] == 2
+    assert (labels[:, 0] < labels[:, 1]).all()
+
+
+def test_views_are_zero_copy_read_only_and_outlive_the_result(phantom):
+    result = scansurf.build(phantom)
+    first = result.surfaces["rectum"].vertices
+    assert np.shares_memory(first, result.surfaces["rectum"].vertices)  # no copy on a second access
+    mesh_vertices = result.mesh[0]
+    assert np.shares_memory(mesh_vertices, result.mesh[0])
+    assert not first.flags.writeable and not mesh_vertices.flags.writeable
+    with pytest.raises(ValueError):
+        first[0, 0] = 1
+    expected, expected_mesh = first.copy(), mesh_vertices.copy()
+    del result
+    gc.collect()
+    np.testing.assert_array_equal(first, expected)  # the view keeps the result alive
+    np.testing.assert_array_equal(mesh_vertices, expected_mesh)
+
+
+def test_label_volume_has_its_geometry(phantom_result):
+    lv = phantom_result.label_volume
+    grid = phantom_result.grid
+    assert lv.dtype == np.uint16 and lv.ndim == 3
+    assert lv.shape[1:] == (grid["ny"], grid["nx"])
+    assert lv.spacing[0] == pytest.approx(grid["spacing_x"]) and lv.origin[0] == pytest.approx(grid["origin_x"])
+    np.testing.assert_allclose(lv.directions, np.eye(3))
+    assert set(np.unique(lv)) == set(range(7))  # background and the six labels
+    # The labelled volume of a label that nothing covers equals the report's (rectum: label 3).
+    voxel = float(np.prod(lv.spacing))
+    rectum = phantom_result.surfaces["rectum"]
+    assert (lv == 3).sum() * voxel == pytest.approx(rectum.voxel_volume, rel=0.02)
+    point = lv.index_to_point([[0, 0, 0]])[0]
+    np.testing.assert_allclose(point, lv.origin)
+
+
+def test_report_is_a_dict_with_the_parameters_used(phantom_result):
+    report = phantom_result.report
+    assert report["format"] == "scansurf-report"
+    assert report["parameters"]["smoothing"] is True and report["parameters"]["interpolation"] == "auto"
+    assert [f["name"] for f in report["features"]] == list(phantom_result.surfaces)
+
+
+def test_options_as_keywords(phantom):
+    raw = scansurf.build(phantom, smooth=False, interpolate="off", voxel_size=2.0)
+    assert raw.report["parameters"]["smoothing"] is False
+    assert raw.report["parameters"]["voxel_size"] == 2.0
+    assert raw.grid["spacing_x"] == 2.0
+
+
+def test_a_build_with_no_options_is_the_command_line_tools(tmp_path, phantom_result, cli):
+    py = tmp_path / "py"
+    written = phantom_result.write(py, formats=["ply", "glb"])
+    assert str(py / "report.json") == written[-1]  # the report is moved into place last
+    subprocess.run([cli, str(EXAMPLE), "-o", str(tmp_path / "cli"), "-q", "--format", "ply,glb"], check=True)
+    for name in ["BODY.ply", "rectum.ply", "multilabel.ply", "phantom.glb"]:
+        assert filecmp.cmp(py / name, tmp_path / "cli" / name, shallow=False), name
+    report = json.loads((py / "report.json").read_text())
+    assert report["outputs"][-1] == str(py / "report.json")
+
+
+def test_write_label_volume_and_vtk_formats(tmp_path, phantom_result):
+    written = phantom_result.write(tmp_path, formats=["vtp", "seg.vtm"], label_volume="labels.nii.gz", report=None)
+    names = {os.path.basename(p) for p in written}
+    assert {"BODY.vtp", "phantom.seg.vtm", "labels.nii.gz", "labels.label.txt"} <= names
+    assert "report.json" not in names
+
+
+def test_contours_from_python_lists_are_validated():
+    cs = scansurf.contours({"ball": sphere(), "hole": {0.0: [[(-1, -1), (1, -1), (1, 1), (-1, 1)]]}}, source="mine")
+    assert cs.names == ["ball", "hole"] and cs.source == "mine"
+    result = scansurf.build(cs, voxel_size=0.5)
+    ball = result.surfaces["ball"]
+    assert ball.closed and abs(ball.volume - ball.contour_volume) < 0.05 * ball.contour_volume
+    with pytest.raises(scansurf.InvalidInput, match=r"feature \"bad\".*contour"):
+        scansurf.contours({"bad": {0.0: [[(0, 0), (1, 0)]]}})
+    with pytest.raises(scansurf.InvalidArgument, match=r"\(N, 2\)"):
+        scansurf.contours({"bad": {0.0: [[1, 2, 3]]}})
+    listed = scansurf.contours([{"name": "ball", "color": (255, 0, 0), "slices": list(sphere().items())}])
+    assert scansurf.build(listed, voxel_size=1.0).surfaces["ball"].color == (255, 0, 0)
+
+
+def test_contour_set_round_trips_through_json(tmp_path):
+    cs = scansurf.contours({"ball": sphere()})
+    cs.write_json(tmp_path / "ball.json")
+    again = scansurf.read(tmp_path / "ball.json")
+    assert again.names == ["ball"]
+    assert [z for z, _ in again._slices(0)] == [z for z, _ in cs._slices(0)]
+
+
+def test_each_error_is_its_class(tmp_path, phantom):
+    with pytest.raises(scansurf.IoError):
+        scansurf.read(tmp_path / "missing.json")
+    (tmp_path / "bad.json").write_text("{ not json")
+    with pytest.raises(scansurf.InvalidInput, match="bad.json"):
+        scansurf.read(tmp_path / "bad.json")
+    with pytest.raises(scansurf.InvalidArgument, match="smooth_strength"):
+        scansurf.build(phantom, smooth_strength=5.0)
+    with pytest.raises(scansurf.InvalidArgument, match="unknown option 'voxelsize'"):
+        scansurf.build(phantom, voxelsize=1.0)
+    with pytest.raises(scansurf.InvalidArgument, match="expected a number"):
+        scansurf.build(phantom, voxel_size="fine")
+    with pytest.raises(scansurf.ResourceLimit):
+        scansurf.build(phantom, max_memory=1 << 20)
+    with pytest.raises(scansurf.NoDevice, match="no-such-device"):
+        scansurf.Engine("no-such-device")
+    with pytest.raises(scansurf.InvalidArgument):
+        scansurf.read(EXAMPLE, rois=["Heart"])  # ROI selection on a JSON file
+    assert issubclass(scansurf.InvalidInput, ValueError) and issubclass(scansurf.IoError, OSError)
+    assert issubclass(scansurf.OutOfMemory, MemoryError) and issubclass(scansurf.VulkanError, scansurf.Error)
+    assert scansurf.InternalError.exit_code == 7 and scansurf.ResourceLimit.exit_code == 9
+
+
+def test_the_gil_is_released_while_building(phantom):
+    engine = scansurf.Engine()  # an engine of its own: builds on one engine are serialized
+    done = threading.Event()
+    ticks = 0
+
+    def work():
+        scansurf.build(phantom, engine=engine)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    while not done.is_set():
+        ticks += 1
+    thread.join()
+    assert ticks > 10000  # the main thread ran all along
+
+
+def test_interop_meshio(phantom_result):
+    meshio = pytest.importorskip("meshio", reason="meshio is not installed (Debian: python3-meshio)")
+    mesh = phantom_result.surfaces["rectum"].to_meshio()
+    assert isinstance(mesh, meshio.Mesh) and mesh.cells[0].data.shape == phantom_result.surfaces["rectum"].faces.shape
+
+
+def test_interop_vtk(phantom_result):
+    pytest.importorskip("vtkmodules", reason="VTK's Python bindings are not installed (Debian: python3-vtk9)")
+    rectum = phantom_result.surfaces["rectum"]
+    poly = rectum.to_vtk()
+    assert poly.GetNumberOfPoints() == len(rectum.vertices) and poly.GetNumberOfPolys() == len(rectum.faces)
+    assert poly.GetFieldData().GetAbstractArray("name").GetValue(0) == "rectum"

@@ -1,0 +1,84 @@
+"""Batch runs: on a Dask LocalCluster, serially, resumed after a kill, and the CLI's batch."""
+
+import csv
+import filecmp
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+import scansurf
+from cohort import write_cohort
+
+pytest.importorskip("distributed", reason="dask.distributed is not installed (Debian: python3-distributed)")
+
+OPTIONS = {"voxel_size": 1.5}
+
+
+@pytest.fixture(scope="module")
+def cohort(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("cohort")
+    paths = write_cohort(str(folder), 6, scansurf)
+    (folder / "broken.json").write_text('{"version": 1, "features": [{"name": "x", "slices": []}]}')
+    return paths, str(folder / "broken.json")
+
+
+def surface_files(folder):
+    return sorted(n for n in os.listdir(folder) if n.endswith(".ply"))
+
+
+def test_a_local_cluster_gives_the_serial_results_byte_for_byte(tmp_path, cohort):
+    paths, broken = cohort
+    serial = scansurf.batch(paths + [broken], tmp_path / "serial", client="serial", progress=False, **OPTIONS)
+    dask = scansurf.batch(paths + [broken], tmp_path / "dask", workers=2, progress=False, **OPTIONS)
+    assert [r["status"] for r in dask.inputs] == ["done"] * 6 + ["failed"]
+    for p in paths:
+        name = os.path.basename(p)[:-5]
+        a, b = tmp_path / "serial" / name, tmp_path / "dask" / name
+        assert surface_files(a) == surface_files(b) and len(surface_files(a)) == 4
+        for f in surface_files(a):
+            assert filecmp.cmp(a / f, b / f, shallow=False), f
+    # The failing input is recorded with its error and did not stop the others.
+    failed = dask.failed[0]
+    assert failed["input"] == broken and failed["error"].startswith("InvalidInput:") and "broken.json" in failed["error"]
+    rows = list(csv.DictReader(open(tmp_path / "dask" / "summary.csv")))
+    assert len(rows) == 6 * 3 + 1 and rows == [dict(r) for r in rows]
+    assert {r["roi"] for r in rows if r["status"] == "done"} == {"Body", "Organ_A", "Organ_B"}
+    assert [r for r in rows if r["status"].startswith("failed: InvalidInput")][0]["input"] == broken
+    body = [r for r in rows if r["roi"] == "Body"][0]
+    assert float(body["surface_volume"]) == pytest.approx(float(body["contour_volume"]), rel=0.02)
+    assert json.load(open(tmp_path / "dask" / "batch.json"))["inputs"][-1]["status"] == "failed"
+    assert [len(serial), len(dask)] == [len(rows), len(rows)]
+
+
+def test_a_rerun_skips_what_is_complete(tmp_path, cohort):
+    paths, _ = cohort
+    scansurf.batch(paths[:2], tmp_path, client="serial", progress=False, **OPTIONS)
+    again = scansurf.batch(paths, tmp_path, client="serial", progress=False, **OPTIONS)
+    assert [r["status"] for r in again.inputs] == ["skipped"] * 2 + ["done"] * 4
+    assert len(again) == 6 * 3  # the skipped inputs' rows come from their reports
+
+
+def test_a_batch_killed_half_way_finishes_only_the_rest(tmp_path, cohort):
+    paths, _ = cohort
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "scansurf", "batch", *paths, "-o", str(out), "--serial", "-q", "--voxel-size", "1.5"]
+    run = subprocess.Popen(command, env=os.environ.copy())
+    deadline = time.time() + 120
+    while time.time() < deadline and sum((out / os.path.basename(p)[:-5] / "report.json").exists() for p in paths) < 2:
+        time.sleep(0.05)
+    run.send_signal(signal.SIGKILL)
+    run.wait()
+    finished = sum((out / os.path.basename(p)[:-5] / "report.json").exists() for p in paths)
+    assert 2 <= finished < len(paths)
+    subprocess.run(command, check=True, env=os.environ.copy())
+    record = json.load(open(out / "batch.json"))["inputs"]
+    assert [r["status"] for r in record].count("skipped") == finished
+    assert [r["status"] for r in record].count("done") == len(paths) - finished
+    for p in paths:  # nothing partial: each folder holds its whole output
+        assert len(surface_files(out / os.path.basename(p)[:-5])) == 4
+
