@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <string>
 
+#include "batch.h"
 #include "interrupts.h"
 #include "options.h"
 #include "progress.h"
@@ -312,6 +313,7 @@ int main(int argc, char** argv) {
   scansurf::keepFreedMemoryForReuse();  // a batch run: stages reuse freed pages (scansurf/process.h)
   // Nothing may escape as an abort: whatever is left over is an internal error, exit 7.
   try {
+    if (argc > 1 && std::string(argv[1]) == "batch") return cli::runBatch(argc, argv);
     const cli::ParsedCommandLine parsed = cli::parseCommandLine(argc, argv);
     return parsed.run ? run(parsed.options) : parsed.exitCode;
   } catch (const std::bad_alloc&) {

@@ -82,3 +82,20 @@ def test_a_batch_killed_half_way_finishes_only_the_rest(tmp_path, cohort):
     for p in paths:  # nothing partial: each folder holds its whole output
         assert len(surface_files(out / os.path.basename(p)[:-5])) == 4
 
+
+def test_the_command_line_batch_writes_the_same(tmp_path, cohort, cli):
+    paths, broken = cohort
+    python = scansurf.batch(paths[:3] + [broken], tmp_path / "py", client="serial", progress=False, **OPTIONS)
+    run = subprocess.run([cli, "batch", *paths[:3], broken, "-o", str(tmp_path / "cli"), "--workers", "2", "-q",
+                          "--voxel-size", "1.5"], capture_output=True, text=True)
+    assert run.returncode == 3, run.stderr  # the failed input's exit code, after the others ran
+    for p in paths[:3]:
+        name = os.path.basename(p)[:-5]
+        for f in surface_files(tmp_path / "py" / name):
+            assert filecmp.cmp(tmp_path / "py" / name / f, tmp_path / "cli" / name / f, shallow=False)
+    without_time = [{k: v for k, v in r.items() if k != "seconds"} for r in
+                    csv.DictReader(open(tmp_path / "cli" / "summary.csv"))]
+    expected = [{k: str(v) for k, v in r.items() if k != "seconds"} for r in python]
+    assert without_time == expected
+    again = subprocess.run([cli, "batch", *paths[:3], "-o", str(tmp_path / "cli")], capture_output=True, text=True)
+    assert again.returncode == 0 and again.stdout.count(": skipped") == 3
