@@ -1,6 +1,7 @@
 // Topological and metric statistics of a triangle mesh: edge use counts for closedness and
 // orientation, vertex link connectivity for manifoldness, Euler characteristic per
-// edge-connected component for genus, and the divergence theorem for volume.
+// edge-connected component for genus, and the divergence theorem for volume. One walk over
+// the vertices and their corners (no sort of the whole mesh's edges): linear in the surface.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +12,8 @@
 
 namespace scansurf {
 namespace {
+
+constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
 class UnionFind {
  public:
@@ -27,17 +30,6 @@ class UnionFind {
 
  private:
   std::vector<std::uint32_t> parent_;
-};
-
-struct HalfEdge {
-  std::uint64_t key;  // min << 32 | max
-  std::uint32_t triangle;
-  bool forward;  // min -> max in the triangle's winding
-  bool operator<(const HalfEdge& o) const {
-    if (key != o.key) return key < o.key;
-    if (forward != o.forward) return forward < o.forward;
-    return triangle < o.triangle;
-  }
 };
 
 // True when the triangles around v (given as the opposite edges of v's link) form one fan.
@@ -78,52 +70,101 @@ void measure(std::span<const float> positions, std::span<const std::uint32_t> tr
   stats.volume = volume;
 }
 
+// The surface's own vertices, numbered densely in order of first use, and each one's corners
+// (3 * triangle + corner) as compressed rows: everything below walks vertex by vertex, so
+// that it costs what the surface costs, not the whole shared mesh, and sorts only the few
+// edges around one vertex.
+struct VertexCorners {
+  std::vector<std::uint32_t> vertices;  // global index of each local vertex
+  std::vector<std::uint32_t> start;     // corners of local vertex v: corners[start[v] .. start[v + 1])
+  std::vector<std::uint32_t> corners;
+};
+
+VertexCorners cornersByVertex(std::span<const std::uint32_t> triangles) {
+  const std::uint32_t most = triangles.empty() ? 0 : *std::max_element(triangles.begin(), triangles.end());
+  std::vector<std::uint32_t> local(triangles.empty() ? 0 : std::size_t{most} + 1, kNone);
+  VertexCorners vc;
+  for (const std::uint32_t v : triangles)
+    if (local[v] == kNone) local[v] = static_cast<std::uint32_t>(vc.vertices.size()), vc.vertices.push_back(v);
+  vc.start.assign(vc.vertices.size() + 1, 0);
+  for (const std::uint32_t v : triangles) ++vc.start[local[v] + 1];
+  std::partial_sum(vc.start.begin(), vc.start.end(), vc.start.begin());
+  vc.corners.resize(triangles.size());
+  std::vector<std::uint32_t> fill(vc.start.begin(), vc.start.end() - 1);
+  for (std::size_t c = 0; c < triangles.size(); ++c) vc.corners[fill[local[triangles[c]]]++] = static_cast<std::uint32_t>(c);
+  return vc;
+}
+
+// One use of the edge from a vertex to `other` (a greater vertex index) by `triangle`;
+// outward when the triangle's winding runs from the vertex to `other`.
+struct EdgeUse {
+  std::uint32_t other, triangle;
+  bool outward;
+  bool operator<(const EdgeUse& o) const {
+    if (other != o.other) return other < o.other;
+    if (outward != o.outward) return outward < o.outward;
+    return triangle < o.triangle;
+  }
+};
+
 // What the edges say: closed when every undirected edge has two uses, oriented when no
 // directed edge repeats (for a closed mesh: each edge once in each direction); the triangles'
-// components (joined across edges) and one triangle per undirected edge.
+// components (joined across edges), one triangle per undirected edge, and whether every
+// vertex's link (the edges opposite it) is one connected fan.
 struct EdgeCensus {
-  bool closed = true, oriented = true;
+  bool closed = true, oriented = true, fans = true;
   UnionFind components;
   std::vector<std::uint32_t> edgeTriangle;
 };
 
-EdgeCensus censusOfEdges(std::span<const std::uint32_t> triangles) {
-  const std::size_t t = triangles.size() / 3;
-  std::vector<HalfEdge> edges;
-  edges.reserve(3 * t);
-  bool degenerate = false;
-  for (std::size_t f = 0; f < t; ++f) {
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t a = triangles[3 * f + c], b = triangles[3 * f + (c + 1) % 3];
-      if (a == b) degenerate = true;
-      const std::uint64_t lo = std::min(a, b), hi = std::max(a, b);
-      edges.push_back({lo << 32 | hi, static_cast<std::uint32_t>(f), a < b});
-    }
+// The edges of vertex v to greater vertices, each edge counted at its smaller end.
+void censusAtVertex(std::span<const std::uint32_t> triangles, std::span<const std::uint32_t> corners, std::uint32_t v,
+                    EdgeCensus& census, std::vector<EdgeUse>& uses, std::vector<std::array<std::uint32_t, 2>>& link,
+                    std::vector<std::uint32_t>& scratch) {
+  uses.clear();
+  link.clear();
+  for (const std::uint32_t c : corners) {
+    const std::uint32_t f = c / 3, next = triangles[3 * f + (c + 1) % 3], prev = triangles[3 * f + (c + 2) % 3];
+    if (next == v || prev == v) census.closed = census.oriented = false;  // a degenerate triangle
+    if (next > v) uses.push_back({next, f, true});
+    if (prev > v) uses.push_back({prev, f, false});
+    link.push_back({next, prev});
   }
-  std::sort(edges.begin(), edges.end());
-  EdgeCensus census{!degenerate, !degenerate, UnionFind(t), {}};
-  std::size_t begin = 0;
-  while (begin < edges.size()) {
+  std::sort(uses.begin(), uses.end());
+  for (std::size_t begin = 0; begin < uses.size();) {
     std::size_t end = begin + 1;
-    while (end < edges.size() && edges[end].key == edges[begin].key) ++end;
+    while (end < uses.size() && uses[end].other == uses[begin].other) ++end;
     if (end - begin != 2) census.closed = false;
     for (std::size_t i = begin + 1; i < end; ++i) {
-      if (edges[i].forward == edges[i - 1].forward) census.oriented = false;
-      census.components.unite(edges[begin].triangle, edges[i].triangle);
+      if (uses[i].outward == uses[i - 1].outward) census.oriented = false;
+      census.components.unite(uses[begin].triangle, uses[i].triangle);
     }
-    census.edgeTriangle.push_back(edges[begin].triangle);
+    census.edgeTriangle.push_back(uses[begin].triangle);
     begin = end;
+  }
+  if (census.fans && !singleFan(link, scratch)) census.fans = false;
+}
+
+EdgeCensus censusOfEdges(std::span<const std::uint32_t> triangles, const VertexCorners& vc) {
+  EdgeCensus census{true, true, true, UnionFind(triangles.size() / 3), {}};
+  census.edgeTriangle.reserve(triangles.size() / 2 + 1);
+  std::vector<EdgeUse> uses;
+  std::vector<std::array<std::uint32_t, 2>> link;
+  std::vector<std::uint32_t> scratch;
+  for (std::size_t v = 0; v < vc.vertices.size(); ++v) {
+    const std::span<const std::uint32_t> corners(vc.corners.data() + vc.start[v], vc.start[v + 1] - vc.start[v]);
+    censusAtVertex(triangles, corners, vc.vertices[v], census, uses, link, scratch);
   }
   return census;
 }
 
 // Components and genus from the Euler characteristic of each component (V counts
-// (component, vertex) pairs).
-void countTopology(std::span<const std::uint32_t> triangles, EdgeCensus& census, MeshStats& stats) {
+// (component, vertex) pairs: a vertex where two components touch counts in both).
+void countTopology(std::span<const std::uint32_t> triangles, const VertexCorners& vc, EdgeCensus& census, MeshStats& stats) {
   const std::size_t t = triangles.size() / 3;
   std::vector<std::uint32_t> componentOf(t, 0);
-  int componentCount = 0;
   std::vector<int> index(t, -1);
+  int componentCount = 0;
   for (std::size_t f = 0; f < t; ++f) {
     const std::uint32_t root = census.components.find(static_cast<std::uint32_t>(f));
     if (index[root] < 0) index[root] = componentCount++;
@@ -132,38 +173,18 @@ void countTopology(std::span<const std::uint32_t> triangles, EdgeCensus& census,
   std::vector<long long> chi(static_cast<std::size_t>(componentCount), 0);
   for (std::size_t f = 0; f < t; ++f) chi[componentOf[f]] += 1;
   for (std::uint32_t f : census.edgeTriangle) chi[componentOf[f]] -= 1;
-  std::vector<std::uint64_t> componentVertices;
-  componentVertices.reserve(3 * t);
-  for (std::size_t f = 0; f < t; ++f)
-    for (int c = 0; c < 3; ++c) componentVertices.push_back(std::uint64_t{componentOf[f]} << 32 | triangles[3 * f + c]);
-  std::sort(componentVertices.begin(), componentVertices.end());
-  componentVertices.erase(std::unique(componentVertices.begin(), componentVertices.end()), componentVertices.end());
-  for (std::uint64_t cv : componentVertices) chi[cv >> 32] += 1;
+  std::vector<std::uint32_t> around;
+  for (std::size_t v = 0; v < vc.vertices.size(); ++v) {
+    around.clear();
+    for (std::uint32_t i = vc.start[v]; i < vc.start[v + 1]; ++i) around.push_back(componentOf[vc.corners[i] / 3]);
+    std::sort(around.begin(), around.end());
+    for (std::size_t i = 0; i < around.size(); ++i)
+      if (i == 0 || around[i] != around[i - 1]) chi[around[i]] += 1;
+  }
   stats.components = componentCount;
   long long genus = 0;
   for (long long c : chi) genus += (2 - c) / 2;
   stats.genus = static_cast<int>(genus);
-}
-
-// Every vertex's link (the edges opposite it) is one connected fan. `vertices`: the surface's
-// own, sorted, so that this costs what the surface costs, not the whole shared mesh.
-bool everyLinkOneFan(std::span<const std::uint32_t> triangles, const std::vector<std::uint32_t>& vertices) {
-  auto local = [&](std::uint32_t v) {
-    return static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
-  };
-  const std::size_t t = triangles.size() / 3, m = vertices.size();
-  std::vector<std::uint32_t> start(m + 1, 0);
-  for (std::uint32_t v : triangles) ++start[local(v) + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::array<std::uint32_t, 2>> link(3 * t);
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t f = 0; f < t; ++f)
-    for (int c = 0; c < 3; ++c)
-      link[fill[local(triangles[3 * f + c])]++] = {triangles[3 * f + (c + 1) % 3], triangles[3 * f + (c + 2) % 3]};
-  std::vector<std::uint32_t> scratch;
-  for (std::size_t v = 0; v < m; ++v)
-    if (start[v] != start[v + 1] && !singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch)) return false;
-  return true;
 }
 
 }  // namespace
@@ -172,16 +193,15 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
   MeshStats stats;
   stats.triangles = triangles.size() / 3;
   measure(positions, triangles, stats);
-  EdgeCensus census = censusOfEdges(triangles);
-  countTopology(triangles, census, stats);
-  std::vector<std::uint32_t> vertices(triangles.begin(), triangles.end());
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  const VertexCorners vc = cornersByVertex(triangles);
+  EdgeCensus census = censusOfEdges(triangles, vc);
+  countTopology(triangles, vc, census, stats);
+  const std::size_t known = positions.size() / 3;
   stats.vertices =
-      static_cast<std::size_t>(std::lower_bound(vertices.begin(), vertices.end(), positions.size() / 3) - vertices.begin());
+      static_cast<std::size_t>(std::count_if(vc.vertices.begin(), vc.vertices.end(), [&](std::uint32_t v) { return v < known; }));
   stats.closed = census.closed;
   stats.oriented = census.oriented;
-  stats.manifold = census.closed && everyLinkOneFan(triangles, vertices);
+  stats.manifold = census.closed && census.fans;
   return stats;
 }
 
