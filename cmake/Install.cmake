@@ -28,7 +28,7 @@ if(SCANSURF_BUILD_CLI)
 endif()
 install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION ${CMAKE_INSTALL_DOCDIR})
 # The user's pages (README links them); the measurements stay in the source tree.
-foreach(page input-format library outputs formats limits method overlaps)
+foreach(page input-format library python outputs formats limits method overlaps)
   install(FILES "${PROJECT_SOURCE_DIR}/docs/${page}.md" DESTINATION ${CMAKE_INSTALL_DOCDIR})
 endforeach()
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/examples/" DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples)
