@@ -16,6 +16,7 @@ find_package(Eigen3 REQUIRED NO_MODULE)
 target_link_libraries(scansurf_draco INTERFACE Eigen3::Eigen)
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)  # SHA-256 of the inputs, for the report
 # DICOM RT Structure Sets and CT series (engine/io): Debian's DCMTK config, targets DCMTK::<module>;
 # DICOM SEG output uses DCMTK::dcmseg with dcmfg and dcmiod.
 find_package(DCMTK REQUIRED CONFIG)

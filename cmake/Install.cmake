@@ -26,7 +26,7 @@ install(FILES "${PROJECT_BINARY_DIR}/scansurfConfig.cmake" "${PROJECT_BINARY_DIR
 if(SCANSURF_BUILD_CLI)
   install(TARGETS scansurf_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
-install(FILES "${PROJECT_SOURCE_DIR}/README.md" DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES "${PROJECT_SOURCE_DIR}/README.md" "${PROJECT_SOURCE_DIR}/docs/report.schema.json" DESTINATION ${CMAKE_INSTALL_DOCDIR})
 # The user's pages (README links them); the measurements stay in the source tree.
 foreach(page input-format library python outputs formats limits method overlaps)
   install(FILES "${PROJECT_SOURCE_DIR}/docs/${page}.md" DESTINATION ${CMAKE_INSTALL_DOCDIR})

@@ -54,6 +54,7 @@ Result<ContourSet> readStructureSet(const std::filesystem::path& path, const Rea
   SCANSURF_ASSIGN_OR_RETURN(RtStructure rt, readRtStruct(path, rtOptions));
   ContourSet contours = std::move(rt.contours);
   contours.warnings = std::move(rt.warnings);
+  contours.frameOfReferenceUid = rt.frameOfReferenceUid;
   int surfaced = 0;
   for (const RoiInfo& roi : rt.rois) surfaced += roi.feature >= 0;
   contours.notes.push_back("RTSTRUCT \"" + rt.label + "\": " + std::to_string(rt.rois.size()) + " ROIs, " +
@@ -138,24 +139,39 @@ Result<void> checkInputFile(const std::filesystem::path& path) {
   return {};
 }
 
+// The input file, for the report's hashes (a Reconstruct series lists its own).
+Result<ContourSet> withFiles(Result<ContourSet> contours, const std::filesystem::path& path) {
+  if (contours && contours->files.empty()) contours->files.push_back(path.string());
+  return contours;
+}
+
+// Each surfaced object's number, for the report.
+void numberObjects(const std::vector<ObjectInfo>& objects, ContourSet& contours) {
+  for (const ObjectInfo& o : objects)
+    if (o.feature >= 0 && static_cast<std::size_t>(o.feature) < contours.features.size())
+      contours.features[static_cast<std::size_t>(o.feature)].sourceNumber = o.number;
+}
+
 Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions& options) {
   SCANSURF_TRY(checkInputFile(path));
   const InputFormat format = detectInputFormat(path);
   if (format == InputFormat::Unknown) return unrecognised(path);
   SCANSURF_TRY(checkOptionsApply(format, path, options));
   switch (format) {
-    case InputFormat::RtStruct: return readStructureSet(path, options);
+    case InputFormat::RtStruct: return withFiles(readStructureSet(path, options), path);
     case InputFormat::ReconstructSeries: {
       SCANSURF_ASSIGN_OR_RETURN(ReconstructSeries series, readReconstructSeries(path, {options.objectPatterns}));
+      numberObjects(series.objects, series.contours);
       return std::move(series.contours);
     }
     case InputFormat::ImodModel: {
       ImodOptions imod;
       imod.objectPatterns = options.objectPatterns;
       SCANSURF_ASSIGN_OR_RETURN(ImodModel model, readImodModel(path, imod));
-      return std::move(model.contours);
+      numberObjects(model.objects, model.contours);
+      return withFiles(std::move(model.contours), path);
     }
-    default: return readContoursJson(path);
+    default: return withFiles(readContoursJson(path), path);
   }
 }
 

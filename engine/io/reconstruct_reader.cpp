@@ -473,6 +473,8 @@ Result<ReconstructSeries> readReconstructSeries(const fs::path& path, const Reco
   SCANSURF_ASSIGN_OR_RETURN(out.objects,
                             buildObjectFeatures(objects, {options.objectPatterns, options.requireFeatures}, out.contours));
   out.contours.notes.push_back(seriesNote(out));
+  if (!out.seriesFile.empty()) out.contours.files.push_back(out.seriesFile.string());
+  for (const fs::path& f : files) out.contours.files.push_back(f.string());
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "io/atomic_file.h"
+#include "io/file_hash.h"
 #include "scansurf/palette.h"
 #include "scansurf/version.h"
 
@@ -54,6 +55,14 @@ void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapRepo
   }
 }
 
+InputFile hashedFile(const std::string& path) {
+  InputFile file{path, {}, 0};
+  std::error_code ec;
+  file.bytes = std::filesystem::file_size(path, ec);
+  if (auto digest = sha256OfFile(path)) file.sha256 = std::move(*digest);
+  return file;
+}
+
 }  // namespace
 
 RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device, ReportContext context,
@@ -64,6 +73,9 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.commandLine = std::move(context.commandLine);
   r.started = std::move(context.started);
   r.units = contours.units;
+  for (const std::string& file : contours.files) r.inputFiles.push_back(hashedFile(file));
+  r.frameOfReferenceUid = contours.frameOfReferenceUid;
+  r.reference = contours.reference;
   r.parameters = std::move(context.parameters);
   r.deviceName = device.name, r.deviceType = device.type, r.driver = device.driver;
   r.grid = built.volume.grid;
@@ -81,6 +93,8 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   for (std::size_t f = 0; f < contours.features.size() && f < stats.size(); ++f) {
     ReportFeature rf{
         contours.features[f].name, labelOfFeature(static_cast<int>(f)), colors[f], stats[f], {}, {}, neighbours[f], {}};
+    rf.sourceNumber = contours.features[f].sourceNumber;
+    rf.interpretedType = contours.features[f].interpretedType;
     if (f < context.files.size())
       for (const fs::path& p : context.files[f]) rf.files.push_back(p.string());
     if (f < built.overlaps.features.size()) rf.volumes = built.overlaps.features[f];
@@ -141,6 +155,23 @@ nlohmann::ordered_json interpolationJson(const InterpolationSummary& in) {
           {"caps", in.caps == CapShape::Flat ? "flat" : "round"}};
 }
 
+nlohmann::ordered_json inputFilesJson(const std::vector<InputFile>& files) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const InputFile& f : files)
+    out.push_back({{"path", f.path},
+                   {"sha256", f.sha256.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(f.sha256)},
+                   {"bytes", f.bytes}});
+  return out;
+}
+
+// The CT lattice: pixel (i, j) of slice k is centred at (origin + (i, j) * spacing, slice_z[k]).
+nlohmann::ordered_json referenceJson(const GridReference& g) {
+  return {{"size", {g.nx, g.ny, g.sliceZ.size()}},
+          {"origin", {g.originX, g.originY}},
+          {"spacing", {g.spacingX, g.spacingY}},
+          {"slice_z", g.sliceZ}};
+}
+
 nlohmann::ordered_json featuresJson(const RunReport& report) {
   using nlohmann::ordered_json;
   ordered_json features = ordered_json::array();
@@ -148,11 +179,12 @@ nlohmann::ordered_json featuresJson(const RunReport& report) {
     const MeshStats& s = f.stats;
     features.push_back({{"name", f.name},
                         {"label", f.label},
+                        {"source_number", f.sourceNumber > 0 ? ordered_json(f.sourceNumber) : ordered_json()},
+                        {"interpreted_type", f.interpretedType.empty() ? ordered_json() : ordered_json(f.interpretedType)},
                         {"color", {f.color[0], f.color[1], f.color[2]}},
                         {"triangles", s.triangles},
                         {"vertices", s.vertices},
                         {"area", s.area},
-                        {"volume", s.volume},
                         {"components", s.components},
                         {"genus", s.genus},
                         {"closed", s.closed},
@@ -222,6 +254,9 @@ std::string reportJson(const RunReport& report) {
   j["input"] = report.input;
   if (!report.commandLine.empty()) j["command_line"] = report.commandLine;
   if (!report.started.empty()) j["started"] = report.started;
+  j["input_files"] = inputFilesJson(report.inputFiles);
+  j["frame_of_reference_uid"] = report.frameOfReferenceUid.empty() ? ordered_json() : ordered_json(report.frameOfReferenceUid);
+  j["reference_grid"] = report.reference ? referenceJson(*report.reference) : ordered_json();
   j["units"] = report.units;
   j["length_unit"] = report.units;
   j["area_unit"] = report.units + "^2";

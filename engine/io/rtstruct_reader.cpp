@@ -402,6 +402,8 @@ void addFeature(const std::string& file, RawRoi& r, std::span<const double> plan
   Feature feature;
   feature.name = uniqueFeatureName(who, r.info, usedNames, out.warnings);
   feature.color = r.info.color;
+  feature.sourceNumber = r.info.number;
+  feature.interpretedType = r.info.interpretedType;
   const int degenerate = addSlices(r.closed, planes, feature);
   if (degenerate > 0)
     out.warnings.push_back(who + ": skipped " + std::to_string(degenerate) +

@@ -46,7 +46,8 @@ def rtstruct():
         contours.append(item(ReferencedROINumber=n, ROIDisplayColor=[255, 0, 0], ContourSequence=Sequence(seq)))
     ds.ROIContourSequence = Sequence(contours)
     ds.RTROIObservationsSequence = Sequence(
-        [item(ObservationNumber=n, ReferencedROINumber=n, RTROIInterpretedType="ORGAN") for n, _, _, _ in rois])
+        [item(ObservationNumber=n, ReferencedROINumber=n, RTROIInterpretedType="ORGAN" if n == 1 else "PTV")
+         for n, _, _, _ in rois])
     return ds
 
 
@@ -64,7 +65,8 @@ def test_a_pydicom_dataset_reads_like_its_file(tmp_path):
     assert scansurf.build(ds, voxel_size=1.0).surfaces["Core"].closed  # build() takes a Dataset too
 
 
-def test_a_reference_series_as_datasets(tmp_path):
+def ct_series():
+    """A 64 x 64 CT of 1 mm pixels on the RTSTRUCT's 2 mm slices, with two slices beyond each end."""
     ct = []
     series, study = generate_uid(), generate_uid()
     for k in range(-2, 14):
@@ -85,6 +87,11 @@ def test_a_reference_series_as_datasets(tmp_path):
         s.BitsAllocated, s.BitsStored, s.HighBit, s.PixelRepresentation = 16, 16, 15, 0
         s.PixelData = np.zeros((64, 64), np.uint16).tobytes()
         ct.append(s)
+    return ct
+
+
+def test_a_reference_series_as_datasets(tmp_path):
+    ct = ct_series()
     cs = scansurf.read(rtstruct(), reference=ct)
     result = scansurf.build(cs)
     assert result.grid["spacing_x"] == 1.0  # on the CT's lattice

@@ -574,7 +574,8 @@ TEST_F(OutputFormatsTest, ReportJsonCarriesStatisticsParametersAndTimings) {
   EXPECT_EQ(j["device"]["name"], "test device");
   const MeshStats& s = r.features[0].stats;
   EXPECT_EQ(j["features"][0]["triangles"].get<std::size_t>(), s.triangles);
-  EXPECT_DOUBLE_EQ(j["features"][0]["volume"].get<double>(), s.volume);
+  EXPECT_DOUBLE_EQ(j["features"][0]["surface_volume"].get<double>(), s.volume);
+  EXPECT_FALSE(j["features"][0].contains("volume")) << "one name for the surface volume";
   EXPECT_DOUBLE_EQ(j["features"][0]["area"].get<double>(), s.area);
   EXPECT_EQ(j["features"][0]["genus"], 0);
   EXPECT_EQ(j["features"][0]["closed"], true);

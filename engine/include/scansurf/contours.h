@@ -33,6 +33,11 @@ struct Feature {
   std::string name;
   std::optional<Rgb> color;  // sRGB, when the input gave one
   std::vector<FeatureSlice> slices;
+  // Where the file keeps it, for the report and the segment terminology: RTSTRUCT its ROI
+  // Number (3006,0022) and RT ROI Interpreted Type (3006,00A4), e.g. ORGAN, PTV, EXTERNAL;
+  // IMOD and Reconstruct the object's number (ObjectInfo::number). 0 and empty: not given.
+  int sourceNumber = 0;
+  std::string interpretedType;
 };
 
 // An explicit voxel lattice to lie on, e.g. the CT series the contours were drawn on: pixel
@@ -66,6 +71,12 @@ struct ContourSet {
   // Slice z values closer than this are one plane (input units), set by validation from the
   // data itself (sliceToleranceOf); 0 = not validated.
   double planeTolerance = 0;
+  // The files the reader read (the input, and a Reconstruct series' section files), for the
+  // report's hashes; empty for a set made in memory.
+  std::vector<std::string> files;
+  // RTSTRUCT: the Frame of Reference UID the contours are drawn in (of the first referenced
+  // frame); empty when none.
+  std::string frameOfReferenceUid;
   // What the reader skipped or doubted (skipped contour types, empty ROIs) and what it read
   // (one line each), for a run log. Not used by the method.
   std::vector<std::string> warnings;

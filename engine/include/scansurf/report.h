@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -30,13 +31,25 @@ struct ReportFeature {
   FeatureVolumes volumes;                                // contour and labelled voxel volume, layer, mask layer
   std::vector<std::string> sharesSurfaceWith;            // features across its separating surfaces
   std::vector<std::pair<std::string, double>> overlaps;  // partly overlapping features, shared volume
+  int sourceNumber = 0;                                  // Feature::sourceNumber (ROI Number, object number); 0 = none
+  std::string interpretedType;                           // Feature::interpretedType (RT ROI Interpreted Type)
 };
 
 using ReportValue = std::variant<bool, std::int64_t, double, std::string>;
 
+// A file the contours were read from, and its SHA-256 (hex; empty when it could not be read).
+struct InputFile {
+  std::string path;
+  std::string sha256;
+  std::uint64_t bytes = 0;
+};
+
 struct RunReport {
   std::string generator;  // "scansurf <version>"
   std::string input;
+  std::vector<InputFile> inputFiles;       // ContourSet::files, hashed
+  std::string frameOfReferenceUid;         // ContourSet::frameOfReferenceUid
+  std::optional<GridReference> reference;  // the CT lattice the label volume lies on (ContourSet::reference)
   std::vector<std::string> commandLine;
   std::string started;
   std::string units = "mm";
