@@ -2,6 +2,7 @@
 // C.7.6.16 functional groups) with DCMTK's dcmseg: segments, frames and functional groups are
 // built through its API, which checks the object before it is written.
 #include "io/dicom_seg_writer.h"
+#include "io/slicer_terminology.h"
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -225,9 +226,11 @@ Result<void> addDimensionsAndSharedGroups(DcmSegmentation& seg, const CtSeries& 
 Result<std::vector<Uint16>> addSegments(DcmSegmentation& seg, const ContourSet& contours,
                                         const std::vector<std::size_t>& features) {
   const std::vector<Rgb> colors = featureColors(contours);
-  const CodeSequenceMacro category("85756007", "SCT", "Tissue"), type("85756007", "SCT", "Tissue");
   std::vector<Uint16> numbers;
   for (std::size_t f : features) {
+    const SegmentTerminology t = terminologyOf(contours.features[f].interpretedType);
+    const CodeSequenceMacro category(t.category.value, t.category.scheme, t.category.meaning);
+    const CodeSequenceMacro type(t.type.value, t.type.scheme, t.type.meaning);
     DcmSegment* created = nullptr;
     const std::string label = longString(contours.features[f].name);
     OFCondition c = DcmSegment::create(created, label.c_str(), category, type, DcmSegTypes::SAT_AUTOMATIC, "scansurf");

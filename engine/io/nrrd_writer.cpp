@@ -168,7 +168,7 @@ std::string segmentationHeader(const std::vector<RegularLabelVolume>& layers, co
       << p
       << "Extent:=" << (extent == extents[static_cast<std::size_t>(layer)].end() ? std::string("0 -1 0 -1 0 -1") : extent->second)
       << "\n"
-      << p << "Tags:=" << slicerTags() << "\n";
+      << p << "Tags:=" << slicerTags(e.terminology.empty() ? slicerTerminology(terminologyOf({})) : e.terminology) << "\n";
   }
   h << "\n";
   return h.str();

@@ -43,6 +43,7 @@ struct LabelEntry {
   Label label = 0;
   std::string name;
   Rgb color{};
+  std::string terminology;  // Slicer's TerminologyEntry (slicer_terminology.h); empty: Tissue
 };
 
 // Writes a gzip-encoded NRRD: 3 domain axes, `unsigned char` when every label fits, else

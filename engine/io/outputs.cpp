@@ -18,6 +18,7 @@
 #include "io/ply_writer.h"
 #include "io/png_writer.h"
 #include "io/run_volumes.h"
+#include "io/slicer_terminology.h"
 #include "io/vtk_writer.h"
 #include "scansurf/nesting.h"
 #include "scansurf/palette.h"
@@ -55,7 +56,8 @@ std::vector<LabelEntry> labelTable(const ContourSet& contours) {
   const std::vector<Rgb> colors = featureColors(contours);
   std::vector<LabelEntry> table;
   for (std::size_t f = 0; f < contours.features.size(); ++f)
-    table.push_back({labelOfFeature(static_cast<int>(f)), contours.features[f].name, colors[f]});
+    table.push_back({labelOfFeature(static_cast<int>(f)), contours.features[f].name, colors[f],
+                     slicerTerminology(terminologyOf(contours.features[f].interpretedType))});
   return table;
 }
 
@@ -137,7 +139,8 @@ Result<void> stageSlicerSegmentation(OutputStaging& staging, const fs::path& vtm
       out.warnings.push_back("feature \"" + name + "\" has no surface: no segment for it in " + vtm.filename().string());
       continue;
     }
-    const SlicerSegment segment{"Segment_" + std::to_string(f + 1), name, colors[f], slicerTerminology(), &meshes[f]};
+    const SlicerSegment segment{"Segment_" + std::to_string(f + 1), name, colors[f],
+                                slicerTerminology(terminologyOf(contours.features[f].interpretedType)), &meshes[f]};
     const fs::path target = slicerSegmentPath(vtm, blocks.size());
     blocks.push_back(target.filename().string());
     SCANSURF_TRY(staging.stage(target, [&](const fs::path& p) { return writeSlicerSegmentVtp(p, segment); }));

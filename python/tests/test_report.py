@@ -3,6 +3,7 @@ files' hashes, the ROI numbers and interpreted types, the frame of reference, th
 
 import hashlib
 import json
+import re
 import subprocess
 
 import pytest
@@ -77,3 +78,32 @@ def test_object_numbers_of_a_reconstruct_series(tmp_path, cli):
     report = cli_report(cli, tmp_path, series[0])
     assert all(isinstance(f["source_number"], int) and f["source_number"] >= 1 for f in report["features"])
     assert len(report["input_files"]) > 1  # the series file and its sections
+
+
+def test_rt_types_become_segment_terminology(tmp_path, cli):
+    """RT ROI Interpreted Types as the codes the DICOM SEG, seg.nrrd and .seg.vtm carry."""
+    pydicom = pytest.importorskip("pydicom", reason="pydicom is not installed (Debian: python3-pydicom)")
+    import test_dicom
+    rs, ct = tmp_path / "rs.dcm", tmp_path / "ct"
+    pydicom.dcmwrite(str(rs), test_dicom.rtstruct(), write_like_original=False)
+    ct.mkdir()
+    for i, ds in enumerate(test_dicom.ct_series()):
+        pydicom.dcmwrite(str(ct / ("%03d.dcm" % i)), ds, write_like_original=False)
+    out = tmp_path / "out"
+    subprocess.run([cli, str(rs), "--reference", str(ct), "-o", str(out), "--format", "seg.vtm", "-q",
+                    "--dicom-seg", str(out / "seg.dcm"), "--label-volume", str(out / "rs.seg.nrrd")], check=True)
+    seg = pydicom.dcmread(str(out / "seg.dcm"))
+    codes = [(s.SegmentLabel, s.SegmentedPropertyCategoryCodeSequence[0].CodeValue,
+              s.SegmentedPropertyTypeCodeSequence[0].CodeValue) for s in seg.SegmentSequence]
+    assert codes == [("Box", "123037004", "85756007"), ("Core", "130041", "228793007")]  # ORGAN; PTV
+    header = (out / "rs.seg.nrrd").read_bytes().split(b"\n\n")[0].decode()
+    assert "Segment1_Tags:=TerminologyEntry:Segmentation category and type - DICOM master list~DCM^130041^RT Target~" \
+           "SCT^228793007^PTV~" in header
+    assert "SCT^228793007^PTV" in segment_tags(out / "rs.seg_1.vtp")  # the second segment's block
+    assert "SCT^123037004^Anatomical Structure~SCT^85756007^Tissue" in segment_tags(out / "rs.seg_0.vtp")
+
+
+def segment_tags(vtp):
+    """The Segment_Tags field of a Slicer segment .vtp (a VTK String array in ascii: byte codes)."""
+    found = re.search(r'<Array type="String" Name="Segment_Tags"[^>]*>([0-9 ]*)</Array>', vtp.read_text())
+    return bytes(int(c) for c in found.group(1).split() if c != "0").decode()
