@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "geometry/validate.h"
 #include "io/atomic_file.h"
@@ -311,9 +312,104 @@ Result<void> addReferencedSeries(DcmSegmentation& seg, const CtSeries& ct) {
   return {};
 }
 
-Result<void> saveSegmentation(DcmSegmentation& seg, const std::filesystem::path& path) {
+// The Patient (C.7.1.1, de-identification included), Clinical Trial Subject and Study, General
+// Study (C.7.2.1) and Patient Study (C.7.2.2) attributes: the SEG belongs to the CT's patient
+// and study, and says so as completely as the CT does (DCMTK's import keeps only its own
+// modules' attributes, which leaves out e.g. Study Description and Patient Identity Removed).
+constexpr std::pair<Uint16, Uint16> kPatientAndStudyTags[] = {
+    {0x0008, 0x0005},  // Specific Character Set: the copied names are in the CT's
+    // Patient
+    {0x0010, 0x0010},
+    {0x0010, 0x0020},
+    {0x0010, 0x0021},
+    {0x0010, 0x0022},
+    {0x0010, 0x0024},
+    {0x0010, 0x0030},
+    {0x0010, 0x0032},
+    {0x0010, 0x0040},
+    {0x0010, 0x0200},
+    {0x0010, 0x1001},
+    {0x0010, 0x1002},
+    {0x0010, 0x1100},
+    {0x0010, 0x2160},
+    {0x0010, 0x2201},
+    {0x0010, 0x2202},
+    {0x0010, 0x2292},
+    {0x0010, 0x2293},
+    {0x0010, 0x2294},
+    {0x0010, 0x2297},
+    {0x0010, 0x2298},
+    {0x0010, 0x2299},
+    {0x0010, 0x4000},
+    {0x0012, 0x0062},
+    {0x0012, 0x0063},
+    {0x0012, 0x0064},  // Patient Identity Removed, De-identification Method (Code Sequence)
+    // Clinical Trial Subject and Study
+    {0x0012, 0x0010},
+    {0x0012, 0x0020},
+    {0x0012, 0x0021},
+    {0x0012, 0x0030},
+    {0x0012, 0x0031},
+    {0x0012, 0x0040},
+    {0x0012, 0x0042},
+    {0x0012, 0x0050},
+    {0x0012, 0x0051},
+    // General Study
+    {0x0020, 0x000D},
+    {0x0008, 0x0020},
+    {0x0008, 0x0030},
+    {0x0008, 0x0090},
+    {0x0008, 0x0096},
+    {0x0008, 0x009C},
+    {0x0020, 0x0010},
+    {0x0008, 0x0050},
+    {0x0008, 0x0051},
+    {0x0008, 0x1030},
+    {0x0008, 0x1048},
+    {0x0008, 0x1049},
+    {0x0008, 0x1060},
+    {0x0008, 0x1062},
+    {0x0032, 0x1034},
+    {0x0008, 0x1110},
+    {0x0008, 0x1032},
+    {0x0040, 0x1012},
+    // Patient Study
+    {0x0008, 0x1080},
+    {0x0008, 0x1084},
+    {0x0010, 0x1010},
+    {0x0010, 0x1020},
+    {0x0010, 0x1021},
+    {0x0010, 0x1030},
+    {0x0010, 0x2180},
+    {0x0010, 0x21B0},
+    {0x0038, 0x0010},
+    {0x0038, 0x0014},
+    {0x0038, 0x0060},
+    {0x0038, 0x0062},
+    {0x0010, 0x2203},
+    {0x0010, 0x21A0},
+    {0x0010, 0x21C0},
+    {0x0010, 0x21D0},
+    {0x0038, 0x0500}};
+
+// Each of those the CT has and the SEG lacks (or holds empty), copied.
+Result<void> copyPatientAndStudy(DcmItem& ct, DcmItem& seg) {
+  for (const auto& [group, element] : kPatientAndStudyTags) {
+    const DcmTagKey tag(group, element);
+    DcmElement* source = nullptr;
+    if (ct.findAndGetElement(tag, source).bad() || !source || source->isEmpty()) continue;
+    DcmElement* present = nullptr;
+    if (seg.findAndGetElement(tag, present).good() && present && !present->isEmpty()) continue;
+    if (const OFCondition c = seg.insert(static_cast<DcmElement*>(source->clone()), OFTrue); c.bad())
+      return dcmtkError("the CT's " + std::string(DcmTag(tag).getTagName()), c);
+  }
+  return {};
+}
+
+Result<void> saveSegmentation(DcmSegmentation& seg, DcmItem& firstCt, const std::filesystem::path& path) {
   DcmFileFormat file;
   if (const OFCondition c = seg.writeDataset(*file.getDataset()); c.bad()) return dcmtkError("the Segmentation", c);
+  SCANSURF_TRY(copyPatientAndStudy(firstCt, *file.getDataset()));
   return writeThroughTemporaryPath(path, ".dcm", [&](const std::filesystem::path& temp) -> Result<void> {
     const OFCondition saved = file.saveFile(temp.c_str(), EXS_LittleEndianExplicit);
     if (saved.bad()) return makeError(Errc::Io, "cannot write '" + path.string() + "': " + saved.text());
@@ -341,7 +437,7 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
   SCANSURF_ASSIGN_OR_RETURN(written.frames, addFrames(*seg, layers, census, at, ct, features, numbers));
   written.segments = static_cast<int>(numbers.size());
   SCANSURF_TRY(addReferencedSeries(*seg, ct));
-  SCANSURF_TRY(saveSegmentation(*seg, path));
+  SCANSURF_TRY(saveSegmentation(*seg, first.dataset(), path));
   return written;
 }
 

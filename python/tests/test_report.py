@@ -107,3 +107,35 @@ def segment_tags(vtp):
     """The Segment_Tags field of a Slicer segment .vtp (a VTK String array in ascii: byte codes)."""
     found = re.search(r'<Array type="String" Name="Segment_Tags"[^>]*>([0-9 ]*)</Array>', vtp.read_text())
     return bytes(int(c) for c in found.group(1).split() if c != "0").decode()
+
+
+def test_the_seg_carries_the_cts_patient_and_study(tmp_path, cli):
+    """dcentvfy (dicom3tools) finds no attribute of the patient or study that the CT has and the
+    SEG lacks, de-identification included; dciodvfy finds no error."""
+    pydicom = pytest.importorskip("pydicom", reason="pydicom is not installed (Debian: python3-pydicom)")
+    import shutil
+    import test_dicom
+    from pydicom.dataset import Dataset
+    if not shutil.which("dcentvfy") or not shutil.which("dciodvfy"):
+        pytest.skip("dicom3tools (dcentvfy, dciodvfy) is not installed")
+    rs, ct = tmp_path / "rs.dcm", tmp_path / "ct"
+    pydicom.dcmwrite(str(rs), test_dicom.rtstruct(), write_like_original=False)
+    ct.mkdir()
+    for i, s in enumerate(test_dicom.ct_series()):
+        s.StudyDescription, s.NameOfPhysiciansReadingStudy, s.AdditionalPatientHistory = "Planning CT", "Reader^Rita", "none"
+        s.PatientIdentityRemoved, s.DeidentificationMethod = "YES", "test profile"
+        code = Dataset()
+        code.CodeValue, code.CodingSchemeDesignator, code.CodeMeaning = "113100", "DCM", "Basic Application Confidentiality Profile"
+        s.DeidentificationMethodCodeSequence = [code]
+        s.PatientBirthDate, s.PatientSex, s.StudyDate, s.StudyTime, s.AccessionNumber = "19500101", "O", "20240101", "120000", "A1"
+        s.StudyID, s.ReferringPhysicianName, s.PatientAge, s.PatientWeight = "S1", "Ref^Rob", "074Y", "70"
+        s.SeriesNumber, s.InstanceNumber = 1, i + 1
+        pydicom.dcmwrite(str(ct / ("%03d.dcm" % i)), s, write_like_original=False)
+    out = tmp_path / "out"
+    subprocess.run([cli, str(rs), "--reference", str(ct), "-o", str(out), "--dicom-seg", str(out / "seg.dcm"), "-q"], check=True)
+    entity = subprocess.run(["dcentvfy", str(out / "seg.dcm"), *map(str, sorted(ct.glob("*.dcm")))], capture_output=True, text=True)
+    assert entity.stdout + entity.stderr == "", entity.stdout + entity.stderr
+    iod = subprocess.run(["dciodvfy", str(out / "seg.dcm")], capture_output=True, text=True)
+    assert not [line for line in (iod.stdout + iod.stderr).splitlines() if line.startswith("Error")], iod.stderr
+    seg = pydicom.dcmread(str(out / "seg.dcm"))
+    assert seg.PatientIdentityRemoved == "YES" and seg.StudyDescription == "Planning CT"
