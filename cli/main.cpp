@@ -126,10 +126,21 @@ std::string utcNow() {
   return text;
 }
 
+// The stages a run will have, for the progress line's "k/n": the CLI's own and, per surface
+// layer, the engine's (grid, nesting and the overlap analysis once).
+int plannedStages(const cli::CliOptions& o, int layers) {
+  const BuildOptions& b = o.build;
+  const int cli = 3 + (!o.quiet || !o.report.empty()) + !o.preview.empty();  // read, device, write; statistics, preview
+  const int perLayer = 4 + (b.interpolation.factor != 1) + b.smoothing.enabled + b.remeshing.enabled;
+  return cli + 3 + layers * perLayer;
+}
+
 // Stage times of the CLI's own steps, beside the engine's.
 class Laps {
  public:
-  explicit Laps(cli::Progress& progress) : progress_(progress) {}
+  Laps(cli::Progress& progress, const cli::CliOptions& o) : progress_(progress), options_(o) {
+    progress_.plan(plannedStages(o, 1));
+  }
   void begin(const char* stage) { progress_.begin(stage); }
   void lap(const char* stage) {
     const auto now = std::chrono::steady_clock::now();
@@ -140,6 +151,7 @@ class Laps {
   // A stage of the engine's, within "surfaces" (progress only; add() records them after the build).
   void report(const BuildOptions::StageEvent& e) {
     const cli::StagePlace place{"surfaces", e.layer, e.layers};
+    if (e.layers > 1) progress_.plan(plannedStages(options_, e.layers));
     if (e.done)
       progress_.done(e.stage, e.seconds, place);
     else
@@ -157,6 +169,7 @@ class Laps {
 
  private:
   cli::Progress& progress_;
+  const cli::CliOptions& options_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
@@ -253,7 +266,7 @@ int run(const cli::CliOptions& o) {
   const std::string started = utcNow();
   cli::Progress progress(cli::chooseProgressMode(o.quiet, o.jsonProgress));
   cli::setActiveProgress(&progress);
-  Laps laps(progress);
+  Laps laps(progress, o);
 
   laps.begin("read");
   auto contours = readContours(o.input, o.read);
