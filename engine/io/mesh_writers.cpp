@@ -3,8 +3,10 @@
 #include "io/mesh_writers.h"
 
 #include <draco/io/obj_encoder.h>
+
 #include <draco/io/stl_encoder.h>
 #include <draco/mesh/mesh.h>
+#include <cstdio>
 
 #include <algorithm>
 #include <limits>
@@ -17,9 +19,22 @@
 
 namespace scansurf {
 
-Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name,
-                      const std::string& units) {
+// The surface with its vertex normals, for Draco's OBJ encoder to write as `vn`.
+std::unique_ptr<draco::Mesh> withNormals(const CompactMesh& mesh) {
   std::unique_ptr<draco::Mesh> dm = toDracoMesh(mesh);
+  const std::vector<float> normals = vertexNormals(mesh);
+  draco::GeometryAttribute normal;
+  normal.Init(draco::GeometryAttribute::NORMAL, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
+  const auto vertices = static_cast<std::uint32_t>(mesh.vertexCount());
+  draco::PointAttribute* attribute = dm->attribute(dm->AddAttribute(normal, true, vertices));
+  for (std::uint32_t v = 0; v < vertices; ++v)
+    attribute->SetAttributeValue(draco::AttributeValueIndex(v), &normals[3 * static_cast<std::size_t>(v)]);
+  return dm;
+}
+
+Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& name,
+                      const std::string& units, const ObjMaterial* material) {
+  std::unique_ptr<draco::Mesh> dm = withNormals(mesh);
   dm->SetName(name);
   draco::ObjEncoder encoder;
   draco::EncoderBuffer buffer;
@@ -27,11 +42,21 @@ Result<void> writeObj(const std::filesystem::path& path, const CompactMesh& mesh
     return makeError(Errc::Internal, "cannot encode '" + path.string() + "': Draco's OBJ encoder failed");
   const std::string comment = std::string("# scansurf ") + version() + ": surface of \"" + oneLineText(name, "\"") +
                               "\", coordinates in " + (units.empty() ? std::string("the input's units") : oneLineText(units)) +
-                              "\n";
+                              "\n" +
+                              (material ? "mtllib " + material->library + "\nusemtl " + material->name + "\n" : std::string());
   return writeFileAtomically(path, [&](AtomicFile& file) -> Result<void> {
     SCANSURF_TRY(file.write(comment.data(), comment.size()));
     return file.write(buffer.data(), buffer.size());
   });
+}
+
+Result<void> writeMtl(const std::filesystem::path& path, const ObjMaterial& material) {
+  char kd[64];
+  std::snprintf(kd, sizeof kd, "Kd %.6f %.6f %.6f\n", material.color[0] / 255.0, material.color[1] / 255.0,
+                material.color[2] / 255.0);
+  const std::string text = std::string("# scansurf ") + version() + "\nnewmtl " + material.name + "\nKa 0 0 0\n" + kd +
+                           "Ks 0.2 0.2 0.2\nNs 20\nd 1\nillum 2\n";
+  return writeFileAtomically(path, text.data(), text.size());
 }
 
 Result<void> writeStl(const std::filesystem::path& path, const CompactMesh& mesh, const std::string& units) {

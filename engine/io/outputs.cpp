@@ -49,6 +49,7 @@ GlbOptions glbOptions(const SceneOptions& options, const DracoOptions& draco, co
   glb.dracoOptions = draco;
   glb.frame = options.frame;
   glb.units = contours.units;
+  glb.coordinates = contours.frame;
   return glb;
 }
 
@@ -109,9 +110,16 @@ bool has(const std::vector<MeshFormat>& formats, MeshFormat f) {
   return std::find(formats.begin(), formats.end(), f) != formats.end();
 }
 
+// An OBJ with its colour in a material file beside it.
+Result<void> stageObj(OutputStaging& staging, const fs::path& target, const CompactMesh& mesh, const std::string& name,
+                      const ObjMaterial& material, const std::string& units) {
+  SCANSURF_TRY(staging.stage(target.parent_path() / material.library, [&](const fs::path& p) { return writeMtl(p, material); }));
+  return staging.stage(target, [&](const fs::path& p) { return writeObj(p, mesh, name, units, &material); });
+}
+
 // The per-feature files of one feature in the plan's directory.
 Result<void> stageFeatureFiles(OutputStaging& staging, const OutputPlan& plan, const CompactMesh& mesh, int feature,
-                               const std::string& name, const std::string& stem, const std::string& units,
+                               const std::string& name, const std::string& stem, const Rgb& color, const std::string& units,
                                const DracoOptions& draco, SurfaceOutputs& out) {
   for (MeshFormat format : plan.formats) {
     if (format == MeshFormat::Glb || format == MeshFormat::SegVtm) continue;
@@ -120,8 +128,13 @@ Result<void> stageFeatureFiles(OutputStaging& staging, const OutputPlan& plan, c
       continue;
     }
     const fs::path target = plan.dir / (stem + extensionOf(format));
-    SCANSURF_TRY(
-        staging.stage(target, [&](const fs::path& p) { return writeCompact(p, mesh, feature, format, name, units, draco); }));
+    if (format == MeshFormat::Obj) {
+      SCANSURF_TRY(stageObj(staging, target, mesh, name, {stem + ".mtl", stem, color}, units));
+      out.files[static_cast<std::size_t>(feature)].push_back(plan.dir / (stem + ".mtl"));
+    } else {
+      SCANSURF_TRY(
+          staging.stage(target, [&](const fs::path& p) { return writeCompact(p, mesh, feature, format, name, units, draco); }));
+    }
     out.files[static_cast<std::size_t>(feature)].push_back(target);
   }
   return {};
@@ -254,13 +267,15 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   std::vector<CompactMesh> compact;  // kept for the GLB scene
   SurfaceCompactor compactor(surfaces.mesh);
   std::vector<std::string> used{"multilabel", plan.sceneName};
+  const std::vector<Rgb> colors = featureColors(contours);
   for (std::size_t f = 0; f < featureCount; ++f) {
     const std::string& name = contours.features[f].name;
     SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surfaces.features[f]));
     if (!plan.dir.empty()) {
       const std::string stem = fileStem(name, used);
       warnAboutFileStem(name, stem, out.warnings);
-      SCANSURF_TRY(stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, contours.units, draco, out));
+      SCANSURF_TRY(
+          stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, colors[f], contours.units, draco, out));
     }
     if (!scenes.empty() || has(plan.formats, MeshFormat::SegVtm)) compact.push_back(std::move(mesh));
   }

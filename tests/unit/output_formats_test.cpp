@@ -299,6 +299,7 @@ TEST_F(OutputFormatsTest, GlbSceneShowsRightInAViewer) {
     const nlohmann::json& j = glb.json;
     EXPECT_EQ(j["asset"]["generator"], std::string("scansurf ") + version());
     EXPECT_EQ(j["asset"]["extras"]["scansurf"]["unit"], "mm");
+    EXPECT_EQ(j["asset"]["extras"]["scansurf"]["coordinates"], "patient LPS (x left, y posterior, z superior)");
     const auto& roots = j["scenes"][0]["nodes"];
     if (frame == SceneFrame::Gltf) {
       ASSERT_EQ(roots.size(), 1u);
@@ -825,6 +826,78 @@ TEST_F(OutputFormatsTest, MeshHeadersNameTheUnit) {
   EXPECT_EQ(
       readFile(dir_ / "inner.stl").substr(0, 80).rfind(std::string("scansurf ") + SCANSURF_VERSION_STRING + " binary STL, um", 0),
       0u);
+}
+
+}  // namespace
+}  // namespace scansurf
+
+namespace scansurf {
+namespace {
+
+// An EM series' scene calls its frame the specimen's, not a patient's.
+TEST_F(OutputFormatsTest, GlbOfASpecimenSaysSo) {
+  Built b = nested();
+  b.set.frame = CoordinateFrame::Specimen;
+  b.set.units = "um";
+  const fs::path path = dir_ / "cell.glb";
+  ASSERT_TRUE(writeScene(path, b.set, b.surfaces, {}));
+  const nlohmann::json j = parseGlb(readFile(path)).json;
+  EXPECT_EQ(j["asset"]["extras"]["scansurf"]["coordinates"], "specimen (x, y in the section plane, z across the sections)");
+  EXPECT_EQ(j["nodes"][j["scenes"][0]["nodes"][0].get<std::size_t>()]["name"], "scansurf specimen frame");
+  EXPECT_EQ(j.dump().find("patient"), std::string::npos);
+}
+
+// OBJ as viewers read it: `vn` normals that agree with the faces, and the feature's colour in a
+// material file the OBJ names.
+TEST_F(OutputFormatsTest, ObjCarriesNormalsAndItsColourInAMaterial) {
+  Built b = nested();
+  b.set.features[0].color = Rgb{255, 51, 0};
+  OutputPlan plan;
+  plan.dir = dir_;
+  plan.formats = {MeshFormat::Obj};
+  OutputStaging staging;
+  BuildResult built;
+  built.surfaces = b.surfaces;
+  built.volume.grid = b.volume.grid;
+  built.overlaps.features.resize(b.set.features.size());
+  auto files = stageSurfaceOutputs(staging, plan, b.set, built);
+  ASSERT_TRUE(files);
+  ASSERT_TRUE(staging.commit());
+  const std::string name = b.set.features[0].name;
+  const std::string obj = readFile(dir_ / (name + ".obj"));
+  EXPECT_NE(obj.find("\nmtllib " + name + ".mtl\nusemtl " + name + "\n"), std::string::npos);
+  const std::string mtl = readFile(dir_ / (name + ".mtl"));
+  EXPECT_NE(mtl.find("newmtl " + name + "\n"), std::string::npos);
+  EXPECT_NE(mtl.find("Kd 1.000000 0.200000 0.000000\n"), std::string::npos);
+  EXPECT_NE(std::find(files->files[0].begin(), files->files[0].end(), dir_ / (name + ".mtl")), files->files[0].end());
+  // Every vertex has its normal, every face corner names it (v//vn), and the normals point out.
+  std::vector<std::array<float, 3>> normals;
+  std::istringstream in(obj);
+  std::string line;
+  std::size_t corners = 0, sharedIndex = 0;
+  while (std::getline(in, line)) {
+    std::istringstream l(line);
+    std::string tag;
+    l >> tag;
+    if (tag == "vn") {
+      std::array<float, 3> n{};
+      l >> n[0] >> n[1] >> n[2];
+      normals.push_back(n);
+    } else if (tag == "f") {
+      std::string c;
+      while (l >> c) {
+        ++corners;
+        const std::size_t slash = c.find("//");
+        sharedIndex += slash != std::string::npos && c.substr(0, slash) == c.substr(slash + 2);
+      }
+    }
+  }
+  const CompactMesh back = readObj(dir_ / (name + ".obj"));
+  ASSERT_EQ(normals.size(), back.vertexCount());
+  EXPECT_EQ(sharedIndex, corners);
+  const std::vector<float> expected = vertexNormals(back);
+  for (std::size_t v = 0; v < normals.size(); ++v)
+    EXPECT_GT(normals[v][0] * expected[3 * v] + normals[v][1] * expected[3 * v + 1] + normals[v][2] * expected[3 * v + 2], 0.99f);
 }
 
 }  // namespace
