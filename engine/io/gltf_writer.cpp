@@ -109,7 +109,7 @@ void markBufferViewTargets(nlohmann::json& gltf) {
 }
 
 // Patient LPS in `units` to glTF's y-up metres, column-major: x -> x, z (superior) -> y,
-// y (posterior) -> -z (anterior toward the viewer).
+// y (posterior) -> -z (anterior toward the viewer). A specimen's sections stack up the same way.
 nlohmann::json rootMatrix(double scale) {
   return nlohmann::json::array({scale, 0, 0, 0, 0, 0, -scale, 0, 0, scale, 0, 0, 0, 0, 0, 1});
 }
@@ -117,17 +117,23 @@ nlohmann::json rootMatrix(double scale) {
 // The root node, the generator and the record of the original frame.
 void adjustScene(nlohmann::json& gltf, const GlbOptions& options) {
   const double metres = metresPerUnit(options.units);
-  nlohmann::json frame = {{"coordinates", "patient LPS (x left, y posterior, z superior)"}, {"unit", options.units}};
+  const bool patient = options.coordinates == CoordinateFrame::PatientLps;
+  const std::string from = patient ? "patient LPS" : "the specimen frame (z across the sections)";
+  nlohmann::json frame = {{"coordinates", patient ? "patient LPS (x left, y posterior, z superior)"
+                                                  : "specimen (x, y in the section plane, z across the sections)"},
+                          {"unit", options.units}};
   if (options.frame == SceneFrame::Gltf && gltf.contains("scenes") && !gltf["scenes"].empty()) {
     nlohmann::json& scene = gltf["scenes"][0];
-    nlohmann::json root = {{"name", "scansurf patient frame"}, {"matrix", rootMatrix(metres > 0 ? metres : 1.0)}};
+    nlohmann::json root = {{"name", patient ? "scansurf patient frame" : "scansurf specimen frame"},
+                           {"matrix", rootMatrix(metres > 0 ? metres : 1.0)}};
     root["children"] = scene.value("nodes", nlohmann::json::array());
     gltf["nodes"].push_back(root);
     scene["nodes"] = nlohmann::json::array({gltf["nodes"].size() - 1});
-    frame["root_node"] = metres > 0 ? "turns patient LPS into glTF y-up and scales " + options.units + " to metres"
-                                    : "turns patient LPS into glTF y-up; unit '" + options.units + "' not scaled";
+    frame["root_node"] = metres > 0 ? "turns " + from + " into glTF y-up and scales " + options.units + " to metres"
+                                    : "turns " + from + " into glTF y-up; unit '" + options.units + "' not scaled";
   } else {
-    frame["root_node"] = "none: vertices are raw patient coordinates (the patient frame was asked for)";
+    frame["root_node"] = std::string("none: vertices are raw ") + (patient ? "patient" : "specimen") +
+                         " coordinates (--gltf-frame patient asked for the input's own frame)";
   }
   gltf["asset"]["generator"] = std::string("scansurf ") + version();
   gltf["asset"]["extras"]["scansurf"] = frame;

@@ -27,6 +27,7 @@ struct GlbOptions {
   // metres; Patient: positions as they are, no root transform. Recorded in asset.extras.
   SceneFrame frame = SceneFrame::Gltf;
   std::string units = "mm";
+  CoordinateFrame coordinates = CoordinateFrame::PatientLps;  // what the vertices are, as asset.extras says
 };
 
 // Metres per input unit for the glTF root scale: mm, cm, m, um/µm/micron(s), nm; 0 when the

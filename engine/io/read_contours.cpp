@@ -162,6 +162,7 @@ Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions&
     case InputFormat::ReconstructSeries: {
       SCANSURF_ASSIGN_OR_RETURN(ReconstructSeries series, readReconstructSeries(path, {options.objectPatterns}));
       numberObjects(series.objects, series.contours);
+      series.contours.frame = CoordinateFrame::Specimen;
       return std::move(series.contours);
     }
     case InputFormat::ImodModel: {
@@ -169,6 +170,7 @@ Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions&
       imod.objectPatterns = options.objectPatterns;
       SCANSURF_ASSIGN_OR_RETURN(ImodModel model, readImodModel(path, imod));
       numberObjects(model.objects, model.contours);
+      model.contours.frame = CoordinateFrame::Specimen;
       return withFiles(std::move(model.contours), path);
     }
     default: return withFiles(readContoursJson(path), path);

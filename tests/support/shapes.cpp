@@ -174,6 +174,8 @@ ContourSet abuttingContours(double radius, int slices, double sliceSpacing) {
   return set;
 }
 
+// In patient LPS (+y posterior): the organs a little anterior of the middle, the vessel behind
+// them and the vertebra at the back.
 ContourSet phantomContours(double sliceSpacing) {
   // 100 mm of slices from z = 0; at 2.5 mm the bundled example's 40.
   const int kSlices = static_cast<int>(std::floor(99.0 / sliceSpacing + 1e-9)) + 1;
@@ -201,26 +203,25 @@ ContourSet phantomContours(double sliceSpacing) {
     if (z >= 22.5 - e && z <= 67.5 + e) {
       const double t = (z - 45) / 27;
       const double r = 14 * std::sqrt(1 - t * t);
-      auto [l, rr] = splitDisc({-10, 5}, r, kStep);
+      auto [l, rr] = splitDisc({-10, -5}, r, kStep);
       prostate.slices.push_back(sliceOf(z, {std::move(l)}));
       rectum.slices.push_back(sliceOf(z, {std::move(rr)}));
     }
     // Target nested in the prostate.
-    if (z >= 37.5 - e && z <= 52.5 + e) target.slices.push_back(sliceOf(z, {circleContour({-18, 5}, 4, 28)}));
+    if (z >= 37.5 - e && z <= 52.5 + e) target.slices.push_back(sliceOf(z, {circleContour({-18, -5}, 4, 28)}));
 
     // Vessel: a trunk that splits into two diverging branches (a Y).
     if (z < 50 - e) {
-      vessel.slices.push_back(sliceOf(z, {circleContour({30, -15}, 4, 28)}));
+      vessel.slices.push_back(sliceOf(z, {circleContour({30, 15}, 4, 28)}));
     } else {
       const double offset = 3.5 + 0.08 * (z - 50);
-      vessel.slices.push_back(
-          sliceOf(z, {circleContour({30 - offset, -15}, 2.5, 20), circleContour({30 + offset, -15}, 2.5, 20)}));
+      vessel.slices.push_back(sliceOf(z, {circleContour({30 - offset, 15}, 2.5, 20), circleContour({30 + offset, 15}, 2.5, 20)}));
     }
 
     // Vertebra: a solid disc at its ends, a ring (disc with a hole) in the middle.
     if (z >= 10 - e && z <= 87.5 + e) {
-      std::vector<Contour> contours{circleContour({0, -26}, 7, 48)};
-      if (z >= 30 - e && z <= 70 + e) contours.push_back(circleContour({0, -26}, 3, 24));
+      std::vector<Contour> contours{circleContour({0, 26}, 7, 48)};
+      if (z >= 30 - e && z <= 70 + e) contours.push_back(circleContour({0, 26}, 3, 24));
       vertebra.slices.push_back(sliceOf(z, std::move(contours)));
     }
   }

@@ -666,6 +666,8 @@ TEST_F(Imod, ThroughThePublicApiAndTheListing) {
   ASSERT_TRUE(r) << r.error().message;
   ASSERT_EQ(r->features.size(), 2u);
   EXPECT_EQ(r->features[1].name, "mito #5");
+  EXPECT_EQ(r->features[1].sourceNumber, 5) << "the object's number, for the report";
+  EXPECT_EQ(r->frame, CoordinateFrame::Specimen) << "an EM model is no patient";
   EXPECT_TRUE(containsText(r->notes, "IMOD model \"cell model\": 5 objects, 2 surfaced; pixel size 0.01"));
   auto listing = listObjects(path, {"object ?"});
   ASSERT_TRUE(listing) << listing.error().message;

@@ -52,9 +52,15 @@ struct GridReference {
   std::vector<double> sliceZ;  // strictly increasing
 };
 
+// What the coordinates are: a patient's (DICOM LPS: x left, y posterior, z superior; RTSTRUCT,
+// and contour-set JSON by convention) or a specimen's (an EM series: x and y in the section
+// plane, z across the sections; Reconstruct, IMOD). The scene writer names it.
+enum class CoordinateFrame { PatientLps, Specimen };
+
 struct ContourSet {
   std::string source;        // file name or description, used in error messages
   std::string units = "mm";  // length unit of every coordinate
+  CoordinateFrame frame = CoordinateFrame::PatientLps;
   std::vector<Feature> features;
   // Nesting order, innermost first, as feature indices; empty = compute it (nestingOrder()).
   std::vector<int> order;
