@@ -99,3 +99,12 @@ def test_the_command_line_batch_writes_the_same(tmp_path, cohort, cli):
     assert without_time == expected
     again = subprocess.run([cli, "batch", *paths[:3], "-o", str(tmp_path / "cli")], capture_output=True, text=True)
     assert again.returncode == 0 and again.stdout.count(": skipped") == 3
+
+
+def test_the_module_command_runs_on_an_existing_scheduler(tmp_path, cohort):
+    from distributed import LocalCluster
+    paths, _ = cohort
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
+        subprocess.run([sys.executable, "-m", "scansurf", "batch", *paths[:2], "-o", str(tmp_path), "-q",
+                        "--scheduler", cluster.scheduler_address, "--voxel-size", "1.5"], check=True, env=os.environ.copy())
+    assert [r["status"] for r in json.load(open(tmp_path / "batch.json"))["inputs"]] == ["done", "done"]
