@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -86,7 +87,9 @@ Result<BatchArgs> parseArgs(int argc, char** argv) {
       a.output = argv[++i];
     } else if (arg == "--workers" && hasValue) {
       const std::string n = argv[++i];
-      a.workers = std::all_of(n.begin(), n.end(), ::isdigit) && n.size() < 5 ? std::stoi(n) : 0;
+      const bool digits =
+          !n.empty() && n.size() < 5 && std::all_of(n.begin(), n.end(), [](unsigned char c) { return std::isdigit(c); });
+      a.workers = digits ? std::stoi(n) : 0;
       if (a.workers < 1) return makeError(Errc::InvalidArgument, "--workers '" + n + "' is not a whole number from 1 to 9999");
     } else if (arg == "-q" || arg == "--quiet") {
       a.quiet = true;
@@ -227,8 +230,13 @@ Result<void> runAll(const BatchArgs& a, std::vector<Task>& tasks) {
         ++next;
         continue;
       }
-      SCANSURF_ASSIGN_OR_RETURN(Child c, spawnRun(a, tasks[next], next, threads));
-      running.emplace(c.pid, c);
+      Result<Child> c = spawnRun(a, tasks[next], next, threads);
+      if (!c) {  // this input fails; the running ones and the rest go on
+        tasks[next].status = "failed", tasks[next].error = "IoError: " + c.error().message, tasks[next].exitCode = 4;
+        ++done, ++next;
+        continue;
+      }
+      running.emplace(c->pid, *c);
       ++next;
     }
     if (running.empty()) return {};
@@ -257,11 +265,16 @@ void addRows(std::ostringstream& csv, const Task& t) {
   }
   std::ifstream in(t.folder / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-  if (report.is_discarded() || !report.contains("features")) return;
-  for (const auto& f : report["features"])
-    csv << field(t.input) << "," << field(f["name"].get<std::string>()) << "," << f["label"].dump() << ","
-        << f["contour_volume"].dump() << "," << f["labelled_volume"].dump() << "," << f["surface_volume"].dump() << ","
-        << f["triangles"].dump() << ",done," << (t.status == "skipped" ? "0.0" : seconds) << "\r\n";
+  if (report.is_discarded() || !report.contains("features") || !report["features"].is_array()) return;
+  const auto value = [](const nlohmann::json& f, const char* key) { return f.contains(key) ? f[key].dump() : std::string(); };
+  for (const auto& f : report["features"]) {
+    if (!f.is_object()) continue;
+    csv << field(t.input) << ","
+        << field(f.contains("name") && f["name"].is_string() ? f["name"].get<std::string>() : std::string()) << ","
+        << value(f, "label") << "," << value(f, "contour_volume") << "," << value(f, "labelled_volume") << ","
+        << value(f, "surface_volume") << "," << value(f, "triangles") << ",done," << (t.status == "skipped" ? "0.0" : seconds)
+        << "\r\n";
+  }
 }
 
 Result<void> writeSummary(const BatchArgs& a, const std::vector<Task>& tasks) {
@@ -274,7 +287,10 @@ Result<void> writeSummary(const BatchArgs& a, const std::vector<Task>& tasks) {
         {{"input", t.input}, {"output", t.folder.string()}, {"status", t.status}, {"error", t.error}, {"seconds", t.seconds}});
   }
   OutputStaging staging;
-  const std::string summary = csv.str(), record = nlohmann::ordered_json{{"inputs", entries}}.dump(2) + "\n";
+  // Paths and messages are bytes from the file system and the inputs: invalid UTF-8 is replaced.
+  const std::string summary = csv.str(), record = nlohmann::ordered_json{{"inputs", entries}}.dump(
+                                                      2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
+                                                  "\n";
   const auto text = [](const std::string& s) {
     return [&s](const fs::path& p) -> Result<void> {
       std::ofstream out(p, std::ios::binary);

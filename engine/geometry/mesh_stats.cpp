@@ -70,10 +70,10 @@ void measure(std::span<const float> positions, std::span<const std::uint32_t> tr
   stats.volume = volume;
 }
 
-// The surface's own vertices, numbered densely in order of first use, and each one's corners
-// (3 * triangle + corner) as compressed rows: everything below walks vertex by vertex, so
-// that it costs what the surface costs, not the whole shared mesh, and sorts only the few
-// edges around one vertex.
+// The surface's own vertices, numbered densely in order of first use (through a table as long
+// as the highest index: one clearing pass, no hashing), and each one's corners
+// (3 * triangle + corner) as compressed rows: everything below walks vertex by vertex and sorts
+// only the few edges around one vertex.
 struct VertexCorners {
   std::vector<std::uint32_t> vertices;  // global index of each local vertex
   std::vector<std::uint32_t> start;     // corners of local vertex v: corners[start[v] .. start[v + 1])
@@ -126,7 +126,7 @@ void censusAtVertex(std::span<const std::uint32_t> triangles, std::span<const st
   for (const std::uint32_t c : corners) {
     const std::uint32_t f = c / 3, next = triangles[3 * f + (c + 1) % 3], prev = triangles[3 * f + (c + 2) % 3];
     if (next == v || prev == v) census.closed = census.oriented = false;  // a degenerate triangle
-    if (next > v) uses.push_back({next, f, true});
+    if (next >= v) uses.push_back({next, f, true});  // a repeated vertex's edge (v, v) counts once, as any edge
     if (prev > v) uses.push_back({prev, f, false});
     link.push_back({next, prev});
   }
@@ -190,6 +190,7 @@ void countTopology(std::span<const std::uint32_t> triangles, const VertexCorners
 }  // namespace
 
 MeshStats computeMeshStats(std::span<const float> positions, std::span<const std::uint32_t> triangles) {
+  triangles = triangles.first(3 * (triangles.size() / 3));  // whole triangles only
   MeshStats stats;
   stats.triangles = triangles.size() / 3;
   measure(positions, triangles, stats);

@@ -59,6 +59,7 @@ InputFile hashedFile(const std::string& path) {
   InputFile file{path, {}, 0};
   std::error_code ec;
   file.bytes = std::filesystem::file_size(path, ec);
+  if (ec) file.bytes = 0;
   if (auto digest = sha256OfFile(path)) file.sha256 = std::move(*digest);
   return file;
 }

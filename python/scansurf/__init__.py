@@ -78,19 +78,21 @@ def read(source, reference=None, rois=None, objects=None):
     rois, objects: glob patterns (case-insensitive) selecting ROIs (RTSTRUCT) or objects
         (Reconstruct, IMOD) by name; a pattern matching nothing is an InvalidArgument.
     """
-    with tempfile.TemporaryDirectory(prefix="scansurf-read-") as scratch:
-        path = _as_path(source, scratch, "rtstruct.dcm")
-        if reference is None or isinstance(reference, (str, bytes, os.PathLike)):
-            return _scansurf._read(path, os.fspath(reference or ""), _patterns(rois), _patterns(objects))
-        # Datasets of a CT: their folder lives as long as the set (a DICOM SEG output reads it).
-        kept = tempfile.mkdtemp(prefix="scansurf-reference-")
-        try:
-            cs = _scansurf._read(path, _reference_folder(reference, kept), _patterns(rois), _patterns(objects))
-        except BaseException:
-            shutil.rmtree(kept, ignore_errors=True)
-            raise
-        weakref.finalize(cs, shutil.rmtree, kept, True)
-        return cs
+    if not _is_dataset(source) and (reference is None or isinstance(reference, (str, bytes, os.PathLike))):
+        return _scansurf._read(os.fspath(source), os.fspath(reference or ""), _patterns(rois), _patterns(objects))
+    # Datasets are written to a folder that lives as long as the set: the report hashes the
+    # RTSTRUCT, a DICOM SEG output reads the CT.
+    kept = tempfile.mkdtemp(prefix="scansurf-datasets-")
+    try:
+        path = _as_path(source, kept, "rtstruct.dcm")
+        folder = os.fspath(reference or "") if reference is None or isinstance(reference, (str, bytes, os.PathLike)) \
+            else _reference_folder(reference, kept)
+        cs = _scansurf._read(path, folder, _patterns(rois), _patterns(objects))
+    except BaseException:
+        shutil.rmtree(kept, ignore_errors=True)
+        raise
+    weakref.finalize(cs, shutil.rmtree, kept, True)
+    return cs
 
 
 def contours(features, units="mm", source="<python>"):
@@ -125,7 +127,7 @@ def engine(device=None, validation=None):
     """
     if validation is None:
         validation = os.environ.get("SCANSURF_VALIDATION", "") not in ("", "0")
-    key = (device or "", bool(validation))
+    key = ("" if device is None else str(device), bool(validation))
     with _engines_lock:
         if key not in _engines:
             _engines[key] = Engine(key[0], key[1])
@@ -291,8 +293,9 @@ class BuildResult:
 
 
 def _stem(path):
+    """The scene's name, as the command line names it (the file name without its last extension)."""
     name = os.path.basename(os.fspath(path)) or "surfaces"
-    return name.split(".")[0] if not name.startswith(".") else name
+    return os.path.splitext(name)[0] or name
 
 
 def batch(inputs, out_dir, client=None, **options):

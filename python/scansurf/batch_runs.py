@@ -20,7 +20,6 @@ import sys
 import tempfile
 import time
 
-from . import _errors
 
 SUMMARY_COLUMNS = ["input", "roi", "label", "contour_volume", "voxel_volume", "surface_volume", "triangles",
                    "status", "seconds"]
@@ -66,11 +65,11 @@ def _names(tasks):
 
 def _rows_of_report(input_path, report, status, seconds):
     rows = []
-    for f in report["features"]:
-        rows.append({"input": input_path, "roi": f["name"], "label": f["label"],
-                     "contour_volume": f["contour_volume"], "voxel_volume": f["labelled_volume"],
-                     "surface_volume": f["surface_volume"], "triangles": f["triangles"], "status": status,
-                     "seconds": round(seconds, 3)})
+    for f in report.get("features", []):
+        rows.append({"input": input_path, "roi": f.get("name", ""), "label": f.get("label", ""),
+                     "contour_volume": f.get("contour_volume", ""), "voxel_volume": f.get("labelled_volume", ""),
+                     "surface_volume": f.get("surface_volume", ""), "triangles": f.get("triangles", ""),
+                     "status": status, "seconds": round(seconds, 3)})
     return rows
 
 
@@ -87,7 +86,7 @@ def run_one(task, folder, formats, options):
     if _complete(folder):
         with open(os.path.join(folder, "report.json")) as f:
             record["rows"] = _rows_of_report(task["input"], json.load(f), "done", 0.0)
-        record["status"] = "skipped"
+        record["status"], record["seconds"] = "skipped", 0.0
         return record
     try:
         cs = read(task["input"], reference=task.get("reference"), rois=task.get("rois"), objects=task.get("objects"))
@@ -96,7 +95,7 @@ def run_one(task, folder, formats, options):
         seconds = time.perf_counter() - start
         with open(os.path.join(folder, "report.json")) as f:
             record["rows"] = _rows_of_report(task["input"], json.load(f), "done", seconds)
-    except _errors.Error as e:
+    except Exception as e:  # the input's own failure (scansurf.Error), or its report unreadable
         record["status"], record["error"] = "failed", "%s: %s" % (type(e).__name__, e)
     record["seconds"] = time.perf_counter() - start
     return record
@@ -105,6 +104,9 @@ def run_one(task, folder, formats, options):
 def _write_atomically(path, write):
     folder = os.path.dirname(os.path.abspath(path))
     fd, staged = tempfile.mkstemp(prefix=".scansurf-", dir=folder)
+    umask = os.umask(0)
+    os.umask(umask)
+    os.fchmod(fd, 0o666 & ~umask)  # as any file the user writes, not mkstemp's 0600
     try:
         with os.fdopen(fd, "w", newline="") as f:
             write(f)
@@ -132,7 +134,7 @@ def write_summary(out_dir, records):
 
     _write_atomically(os.path.join(out_dir, "summary.csv"), csv_out)
     entries = [{k: r.get(k) for k in ("input", "output", "status", "error", "seconds")} for r in records]
-    _write_atomically(os.path.join(out_dir, "batch.json"), lambda f: json.dump({"inputs": entries}, f, indent=2))
+    _write_atomically(os.path.join(out_dir, "batch.json"), lambda f: json.dump({"inputs": entries}, f, indent=2, ensure_ascii=False))
     return rows
 
 
@@ -174,8 +176,8 @@ def batch(inputs, out_dir, client=None, workers=None, formats=("ply",), progress
     formats: as BuildResult.write; options: as scansurf.build (threads defaults to the cores
         divided among the local workers). Returns a BatchSummary.
     """
-    if isinstance(inputs, (str, os.PathLike)) and os.path.isdir(inputs):
-        inputs = inputs_in(inputs)
+    if isinstance(inputs, (str, os.PathLike)):  # one folder of inputs, or one input
+        inputs = inputs_in(inputs) if os.path.isdir(inputs) else [inputs]
     tasks = [_task_of(i) for i in inputs]
     os.makedirs(out_dir, exist_ok=True)
     folders = [os.path.join(os.fspath(out_dir), n) for n in _names(tasks)]

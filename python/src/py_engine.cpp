@@ -6,6 +6,7 @@
 #include <ctime>
 #include <functional>
 #include <map>
+#include <type_traits>
 
 #include "py_errors.h"
 #include "py_types.h"
@@ -16,6 +17,8 @@ namespace {
 
 template <typename T>
 T as(const py::handle& value, const std::string& key, const char* what) {
+  if constexpr (!std::is_same_v<T, bool>)  // True is no number of iterations, nor "interpolation off"
+    if (PyBool_Check(value.ptr())) raiseInvalidArgument("option " + key + ": expected " + what + ", got bool");
   try {
     return value.cast<T>();
   } catch (const py::cast_error&) {
@@ -142,17 +145,20 @@ std::shared_ptr<PyResult> build(PyEngine& engine, std::shared_ptr<PyContours> co
   result->contours = std::move(contours);
   result->started = utcNow();
   result->validation = engine.validation;
+  std::uint64_t messages = 0;  // validation messages during this build (the engine counts since it began)
   Result<BuildResult> built = [&] {
     py::gil_scoped_release unlocked;
     const std::lock_guard<std::mutex> one(engine.mutex);
-    return engine.engine.build(result->contours->set, result->options);
+    const std::uint64_t before = engine.engine.validationMessageCount();
+    Result<BuildResult> r = engine.engine.build(result->contours->set, result->options);
+    messages = engine.engine.validationMessageCount() - before;
+    return r;
   }();
   result->built = valueOrRaise(std::move(built));
   result->device = engine.engine.device();
   result->stats.resize(result->built.surfaces.features.size());
   result->surfaces.resize(result->built.surfaces.features.size());
-  if (const auto messages = engine.engine.validationMessageCount(); messages > 0)
-    raise({Errc::Vulkan, std::to_string(messages) + " Vulkan validation message(s) so far on this engine"});
+  if (messages > 0) raise({Errc::Vulkan, std::to_string(messages) + " Vulkan validation message(s) during this build"});
   return result;
 }
 

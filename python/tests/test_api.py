@@ -183,3 +183,13 @@ def test_interop_vtk(phantom_result):
     poly = rectum.to_vtk()
     assert poly.GetNumberOfPoints() == len(rectum.vertices) and poly.GetNumberOfPolys() == len(rectum.faces)
     assert poly.GetFieldData().GetAbstractArray("name").GetValue(0) == "rectum"
+
+
+def test_a_device_by_index_and_no_bool_for_a_number(phantom):
+    index = [d["index"] for d in scansurf.devices() if d["default"]][0]
+    assert scansurf.engine(index) is scansurf.engine(str(index))  # an int names the device as its text does
+    assert scansurf.build(phantom, device=index, voxel_size=2.0).surfaces["BODY"].closed
+    with pytest.raises(scansurf.InvalidArgument, match="interpolate: expected .* got bool"):
+        scansurf.build(phantom, interpolate=True)
+    with pytest.raises(scansurf.InvalidArgument, match="smooth_iterations"):
+        scansurf.build(phantom, smooth_iterations=True)

@@ -108,3 +108,16 @@ def test_the_module_command_runs_on_an_existing_scheduler(tmp_path, cohort):
         subprocess.run([sys.executable, "-m", "scansurf", "batch", *paths[:2], "-o", str(tmp_path), "-q",
                         "--scheduler", cluster.scheduler_address, "--voxel-size", "1.5"], check=True, env=os.environ.copy())
     assert [r["status"] for r in json.load(open(tmp_path / "batch.json"))["inputs"]] == ["done", "done"]
+
+
+def test_a_folder_with_an_older_report_is_skipped_without_breaking_the_summary(tmp_path, cohort, cli):
+    paths, _ = cohort
+    (tmp_path / "patient00").mkdir()
+    (tmp_path / "patient00" / "report.json").write_text('{"features": [{"name": "Body"}]}')  # fields of another version
+    run = subprocess.run([cli, "batch", paths[0], "-o", str(tmp_path), "-q"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    rows = list(csv.DictReader(open(tmp_path / "summary.csv")))
+    assert rows == [{"input": paths[0], "roi": "Body", "label": "", "contour_volume": "", "voxel_volume": "",
+                     "surface_volume": "", "triangles": "", "status": "done", "seconds": "0.0"}]
+    again = scansurf.batch(paths[:1], tmp_path, client="serial", progress=False)
+    assert again.inputs[0]["status"] == "skipped" and again[0]["roi"] == "Body"

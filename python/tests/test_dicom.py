@@ -60,6 +60,8 @@ def test_a_pydicom_dataset_reads_like_its_file(tmp_path):
     from_file = scansurf.read(path)
     a, b = scansurf.build(from_dataset, voxel_size=1.0), scansurf.build(from_file, voxel_size=1.0)
     np.testing.assert_array_equal(a.surfaces["Box"].vertices, b.surfaces["Box"].vertices)
+    inputs = a.report["input_files"]  # the Dataset's file lives as long as the set: hashed, sized
+    assert inputs[0]["sha256"] is not None and inputs[0]["bytes"] == path.stat().st_size
     box = a.surfaces["Box"]
     assert box.contour_volume == pytest.approx(40 * 40 * 22, rel=1e-6)  # 11 planes of 2 mm slabs
     assert scansurf.build(ds, voxel_size=1.0).surfaces["Core"].closed  # build() takes a Dataset too

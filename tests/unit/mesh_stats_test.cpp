@@ -174,5 +174,22 @@ TEST(MeshStats, ThreeTrianglesOnAnEdgeAreNotClosed) {
   EXPECT_EQ(s.vertices, 9u);
 }
 
+// A triangle that repeats a vertex has the edge (v, v): it counts as an edge and joins the
+// triangles that share it, as every other edge does; and a stray trailing index is ignored.
+TEST(MeshStats, RepeatedVerticesAndPartialTriangles) {
+  HandMesh m;
+  for (int i = 0; i < 3; ++i) m.vertex(static_cast<float>(i), static_cast<float>(i * i), 0);
+  m.triangles = {0, 0, 1, 0, 0, 2};
+  MeshStats s = m.stats();
+  EXPECT_FALSE(s.closed);
+  EXPECT_FALSE(s.oriented);
+  EXPECT_EQ(s.components, 1) << "joined across their shared edge (0, 0)";
+  EXPECT_EQ(s.vertices, 3u);
+  m.triangles.push_back(1);  // not a whole triangle
+  s = m.stats();
+  EXPECT_EQ(s.triangles, 2u);
+  EXPECT_EQ(s.components, 1);
+}
+
 }  // namespace
 }  // namespace scansurf
