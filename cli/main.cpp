@@ -10,7 +10,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -114,16 +113,6 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
   SCANSURF_TRY(checkOutputs(plan));
   SCANSURF_TRY(refuseInputAsOutput(plan, o));
   return plan;
-}
-
-// The time now as ISO 8601 UTC, "2026-12-01T22:07:11Z", for the report.
-std::string utcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
 }
 
 // The stages a run will have, for the progress line's "k/n": the CLI's own and, per surface
@@ -263,7 +252,7 @@ int run(const cli::CliOptions& o) {
   cli::InterruptScope interruptible(staging);
   for (const fs::path& dir : outputDirectories(*plan))
     if (auto locked = staging.lock(dir); !locked) return fail(locked.error());
-  const std::string started = utcNow();
+  const std::string started = utcTimestamp();
   cli::Progress progress(cli::chooseProgressMode(o.quiet, o.jsonProgress));
   cli::setActiveProgress(&progress);
   Laps laps(progress, o);

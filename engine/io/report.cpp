@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <set>
 
 #include "io/atomic_file.h"
@@ -54,6 +56,19 @@ void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapRepo
                         contour > 0 ? 100.0 * l.volume / contour : 0.0, l.nested});
   }
 }
+
+}  // namespace
+
+std::string utcTimestamp() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+namespace {
 
 InputFile hashedFile(const std::string& path) {
   InputFile file{path, {}, 0};

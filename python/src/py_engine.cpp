@@ -2,8 +2,6 @@
 // the command-line tool uses (BuildOptions::recommended).
 #include <pybind11/stl.h>
 
-#include <chrono>
-#include <ctime>
 #include <functional>
 #include <map>
 #include <type_traits>
@@ -130,20 +128,11 @@ BuildOptions optionsFrom(const py::dict& keywords) {
   return options;
 }
 
-std::string utcNow() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
-
 std::shared_ptr<PyResult> build(PyEngine& engine, std::shared_ptr<PyContours> contours, const py::dict& keywords) {
   auto result = std::make_shared<PyResult>();
   result->options = optionsFrom(keywords);
   result->contours = std::move(contours);
-  result->started = utcNow();
+  result->started = utcTimestamp();
   result->validation = engine.validation;
   std::uint64_t messages = 0;  // validation messages during this build (the engine counts since it began)
   Result<BuildResult> built = [&] {

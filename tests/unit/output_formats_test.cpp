@@ -732,6 +732,15 @@ std::string stringValue(const pugi::xml_node& fields, const char* name) {
   return out;
 }
 
+// A build result holding the test build's surfaces and grid, for stageSurfaceOutputs.
+BuildResult buildResultOf(const Built& b) {
+  BuildResult built;
+  built.surfaces = b.surfaces;
+  built.volume.grid = b.volume.grid;
+  built.overlaps.features.resize(b.set.features.size());
+  return built;
+}
+
 // VTK PolyData per feature and for the multi-label mesh, and 3D Slicer's closed-surface
 // segmentation, read back as VTK reads them: the same points and triangles as the PLY, normals
 // per point, the name and label as field data, the label pair per face; the segmentation's
@@ -743,10 +752,7 @@ TEST_F(OutputFormatsTest, VtkFilesCarryTheSurfacesAndWhatTheyAre) {
   plan.formats = {MeshFormat::Vtp, MeshFormat::SegVtm};
   plan.sceneName = "plan";
   OutputStaging staging;
-  BuildResult built;
-  built.surfaces = b.surfaces;
-  built.volume.grid = b.volume.grid;
-  built.overlaps.features.resize(b.set.features.size());
+  const BuildResult built = buildResultOf(b);
   auto staged = stageSurfaceOutputs(staging, plan, b.set, built);
   ASSERT_TRUE(staged) << staged.error().message;
   ASSERT_TRUE(staging.commit());
@@ -813,10 +819,7 @@ TEST_F(OutputFormatsTest, MeshHeadersNameTheUnit) {
   plan.dir = dir_;
   plan.formats = {MeshFormat::Ply, MeshFormat::Obj, MeshFormat::Stl};
   OutputStaging staging;
-  BuildResult built;
-  built.surfaces = b.surfaces;
-  built.volume.grid = b.volume.grid;
-  built.overlaps.features.resize(b.set.features.size());
+  const BuildResult built = buildResultOf(b);
   ASSERT_TRUE(stageSurfaceOutputs(staging, plan, b.set, built));
   ASSERT_TRUE(staging.commit());
   EXPECT_NE(readFile(dir_ / "inner.ply").find("comment units: um (x, y in-plane"), std::string::npos);
@@ -856,10 +859,7 @@ TEST_F(OutputFormatsTest, ObjCarriesNormalsAndItsColourInAMaterial) {
   plan.dir = dir_;
   plan.formats = {MeshFormat::Obj};
   OutputStaging staging;
-  BuildResult built;
-  built.surfaces = b.surfaces;
-  built.volume.grid = b.volume.grid;
-  built.overlaps.features.resize(b.set.features.size());
+  const BuildResult built = buildResultOf(b);
   auto files = stageSurfaceOutputs(staging, plan, b.set, built);
   ASSERT_TRUE(files);
   ASSERT_TRUE(staging.commit());

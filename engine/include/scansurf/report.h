@@ -109,6 +109,9 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
 // and volumes stated (length_unit, area_unit, volume_unit: areas in units², volumes in units³),
 // times in seconds, the command line and start time when known. Staged and renamed. Errors: Errc::Io naming the path.
 Result<void> writeReport(const std::filesystem::path& path, const RunReport& report);
+// The time now as ISO 8601 UTC ("2026-12-01T22:07:11Z"), for ReportContext::started.
+std::string utcTimestamp();
+
 // The same JSON text, for an application that keeps the report in memory (the Python package's
 // BuildResult.report).
 std::string reportJson(const RunReport& report);
