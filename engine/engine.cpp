@@ -176,6 +176,14 @@ std::vector<int> factorsOf(const Grid& planes, const Grid& grid, const std::vect
   return {gridFactors.begin() + first, gridFactors.begin() + first + planes.nz - 1};
 }
 
+// containers[label]: the label's feature contains another.
+std::vector<bool> containerLabels(const Nesting& nesting) {
+  std::vector<bool> containers(nesting.parent.size() + 1, false);
+  for (int parent : nesting.parent)
+    if (parent >= 0) containers[labelOfFeature(parent)] = true;
+  return containers;
+}
+
 // Surfaces of contour planes with interpolated layers between them. The planes come to the
 // host for their edge crossings (a CPU stage), but the interpolation passes copy them from the
 // device labels when there are some; the interpolated labels stay on the device for
@@ -198,7 +206,7 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Device));
   SCANSURF_ASSIGN_OR_RETURN(InterpolatedVolume fine,
                             interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads,
-                                              {device ? &device->buffer : nullptr, &words}));
+                                              {device ? &device->buffer : nullptr, &words}, containerLabels(nesting)));
   device.reset();
   clock.lap("interpolation");
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, clock));

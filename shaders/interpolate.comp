@@ -22,8 +22,10 @@ int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
   if (e.fieldA >= 0 && e.fieldB >= 0) {
     const int sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
     const int a = fieldAt(e.fieldA, x - sx, y - sy), b = fieldAt(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
-    return a == kFarAway || b == kFarAway ? kFarAway : (n - m) * a + m * b;
+    if (a == kFarAway || b == kFarAway) return kFarAway;
+    return (n - m) * a + m * b - (e.layerTable >= 0 ? layerTable.value[e.layerTable + m] : 0);  // area-keeping
   }
+  if (e.label == 0) return kFarAway;  // the union caps nothing
   const int field = e.fieldA >= 0 ? e.fieldA : e.fieldB;
   const int fromPlane = e.fieldA >= 0 ? m : n - m;
   const int d = fieldAt(field, x, y);
@@ -32,7 +34,7 @@ int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
     wins = 2 * fromPlane <= n;
     return max(n * d, kFlatLidSlope * (2 * fromPlane - n));
   }
-  const int erosion = capTable.erosion[e.capTable + fromPlane];  // a dome as high as the gap
+  const int erosion = layerTable.value[e.layerTable + fromPlane];  // a dome as high as the gap
   if (erosion < 0) return kFarAway;
   return n * (d + erosion);
 }
@@ -90,7 +92,9 @@ void main() {
     store(pair, m, x, y, slot, uint(extrudedLabel), c);
     return;
   }
-  const int level = min(best, united);
+  // The union only closes gaps between features (a runner-up near): alone, a feature keeps its
+  // own area-keeping boundary.
+  const int level = second < pair.factor * push.deep ? min(best, united) : best;
   const bool labelled = winner != 0 && level < 0;
   const int clearance = min(labelled ? min(second - best, -level) : level, capMargin);
   const uint c = uint(min((clearance + pair.factor / 2) / pair.factor, 65535));

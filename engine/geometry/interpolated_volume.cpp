@@ -10,7 +10,7 @@ namespace {
 // A slab from layer `first` as long as its plan stays within the budget (two layers at least):
 // as many planes as the estimate lets in, fewer if the plan turns out larger.
 InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census, int first, const std::vector<int>& factors,
-                           std::size_t slabBytes) {
+                           std::size_t slabBytes, const std::vector<bool>& containers) {
   int planes = 0;
   std::size_t estimate = 0;
   while (first + planes < volume.grid.nz) {
@@ -20,7 +20,7 @@ InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census,
     ++planes;
   }
   for (;;) {
-    InterpolationSlab slab = planInterpolationSlab(volume, census, first, planes, factors);
+    InterpolationSlab slab = planInterpolationSlab(volume, census, first, planes, factors, containers);
     const std::size_t bytes = slab.deviceBytes(volume.grid);
     if (bytes <= slabBytes || planes <= 2) return slab;
     const double fit = static_cast<double>(slabBytes) / static_cast<double>(bytes);
@@ -46,7 +46,8 @@ void storePair(const std::uint32_t* words, const shared::PairPlan& pair, std::si
 }
 
 Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
-                                             int threads, const SlabInterpolator& interpolate, bool withLabels) {
+                                             int threads, const SlabInterpolator& interpolate, bool withLabels,
+                                             const std::vector<bool>& containers) {
   const Grid& g = volume.grid;
   if (factors.size() + 1 != static_cast<std::size_t>(g.nz))
     return makeError(Errc::InvalidArgument, "interpolation: one factor per gap between layers is needed");
@@ -66,7 +67,7 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
 
   const PlaneCensus census = takePlaneCensus(volume, threads);
   for (int first = 0; first + 1 < g.nz;) {
-    const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes);
+    const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes, containers);
     if (slab.outputLayers > 0) {
       SCANSURF_TRY(interpolate(slab, [&](const std::uint32_t* words) {
         for (const shared::PairPlan& pair : slab.pairs)

@@ -24,8 +24,10 @@ struct InterpolatedVolume {
 
 // The volume on interpolatedGrid(volume.grid, factors): the original layers as they are, the
 // others from `interpolate`, in slabs whose plan needs at most about slabBytes (at least two
-// layers each). Without `withLabels`, only the grid and the clearances.
+// layers each). Without `withLabels`, only the grid and the clearances. containers: as
+// planInterpolationSlab's.
 Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
-                                             int threads, const SlabInterpolator& interpolate, bool withLabels = true);
+                                             int threads, const SlabInterpolator& interpolate, bool withLabels = true,
+                                             const std::vector<bool>& containers = {});
 
 }  // namespace scansurf

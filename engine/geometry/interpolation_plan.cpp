@@ -83,7 +83,7 @@ Result<DistanceWeights> distanceWeights(const Grid& grid) {
 
 std::int32_t deepDistance(const Grid& grid) {
   const double ratio = std::max(grid.spacingX, grid.spacingY) / std::min(grid.spacingX, grid.spacingY);
-  return static_cast<std::int32_t>(32 * std::ceil(ratio - 1e-9));
+  return static_cast<std::int32_t>(4 * kFieldPixel * std::ceil(ratio - 1e-9));
 }
 
 std::size_t InterpolationSlab::deviceBytes(const Grid& grid) const {
@@ -159,8 +159,8 @@ int roundHalfAway(double v) { return static_cast<int>(std::lround(v)); }
 
 class SlabPlanner {
  public:
-  SlabPlanner(const LabelVolume& volume, const PlaneCensus& census, InterpolationSlab& slab)
-      : g_(volume.grid), volume_(volume), census_(census), slab_(slab) {}
+  SlabPlanner(const LabelVolume& volume, const PlaneCensus& census, const std::vector<bool>& containers, InterpolationSlab& slab)
+      : g_(volume.grid), volume_(volume), census_(census), containers_(containers), slab_(slab) {}
 
   void addFields() {
     for (int p = 0; p < slab_.planes; ++p) {
@@ -188,7 +188,7 @@ class SlabPlanner {
     const std::size_t firstEntry = slab_.entries.size();
     addEntries(p, k);
     markTouchingCaps(k, firstEntry);
-    addCapTables(firstEntry, factor);
+    addLayerTables(firstEntry, factor);
     addTiles(firstEntry);
     slab_.pairs.push_back(pair);
   }
@@ -236,14 +236,21 @@ class SlabPlanner {
     }
   }
 
-  // Each entry on one plane only gets its place for factor + 1 dome erosions.
-  void addCapTables(std::size_t first, int factor) {
+  // Each feature's entry gets its place for factor + 1 values in the layer table: area-keeping
+  // offsets on both planes (not for a container: see planInterpolationSlab), dome erosions on
+  // one plane only. The union has none: one offset for several features grew one at another's
+  // cost, and a union's dome, sized by every feature's area together, grew the largest cap.
+  void addLayerTables(std::size_t first, int factor) {
     for (std::size_t i = first; i < slab_.entries.size(); ++i) {
       shared::PairEntry& e = slab_.entries[i];
-      if ((e.fieldA >= 0) == (e.fieldB >= 0)) continue;
-      e.capTable = static_cast<std::int32_t>(slab_.capInts);
-      slab_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, slab_.capInts});
-      slab_.capInts += static_cast<std::size_t>(factor) + 1;
+      const bool both = e.fieldA >= 0 && e.fieldB >= 0;
+      if (e.label == kBackground || (both && (factor < 2 || contains(static_cast<Label>(e.label))))) continue;
+      e.layerTable = static_cast<std::int32_t>(slab_.layerInts);
+      if (both)
+        slab_.blendedEntries.push_back({i, factor, slab_.layerInts});
+      else
+        slab_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, slab_.layerInts});
+      slab_.layerInts += static_cast<std::size_t>(factor) + 1;
     }
   }
 
@@ -306,8 +313,11 @@ class SlabPlanner {
   const Grid& g_;
   const LabelVolume& volume_;
   const PlaneCensus& census_;
+  const std::vector<bool>& containers_;
   InterpolationSlab& slab_;
   std::vector<std::size_t> planeFields_;  // first field of each plane
+
+  bool contains(Label label) const { return label < containers_.size() && containers_[label]; }
 };
 
 }  // namespace
@@ -334,13 +344,14 @@ PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads) {
 }
 
 InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
-                                        const std::vector<int>& factors) {
+                                        const std::vector<int>& factors, const std::vector<bool>& containers) {
   InterpolationSlab slab;
   slab.firstPlane = firstPlane;
   slab.planes = planes;
   slab.tilesX = (volume.grid.nx + kTileSize - 1) / kTileSize;
   slab.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
-  SlabPlanner planner(volume, census, slab);
+  slab.blendLimit = deepDistance(volume.grid) * 3 / 4;  // within the label's window (kWindowMargin)
+  SlabPlanner planner(volume, census, containers, slab);
   planner.addFields();
   for (int p = 0; p + 1 < planes; ++p) planner.addPair(p, factors[static_cast<std::size_t>(firstPlane + p)]);
   return slab;
@@ -368,21 +379,109 @@ double domeAreaScale(int factor) {
   return lo;
 }
 
+std::int32_t fieldValue(const shared::DistanceField& f, const std::int32_t* values, int x, int y) {
+  if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
+  return values[static_cast<std::size_t>(x - f.x0) + static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
+}
+
+// A label's area in pixels, read off its signed distances d (unit: one pixel) as each pixel's
+// cover clamp(1/2 - d, 0, 1): the contours' sub-pixel crossings count, where a pixel count is
+// a few per cent short on thin or lattice-aligned outlines.
+double coveredArea(const std::int32_t* values, std::size_t count, double unit) {
+  double area = 0;
+  for (std::size_t i = 0; i < count; ++i) area += std::clamp(0.5 - values[i] / unit, 0.0, 1.0);
+  return area;
+}
+
+// The offset in [-limit, limit] at which the band's values less the offset cover `want`
+// pixels (values in 1/unit pixel): the cover grows with the offset, so bisect.
+std::int32_t offsetCovering(const std::vector<std::int32_t>& band, double want, double unit, std::int32_t limit) {
+  std::int32_t lo = -limit, hi = limit;
+  while (hi - lo > 1) {
+    const std::int32_t mid = lo + (hi - lo) / 2;
+    double area = 0;
+    for (std::int32_t v : band) area += std::clamp(0.5 - (v - mid) / unit, 0.0, 1.0);
+    (area < want ? lo : hi) = mid;
+  }
+  return hi;
+}
+
 }  // namespace
 
+void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& fieldA, const std::int32_t* valuesA,
+                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t unit,
+                  std::int32_t limit, std::int32_t* out) {
+  const int n = factor;
+  out[0] = out[n] = 0;
+  const double areaA = coveredArea(valuesA, static_cast<std::size_t>(fieldA.w) * static_cast<std::size_t>(fieldA.h), unit);
+  const double areaB = coveredArea(valuesB, static_cast<std::size_t>(fieldB.w) * static_cast<std::size_t>(fieldB.h), unit);
+  const std::int32_t sure = limit + unit;  // beyond: covered, or not, whatever the offset
+  std::vector<std::int32_t> band;
+  for (int m = 1; m < n; ++m) {
+    // As the interpolation samples a shifting label (interpolate.comp, entryValue).
+    const std::int32_t sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
+    std::int64_t inside = 0;
+    band.clear();
+    for (int y = e.y0; y <= e.y1; ++y)
+      for (int x = e.x0; x <= e.x1; ++x) {
+        const std::int32_t a = fieldValue(fieldA, valuesA, x - sx, y - sy);
+        const std::int32_t b = fieldValue(fieldB, valuesB, x + e.shiftX - sx, y + e.shiftY - sy);
+        if (a == kFarAway || b == kFarAway || std::min(a, b) > sure) continue;
+        if (std::max(a, b) < -sure)
+          ++inside;
+        else
+          band.push_back((n - m) * a + m * b);
+      }
+    const double want = ((n - m) * areaA + m * areaB) / n - static_cast<double>(inside);
+    out[m] = offsetCovering(band, want, static_cast<double>(n) * unit, n * limit);
+  }
+}
+
+std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const std::vector<const std::int32_t*>& fieldValues,
+                                          int threads) {
+  std::vector<std::int32_t> table(slab.layerInts, -1);
+  const std::size_t caps = slab.cappedEntries.size();
+  parallelChunks(caps + slab.blendedEntries.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i < caps) {
+        const InterpolationSlab::CappedEntry& ref = slab.cappedEntries[i];
+        const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(ref.field)];
+        domeErosions(fieldValues[static_cast<std::size_t>(ref.field)],
+                     static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h), ref.factor, table.data() + ref.table);
+        continue;
+      }
+      const InterpolationSlab::BlendedEntry& ref = slab.blendedEntries[i - caps];
+      const shared::PairEntry& e = slab.entries[ref.entry];
+      const auto a = static_cast<std::size_t>(e.fieldA), b = static_cast<std::size_t>(e.fieldB);
+      blendOffsets(e, slab.fields[a], fieldValues[a], slab.fields[b], fieldValues[b], ref.factor, kFieldPixel, slab.blendLimit,
+                   table.data() + ref.table);
+    }
+  });
+  return table;
+}
+
 void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out) {
-  std::vector<std::int32_t> depths;  // inside, deepest first
+  std::vector<std::int32_t> near;  // what an erosion can uncover: inside, or within half a pixel outside
   for (std::size_t i = 0; i < count; ++i)
-    if (values[i] < 0) depths.push_back(-values[i]);
-  std::sort(depths.begin(), depths.end(), std::greater<>());
-  const std::size_t area = depths.size();
+    if (values[i] < kFieldPixel / 2) near.push_back(values[i]);
+  const std::int32_t deepest = near.empty() ? 0 : -*std::min_element(near.begin(), near.end());
+  auto cover = [&](std::int32_t erosion) {
+    double area = 0;
+    for (std::int32_t v : near) area += std::clamp(0.5 - (v + erosion) / double{kFieldPixel}, 0.0, 1.0);
+    return area;
+  };
+  const double area = cover(0);
   out[0] = 0;
   const double scale = domeAreaScale(factor);
   for (int m = 1; m < factor; ++m) {
-    // Keep the `keep` deepest pixels: erode to the depth of the next one (ties erode more).
-    const double kept = std::min(1.0, scale * (factor - m) / factor);
-    const auto keep = static_cast<std::size_t>(std::llround(static_cast<double>(area) * kept));
-    out[m] = keep >= area ? 0 : depths[keep];
+    // The least erosion that leaves at most the dome's area (1 - m/n, scaled) covered.
+    const double want = area * std::min(1.0, scale * (factor - m) / factor);
+    std::int32_t lo = -1, hi = deepest + kFieldPixel;
+    while (hi - lo > 1) {
+      const std::int32_t mid = lo + (hi - lo) / 2;
+      (cover(mid) <= want ? hi : lo) = mid;
+    }
+    out[m] = hi;
   }
   out[factor] = -1;  // closed on the next plane
 }

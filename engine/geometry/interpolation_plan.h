@@ -23,7 +23,7 @@
 //  - a voxel with one label on both planes, at least deepDistance from that label's boundary
 //    on both and in no tile of a shifting label, keeps that label without the competition
 //    below (it would win it: every field is 1-Lipschitz), with the largest clearance (no
-//    surface vertex comes within two pixels of it);
+//    surface vertex comes within four pixels of it);
 //  - the voxel takes the label of smallest value (ties: the smaller label) if that value or
 //    the union's is negative, else background. Its clearance is how far its value is from
 //    losing the label (to the runner-up label or to the background), which places the surface
@@ -69,12 +69,13 @@ struct DistanceWeights {
 Result<DistanceWeights> distanceWeights(const Grid& grid);
 
 inline constexpr int kTileSize = 16;
+inline constexpr std::int32_t kFieldPixel = 16;  // a field's values are in 1/16 of the smaller pixel spacing
 inline constexpr int kWindowMargin = 4;
 inline constexpr std::int32_t kFarAway = 1 << 28;
 inline constexpr int kRefineBand = 2;                 // pixels from the boundary where segments refine distances
 inline constexpr std::int32_t kMovingTile = 1 << 30;  // tile flag: a label that shifts (in its count)
 
-// Two pixels of the larger spacing in 1/16 of the smaller: how far from its label's boundary a
+// Four pixels of the larger spacing in 1/16 of the smaller: how far from its label's boundary a
 // voxel must be to skip the competition.
 std::int32_t deepDistance(const Grid& grid);
 
@@ -92,15 +93,23 @@ struct InterpolationSlab {
   std::vector<std::int32_t> tileEntries;
   std::size_t fieldValues = 0;  // ints of the field buffer
   std::size_t scratchInts = 0;  // ints of the scratch buffer
-  // Entries on one plane only (round caps), with their dome erosions' place in the cap table:
-  // filled from the fields once they are computed (capErosionTable).
+  // Entries of a feature on one plane only (round caps), with their dome erosions' place in the
+  // layer table, filled from the fields once they are computed (buildLayerTable).
   struct CappedEntry {
     int field = 0;
     int factor = 1;
     std::size_t table = 0;
   };
   std::vector<CappedEntry> cappedEntries;
-  std::size_t capInts = 0;
+  // Entries of a feature on both planes, with their area-keeping offsets' place in the table.
+  struct BlendedEntry {
+    std::size_t entry = 0;
+    int factor = 1;
+    std::size_t table = 0;
+  };
+  std::vector<BlendedEntry> blendedEntries;
+  std::int32_t blendLimit = 0;  // how far an offset may move a boundary (1/16 of the smaller pixel)
+  std::size_t layerInts = 0;    // ints of the layer table (PairEntry::layerTable)
   std::size_t deviceBytes(const Grid& grid) const;
 };
 
@@ -116,8 +125,11 @@ PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads);
 // About what plane k adds to a slab's device memory (its fields, labels and output layers).
 std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& census, int k, int factor);
 
+// containers[label]: the label's feature contains another (Nesting::parent); its boundary
+// with what it contains is that feature's, so it keeps no area of its own between planes (its
+// own region has holes that come and go with its contents' caps).
 InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
-                                        const std::vector<int>& factors);
+                                        const std::vector<int>& factors, const std::vector<bool>& containers = {});
 
 // Round caps: a dome as high as the whole gap, whose cross-section at layer m of n counted
 // from the label's plane keeps (1 - m/n) of the label's area there, so the cap holds what a
@@ -128,18 +140,31 @@ InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCe
 // values: the field's window values (negative inside).
 void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out);
 
-// Every round-capped entry's erosions (PairEntry::capTable) in one table of slab.capInts,
-// from each field's values (valuesOf(field): its window, as DistanceField::offset addresses).
-template <typename ValuesOf>
-std::vector<std::int32_t> capErosionTable(const InterpolationSlab& slab, ValuesOf valuesOf) {
-  std::vector<std::int32_t> table(slab.capInts, -1);
-  for (const InterpolationSlab::CappedEntry& ref : slab.cappedEntries) {
-    const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(ref.field)];
-    domeErosions(valuesOf(ref.field), static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h), ref.factor,
-                 table.data() + ref.table);
-  }
-  return table;
+// Area-keeping blends: a feature on both planes of a pair keeps, at layer m of n, the linear
+// blend ((n - m) areaA + m areaB) / n of its areas on them, so that its volume follows
+// the slab rule (the blended fields alone lose area wherever the outline changes between the
+// planes: 15 % of the volume of an ellipse turned a quarter turn). Its region at layer m is
+// {value < offset(m)}, value the blend (n - m) dA + m dB as the interpolation samples it; areas
+// are the pixels' covers read off the signed distances (unit: one pixel), the offsets solved
+// near the boundary and bounded by n * limit, so that a voxel
+// deep inside one label on both planes still belongs to it. out gets factor + 1 offsets, the
+// first and last 0 (the planes are the contours).
+void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& fieldA, const std::int32_t* valuesA,
+                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t unit,
+                  std::int32_t limit, std::int32_t* out);
+
+// The layer table (PairEntry::layerTable) of slab.layerInts: every round-capped entry's dome
+// erosions and every blended entry's offsets, from the fields' values (fieldValues[field]:
+// its window, as DistanceField::offset addresses; null for a field no entry needs), the
+// entries shared among threads (the same table for any count).
+std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const std::vector<const std::int32_t*>& fieldValues,
+                                          int threads);
+
+// round(a / n), halves away from zero, for n > 0: how far a shifting label has moved at layer a of n.
+inline std::int32_t roundDiv(std::int32_t a, std::int32_t n) {
+  return a >= 0 ? (2 * a + n) / (2 * n) : -((-2 * a + n) / (2 * n));
 }
+
 // Flat caps: whether the label may still win at layer m of n counted from its plane, and its
 // value there: its plane's distance, but at least a ramp through zero at half the gap, so that
 // the lid's clearance puts it at half the gap, whatever the depth below it.

@@ -13,9 +13,6 @@ namespace {
 // floor(a / b) for b > 0.
 std::int32_t floorDiv(std::int32_t a, std::int32_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-// round(a / n), halves away from zero, for n > 0.
-std::int32_t roundDiv(std::int32_t a, std::int32_t n) { return a >= 0 ? (2 * a + n) / (2 * n) : -((-2 * a + n) / (2 * n)); }
-
 // Distance, in 1/unit pixel, from each of n samples of a grid line to the nearest crossing
 // point on it (far when there is none); boundary(i) says whether edge (i, i+1) has one, at
 // crossing(i) / 256 of the edge.
@@ -143,8 +140,11 @@ struct Sampler {
     if (e.fieldA >= 0 && e.fieldB >= 0) {
       const std::int32_t sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
       const std::int32_t a = at(e.fieldA, x - sx, y - sy), b = at(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
-      return a == kFarAway || b == kFarAway ? kFarAway : (n - m) * a + m * b;
+      if (a == kFarAway || b == kFarAway) return kFarAway;
+      const std::int32_t offset = e.layerTable >= 0 ? fields.layerTable[static_cast<std::size_t>(e.layerTable + m)] : 0;
+      return (n - m) * a + m * b - offset;  // area-keeping (blendOffsets)
     }
+    if (e.label == kBackground) return kFarAway;  // the union caps nothing
     const int field = e.fieldA >= 0 ? e.fieldA : e.fieldB;
     const int fromPlane = e.fieldA >= 0 ? m : n - m;
     const std::int32_t d = at(field, x, y);
@@ -153,7 +153,7 @@ struct Sampler {
       wins = flatCapOpen(n, fromPlane);
       return flatCapValue(d, n, fromPlane);
     }
-    const std::int32_t erosion = fields.capErosions[static_cast<std::size_t>(e.capTable + fromPlane)];  // a dome
+    const std::int32_t erosion = fields.layerTable[static_cast<std::size_t>(e.layerTable + fromPlane)];  // a dome
     if (erosion < 0) return kFarAway;
     return n * (d + erosion);
   }
@@ -203,7 +203,9 @@ struct Sampler {
       const auto c = static_cast<std::uint32_t>(std::min((-extruded + pair.factor / 2) / pair.factor, 65535));
       return extrudedLabel | (c << 16);
     }
-    const std::int32_t level = std::min(best, united);
+    // The union only closes gaps between features (a runner-up near): alone, a feature keeps its
+    // own area-keeping boundary.
+    const std::int32_t level = second < pair.factor * deep ? std::min(best, united) : best;
     const bool labelled = winner != kBackground && level < 0;
     const std::int32_t clearance = std::min(labelled ? std::min(second - best, -level) : level, capMargin);
     const auto c = static_cast<std::uint32_t>(std::min((clearance + pair.factor / 2) / pair.factor, 65535));
@@ -260,8 +262,9 @@ SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<
     const shared::DistanceField& f = slab.fields[i];
     fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset);
   }
-  out.capErosions =
-      capErosionTable(slab, [&](int field) { return out.values.data() + slab.fields[static_cast<std::size_t>(field)].offset; });
+  std::vector<const std::int32_t*> values;
+  for (const shared::DistanceField& f : slab.fields) values.push_back(out.values.data() + f.offset);
+  out.layerTable = buildLayerTable(slab, values, 1);
   return out;
 }
 

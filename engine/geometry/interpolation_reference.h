@@ -11,8 +11,8 @@
 namespace scansurf {
 
 struct SlabFields {
-  std::vector<std::int32_t> values;       // InterpolationSlab::fieldValues
-  std::vector<std::int32_t> capErosions;  // the slab's cap table (capErosionTable)
+  std::vector<std::int32_t> values;      // InterpolationSlab::fieldValues
+  std::vector<std::int32_t> layerTable;  // the slab's layer table (buildLayerTable)
 };
 
 // Exact squared distance (weights w) from each of n samples to the nearest sample whose

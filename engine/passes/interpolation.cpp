@@ -34,7 +34,7 @@ enum Binding : std::uint32_t {
   kTileRanges,
   kTileEntries,
   kOutput,
-  kCaps,
+  kLayerTable,
   kCrossings
 };
 
@@ -85,7 +85,7 @@ struct Interpolator::State {
   gpu::Owned<VkDescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
   SlabBuffers buffers;
-  gpu::Buffer cappedFields;  // the round caps' fields, read back for their dome erosions
+  gpu::Buffer tableFields;  // the fields the layer table is read off, read back
   std::size_t slabBudget = std::size_t{64} << 20;
   int lastSlabs = 0;
 };
@@ -143,7 +143,7 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
   SCANSURF_TRY(track(b.upload(ctx, kTileRanges, slab.tileRanges)));
   SCANSURF_TRY(track(b.upload(ctx, kTileEntries, slab.tileEntries)));
   SCANSURF_TRY(track(b.reserve(ctx, kOutput, plane * static_cast<std::size_t>(slab.outputLayers) * 4)));
-  SCANSURF_TRY(track(b.reserve(ctx, kCaps, slab.capInts * 4)));  // filled once the fields are made
+  SCANSURF_TRY(track(b.reserve(ctx, kLayerTable, slab.layerInts * 4)));  // filled once the fields are made
   return fresh;
 }
 
@@ -217,47 +217,51 @@ void recordFields(VkCommandBuffer cmd, const Interpolator::State& s, const Inter
   }
 }
 
-// The round caps' dome erosions (capErosionTable) from their fields, read back once made, into
-// the cap table the interpolation pass reads.
-Result<void> fillCapTable(const gpu::Context& ctx, Interpolator::State& s, const InterpolationSlab& slab) {
+// The layer table (buildLayerTable: dome erosions, area-keeping offsets) from the fields it
+// needs, read back once made, into the buffer the interpolation pass reads.
+Result<void> fillLayerTable(const gpu::Context& ctx, Interpolator::State& s, const InterpolationSlab& slab, int threads) {
   std::vector<std::size_t> at(slab.fields.size(), SIZE_MAX);
   std::vector<VkBufferCopy> regions;
   std::size_t ints = 0;
-  for (const InterpolationSlab::CappedEntry& c : slab.cappedEntries) {
-    const auto field = static_cast<std::size_t>(c.field);
-    if (at[field] != SIZE_MAX) continue;
+  auto need = [&](int index) {
+    const auto field = static_cast<std::size_t>(index);
+    if (at[field] != SIZE_MAX) return;
     const shared::DistanceField& f = slab.fields[field];
     const std::size_t n = static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h);
     at[field] = ints;
     regions.push_back({static_cast<VkDeviceSize>(f.offset) * 4, ints * 4, n * 4});
     ints += n;
-  }
-  if (s.cappedFields.size() < std::max<std::size_t>(ints, 1) * 4) {
-    s.cappedFields = gpu::Buffer{};
-    SCANSURF_ASSIGN_OR_RETURN(s.cappedFields, gpu::Buffer::create(ctx, std::max<std::size_t>(ints, 1) * 4,
-                                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
+  };
+  for (const InterpolationSlab::CappedEntry& c : slab.cappedEntries) need(c.field);
+  for (const InterpolationSlab::BlendedEntry& b : slab.blendedEntries)
+    need(slab.entries[b.entry].fieldA), need(slab.entries[b.entry].fieldB);
+  if (s.tableFields.size() < std::max<std::size_t>(ints, 1) * 4) {
+    s.tableFields = gpu::Buffer{};
+    SCANSURF_ASSIGN_OR_RETURN(s.tableFields, gpu::Buffer::create(ctx, std::max<std::size_t>(ints, 1) * 4,
+                                                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
   }
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-  vkCmdCopyBuffer(cmd, s.buffers.buffers[kValues].handle(), s.cappedFields.handle(), static_cast<std::uint32_t>(regions.size()),
+  vkCmdCopyBuffer(cmd, s.buffers.buffers[kValues].handle(), s.tableFields.handle(), static_cast<std::uint32_t>(regions.size()),
                   regions.data());
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                      VK_ACCESS_2_HOST_READ_BIT);
   SCANSURF_TRY(commands.submitAndWait());
-  SCANSURF_TRY(s.cappedFields.invalidate());
-  const auto* values = static_cast<const std::int32_t*>(s.cappedFields.mapped());
-  const std::vector<std::int32_t> table =
-      capErosionTable(slab, [&](int field) { return values + at[static_cast<std::size_t>(field)]; });
-  std::memcpy(s.buffers.buffers[kCaps].mapped(), table.data(), table.size() * 4);
+  SCANSURF_TRY(s.tableFields.invalidate());
+  const auto* mapped = static_cast<const std::int32_t*>(s.tableFields.mapped());
+  std::vector<const std::int32_t*> values;
+  for (std::size_t place : at) values.push_back(place == SIZE_MAX ? nullptr : mapped + place);
+  const std::vector<std::int32_t> table = buildLayerTable(slab, values, threads);
+  std::memcpy(s.buffers.buffers[kLayerTable].mapped(), table.data(), table.size() * 4);
   return {};
 }
 
 }  // namespace
 
 Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                   const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps,
+                                   const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps, int threads,
                                    const SlabWords& store, const InterpolationDeviceIo& device) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& g = volume.grid;
@@ -278,8 +282,8 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
                                weights.unit,
                                farDistance(g, weights),
                                deepDistance(g)};
-  // The fields first; with round caps their domes need the fields' depths before interpolation.
-  const bool domes = caps == CapShape::Round && slab.capInts > 0;
+  // The fields first; the layer table needs their values before interpolation.
+  const bool tables = slab.layerInts > 0;
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
   if (device.planes)
@@ -289,9 +293,9 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
   recordFields(cmd, *state_, slab, push);
   std::optional<gpu::OneShotCommands> second;
-  if (domes) {
+  if (tables) {
     SCANSURF_TRY(commands.submitAndWait());
-    SCANSURF_TRY(fillCapTable(ctx, *state_, slab));
+    SCANSURF_TRY(fillLayerTable(ctx, *state_, slab, threads));
     SCANSURF_ASSIGN_OR_RETURN(second, gpu::OneShotCommands::begin(ctx));
     cmd = second->cmd();
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -319,7 +323,7 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
 
 Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
                                              const std::vector<int>& factors, CapShape caps, int threads,
-                                             InterpolationDeviceIo device) {
+                                             InterpolationDeviceIo device, const std::vector<bool>& containers) {
   if (crossings.size() != volume.labels.size())
     return makeError(Errc::InvalidArgument, "interpolation: one edge-crossing word per voxel is needed");
   SCANSURF_ASSIGN_OR_RETURN(const DistanceWeights weights, distanceWeights(volume.grid));
@@ -332,9 +336,9 @@ Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const st
       [&](const InterpolationSlab& slab, const SlabWords& store) {
         ++state_->lastSlabs;
         device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(slab.firstPlane)]) * 4;
-        return runSlab(volume, crossings, slab, weights, caps, store, device);
+        return runSlab(volume, crossings, slab, weights, caps, threads, store, device);
       },
-      device.words == nullptr);
+      device.words == nullptr, containers);
 }
 
 }  // namespace scansurf::passes

@@ -32,13 +32,15 @@ class Interpolator {
 
   // The volume on interpolatedGrid(volume.grid, factors) (see interpolated_volume.h);
   // crossings: planeEdgeCrossings of the volume (geometry/edge_crossings.h). With device
-  // words, the host gets the clearances only (the volume's labels stay empty).
+  // words, the host gets the clearances only (the volume's labels stay empty). containers: as
+  // planInterpolationSlab's (geometry/interpolation_plan.h).
   Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                 const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device = {});
+                                 const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device = {},
+                                 const std::vector<bool>& containers = {});
   // One slab's output layers, handed to `store` (InterpolationSlab::outputLayers of nx * ny
   // label | clearance << 16 words, read straight from the device's readback buffer).
   Result<void> runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
-                       const DistanceWeights& weights, CapShape caps, const SlabWords& store,
+                       const DistanceWeights& weights, CapShape caps, int threads, const SlabWords& store,
                        const InterpolationDeviceIo& device = {});
 
   // Bytes one slab may use on the device; smaller forces more slabs (tests use it).

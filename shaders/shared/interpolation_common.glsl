@@ -13,7 +13,7 @@ layout(std430, binding = 5) readonly buffer Pairs { PairPlan pairs[]; } pairTabl
 layout(std430, binding = 6) readonly buffer TileRanges { int ranges[]; } tileRanges;
 layout(std430, binding = 7) readonly buffer TileEntries { int entries[]; } tileEntries;
 layout(std430, binding = 8) writeonly buffer Output { uint labels[]; } outputLabels;
-layout(std430, binding = 9) readonly buffer CapTable { int erosion[]; } capTable;  // [PairEntry::capTable + m]
+layout(std430, binding = 9) readonly buffer LayerTable { int value[]; } layerTable;  // [PairEntry::layerTable + m]
 // Contour crossings of the +x (low byte) and +y (high byte) edge of each voxel, in 1/256.
 layout(std430, binding = 10) readonly buffer Crossings { uint words[]; } crossings;
 

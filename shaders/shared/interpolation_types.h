@@ -36,7 +36,8 @@ SCANSURF_STRUCT(PairEntry) {
   int_t shiftX, shiftY;
   int_t x0, y0, x1, y1;  // where the label may win (inclusive pixel box)
   int_t flatCap;         // 1: the label ends here touching another that ends: a flat cap
-  int_t capTable;        // on one plane only: its first of factor + 1 dome erosions in the cap table
+  int_t layerTable;      // its first of factor + 1 values in the layer table (-1: none): on one plane
+                         // only, the dome's erosions; on both (a feature), the area-keeping offsets
 };
 
 // Two consecutive planes of the slab, the interpolated layers between them and the entries
