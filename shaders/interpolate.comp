@@ -34,8 +34,8 @@ int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
     wins = 2 * fromPlane <= n;
     return max(n * d, kFlatLidSlope * (2 * fromPlane - n));
   }
-  const int erosion = layerTable.value[e.layerTable + fromPlane];  // a dome as high as the gap
-  if (erosion < 0) return kFarAway;
+  const int erosion = layerTable.value[e.layerTable + fromPlane];  // a dome 3/4 of the gap high
+  if (erosion < 0) return kFarAway;                                  // no layer between: no dome
   return n * (d + erosion);
 }
 
@@ -85,7 +85,7 @@ void main() {
     else if (v < second) second = v;
     const bool capped = e.label != 0 && (e.fieldA < 0 || e.fieldB < 0);
     if (wins && v < 0 && capped && (extrudedLabel == 0 || v < extruded)) extruded = v, extrudedLabel = e.label;
-    if (wins && v >= 0 && capped) capMargin = min(capMargin, v);  // how far a cap is from taking the voxel
+    if (v >= 0 && capped) capMargin = min(capMargin, v);  // how far a cap (or a lid) is from taking the voxel
   }
   if (extrudedLabel != 0) {  // a cap keeps its region (a flat cap up to its lid, a dome as it narrows)
     const uint c = uint(min((-extruded + pair.factor / 2) / pair.factor, 65535));

@@ -359,22 +359,38 @@ InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCe
 
 namespace {
 
+// A round cap's cross-section at layer m of n, as a fraction of its plane's area: an
+// ellipsoid's, 1 - (m / h)^2, as high as h = 3/4 of the gap, which holds the flat half slab
+// (2h/3 = 1/2). A paraboloid (1 - m/n) holds it too but must stand a whole gap high: a sphere's
+// pole, which lies less than half a gap beyond its last plane, was overshot twice as far.
+inline constexpr double kDomeHeight = 0.75;
+double domeFraction(int m, int factor) {
+  const double s = m / (kDomeHeight * factor);
+  return std::max(0.0, 1 - s * s);
+}
+
 // The surface between two layers of a dome is close to a frustum (its cross-sections are the
 // label's region eroded, alike in shape): h (a + sqrt(a b) + b) / 3, less than the trapezoid
-// h (a + b) / 2 that the areas (1 - m/n) were chosen for. The areas of the layers between the
-// plane (area 1) and the next (0) are scaled by the factor that makes the frusta hold half a
-// gap, the flat half slab (about 1.04 for 4 layers a gap).
+// h (a + b) / 2 that the fractions integrate. The areas of the dome's layers are scaled by the
+// factor that makes the frusta hold half a gap, the flat half slab (a few per cent).
+// The last layer a dome of n layers is open on, and how far beyond it its tip stands (in
+// layers, at most 1): at 3/4 of the gap, not on the next layer.
+int domeTop(int factor) { return static_cast<int>(std::ceil(kDomeHeight * factor)) - 1; }
+double domeTipHeight(int factor) { return kDomeHeight * factor - domeTop(factor); }
+
 double domeAreaScale(int factor) {
+  const int top = domeTop(factor);
   const auto volume = [&](double scale) {
     double v = 0;
-    for (int m = 0; m < factor; ++m) {
-      const double a = m == 0 ? 1.0 : std::min(1.0, scale * (factor - m) / factor);
-      const double b = std::min(1.0, scale * (factor - m - 1) / factor);
+    for (int m = 0; m < top; ++m) {
+      const double a = m == 0 ? 1.0 : std::min(1.0, scale * domeFraction(m, factor));
+      const double b = std::min(1.0, scale * domeFraction(m + 1, factor));
       v += (a + std::sqrt(a * b) + b) / 3;
     }
-    return v;  // in layer spacings
+    const double last = top == 0 ? 1.0 : std::min(1.0, scale * domeFraction(top, factor));
+    return v + domeTipHeight(factor) * last / 3;  // in layer spacings, with the tip's cone
   };
-  double lo = 1, hi = 2;
+  double lo = 0.5, hi = 2;
   for (int i = 0; i < 50; ++i) (volume(0.5 * (lo + hi)) < 0.5 * factor ? lo : hi) = 0.5 * (lo + hi);
   return lo;
 }
@@ -473,9 +489,10 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, std
   const double area = cover(0);
   out[0] = 0;
   const double scale = domeAreaScale(factor);
-  for (int m = 1; m < factor; ++m) {
-    // The least erosion that leaves at most the dome's area (1 - m/n, scaled) covered.
-    const double want = area * std::min(1.0, scale * (factor - m) / factor);
+  const int top = domeTop(factor);
+  for (int m = 1; m <= top; ++m) {
+    // The least erosion that leaves at most the dome's area covered.
+    const double want = area * std::min(1.0, scale * domeFraction(m, factor));
     std::int32_t lo = -1, hi = deepest + kFieldPixel;
     while (hi - lo > 1) {
       const std::int32_t mid = lo + (hi - lo) / 2;
@@ -483,7 +500,12 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, std
     }
     out[m] = hi;
   }
-  out[factor] = -1;  // closed on the next plane
+  // Closed beyond: an erosion that puts the deepest pixel's level through zero at the tip's
+  // height between the top layer and the next, so the dome ends in a tip there.
+  const double t = domeTipHeight(factor);
+  const double depth = deepest - out[top];
+  const auto closed = static_cast<std::int32_t>(std::lround(deepest + depth * (1 - t) / t));
+  for (int m = top + 1; m <= factor; ++m) out[m] = factor == 1 ? -1 : closed;
 }
 
 }  // namespace scansurf

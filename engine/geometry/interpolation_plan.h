@@ -131,12 +131,14 @@ std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& cen
 InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
                                         const std::vector<int>& factors, const std::vector<bool>& containers = {});
 
-// Round caps: a dome as high as the whole gap, whose cross-section at layer m of n counted
-// from the label's plane keeps (1 - m/n) of the label's area there, so the cap holds what a
-// flat half slab holds (a paraboloid over a disc) whatever the outline's shape. Its region at
-// layer m is {d < -erosion(m)}, d the label's field on its plane, the erosions read off the
-// field's own depths (the areas scaled a little so that the frusta between the layers, not the
-// trapezoids, hold the half slab): out gets factor + 1 erosions (1/16 pixel), the last -1 (closed).
+// Round caps: a dome 3/4 of the gap high, whose cross-section at layer m of n counted from the
+// label's plane keeps 1 - (4m / 3n)^2 of the label's area there, so the cap holds what a flat
+// half slab holds (half an ellipsoid over a disc) whatever the outline's shape. Its region at
+// layer m is {d < -erosion(m)}, d the label's field on its plane, the areas its pixels' covers
+// (coveredArea) and scaled a little so that the frusta between the layers, not the trapezoids,
+// hold the half slab: out gets factor + 1 erosions (1/16 pixel), the deepest depth where the
+// dome is closed, so that it closes in a tip on its first closed layer (a fully eroded layer
+// left the top flat, a third of a layer's frustum short: -3 % of a cap at 5 layers a gap).
 // values: the field's window values (negative inside).
 void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out);
 

@@ -154,7 +154,7 @@ struct Sampler {
       return flatCapValue(d, n, fromPlane);
     }
     const std::int32_t erosion = fields.layerTable[static_cast<std::size_t>(e.layerTable + fromPlane)];  // a dome
-    if (erosion < 0) return kFarAway;
+    if (erosion < 0) return kFarAway;  // no layer between: no dome
     return n * (d + erosion);
   }
 
@@ -197,7 +197,7 @@ struct Sampler {
         second = v;
       if (wins && v < 0 && capped(e) && (extrudedLabel == kBackground || v < extruded))
         extruded = v, extrudedLabel = static_cast<Label>(e.label);
-      if (wins && v >= 0 && capped(e)) capMargin = std::min(capMargin, v);  // how far a cap is from taking the voxel
+      if (v >= 0 && capped(e)) capMargin = std::min(capMargin, v);  // how far a cap (or a lid) is from taking the voxel
     }
     if (extrudedLabel != kBackground) {  // a cap keeps its region (a flat cap up to its lid, a dome as it narrows)
       const auto c = static_cast<std::uint32_t>(std::min((-extruded + pair.factor / 2) / pair.factor, 65535));
