@@ -88,7 +88,7 @@ struct Flags {
   std::string convention = "enclosing";
   std::string overlaps = "layers";
   std::string overlapTolerance = "auto";
-  bool noSmooth = false, noContourFit = false, noJunctions = false, noDraco = false;
+  bool noSmooth = false, noContourFit = false, noJunctions = false, noKeepVolumes = false, noDraco = false;
   bool remesh = false, noCurvatureSizing = false;
   std::string reference;
   std::string gltfFrame = "gltf";
@@ -166,6 +166,8 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
       ->capture_default_str();
   app.add_flag("--no-contour-fit", f.noContourFit, "do not place contour-plane vertices on the original contours");
   app.add_flag("--no-junction-smoothing", f.noJunctions, "keep vertices where three or more structures meet in place");
+  app.add_flag("--no-keep-volume", f.noKeepVolumes,
+               "leave each structure's volume as relaxation made it (default: restored to its contours' slab volume)");
 }
 
 // "auto", "off" or a whole number of layers per gap, 1 to kMaxFactor.
@@ -273,6 +275,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.enabled = !f.noSmooth;
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
+  o.build.smoothing.keepVolumes = !f.noKeepVolumes;
   o.build.remeshing.enabled = f.remesh;
   o.build.remeshing.curvatureSizing = !f.noCurvatureSizing;
   o.scene.draco = !f.noDraco;

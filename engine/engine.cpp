@@ -22,6 +22,7 @@
 #include "geometry/remesh.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
+#include "geometry/volume_restoration.h"
 #include "gpu/commands.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
@@ -108,10 +109,47 @@ Result<void> checkNesting(const Nesting& nesting) {
   return {};
 }
 
+// What the surfaces are held to beyond the labels: the medial split of incidental pairs, and
+// each feature's volume (slabVolumes), which smoothing restores (volume_restoration.h).
+struct SurfaceTargets {
+  const MedialCrossings* medial = nullptr;
+  std::vector<double> volumes;
+};
+
+// Per feature, the slab rule's volume of its contours less what it gave up to incidental
+// neighbours: what its surface should enclose.
+std::vector<double> slabVolumes(const OverlapReport& overlaps) {
+  std::vector<double> out;
+  for (const FeatureVolumes& f : overlaps.features) out.push_back(f.contour);
+  for (const SharedVolume& s : overlaps.shared) {
+    out[static_cast<std::size_t>(s.a)] -= s.givenUpByA;
+    out[static_cast<std::size_t>(s.b)] -= s.givenUpByB;
+  }
+  return out;
+}
+
+// Per layer of the grid: whether a contour lies on it.
+std::vector<bool> contourLayers(const Grid& grid, const ContourSet* contours) {
+  std::vector<bool> out(static_cast<std::size_t>(grid.nz), false);
+  if (contours)
+    for (const Feature& f : contours->features)
+      for (const FeatureSlice& slice : f.slices)
+        if (const int k = grid.layerOfPlane(slice.z); k >= 0) out[static_cast<std::size_t>(k)] = true;
+  return out;
+}
+
+// The stage calls' targets: each feature's slab volume on the grid of its planes (no medial split).
+SurfaceTargets slabTargets(const ContourSet* contours, const Grid& grid) {
+  SurfaceTargets targets;
+  if (contours)
+    for (const Feature& f : contours->features) targets.volumes.push_back(slabVolume(f, grid));
+  return targets;
+}
+
 // Classification records to feature surfaces: assembly, smoothing, feature extraction.
 Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
                            const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {},
-                           const MedialCrossings* medial = nullptr) {
+                           const SurfaceTargets& targets = {}) {
   Surfaces surfaces;
   surfaces.convention = options.convention;
   clock.begin("assembly");
@@ -120,7 +158,11 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
   clock.lap("assembly");
   if (options.smoothing.enabled) {
     clock.begin("smoothing");
-    smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, medial);
+    const SmoothingReport smoothed =
+        smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
+    if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
+      restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, contourLayers(grid, contours),
+                     options.threads);
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {
@@ -147,12 +189,12 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
 // already on the device (DeviceLabelVolume).
 template <typename Volume>
 Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
-                                  const BuildOptions& options, StageClock& clock) {
+                                  const BuildOptions& options, StageClock& clock, const SurfaceTargets& targets) {
   clock.begin("classification");
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
   clock.lap("classification");
-  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock);
+  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock, {}, targets);
 }
 
 // Classification of labels in one of scansurf's own device buffers, bound in place; the buffer
@@ -192,12 +234,12 @@ std::vector<bool> containerLabels(const Nesting& nesting) {
 Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& planes,
                                       std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                       const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                      StageClock& clock, const MedialCrossings* medial) {
+                                      StageClock& clock, const SurfaceTargets& targets) {
   clock.begin("interpolation");
   SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
-      contours ? planeEdgeCrossings(planes, *contours, options.threads, medial)
+      contours ? planeEdgeCrossings(planes, *contours, options.threads, targets.medial)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
   SCANSURF_ASSIGN_OR_RETURN(
@@ -210,7 +252,7 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
   device.reset();
   clock.lap("interpolation");
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, clock));
-  return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance, medial);
+  return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance, targets);
 }
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked, else
@@ -218,19 +260,19 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
 Result<Surfaces> surfacesOfPlanes(EngineState& impl, const LabelVolume& planes,
                                   std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
                                   const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                  StageClock& clock, const MedialCrossings* medial = nullptr) {
+                                  StageClock& clock, const SurfaceTargets& targets = {}) {
   if (interpolates(factors))
-    return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock, medial);
+    return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock, targets);
   if (!device) {
     clock.begin("classification");
     SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
     SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(planes));
     clock.lap("classification");
-    return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, medial);
+    return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, targets);
   }
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
                             classifyOwnBuffer(impl, std::move(device->buffer), device->grid, 16, false, clock));
-  return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, medial);
+  return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, targets);
 }
 
 // Scan conversion for the surfaces: the labels stay on the device for the next GPU pass, and
@@ -310,7 +352,7 @@ Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Gr
                                   layer == 0 && options.keepLabelVolume, split[static_cast<std::size_t>(layer)], volume));
     clock.lap("scan conversion");
     SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, std::move(device), &subset, out.nesting, options,
-                                                                  subFactors, clock, &medial));
+                                                                  subFactors, clock, {&medial, slabVolumes(out.overlaps)}));
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -434,14 +476,15 @@ Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesti
                                  const ContourSet* contours) {
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
     return surfacesOfPlanes(*impl_, volume, std::nullopt, contours, nesting, options,
-                            interpolationFactors(volume.grid, options.interpolation), clock);
+                            interpolationFactors(volume.grid, options.interpolation), clock, slabTargets(contours, volume.grid));
   });
 }
 
 Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
-  return extractFrom(volume.grid, nesting, options,
-                     [&](StageClock& clock) { return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock); });
+  return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
+    return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock, slabTargets(contours, volume.grid));
+  });
 }
 
 Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const PreviewOptions& options) {
@@ -491,7 +534,7 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
                                                           toHost, split.empty() ? kNoSplit : split[0], out.volume));
       clock.lap("scan conversion");
       SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, std::move(device), &contours, out.nesting,
-                                                               options, factors, clock, &medial));
+                                                               options, factors, clock, {&medial, slabVolumes(out.overlaps)}));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);

@@ -74,12 +74,22 @@ double slab(const Grid& grid, int k) {
   return 0.5 * (grid.layerZ[static_cast<std::size_t>(k + 1)] - grid.layerZ[static_cast<std::size_t>(k - 1)]);
 }
 
-FeatureVolumes volumesOf(const Feature& feature, const FeatureRegion& region, const Grid& grid) {
-  FeatureVolumes v;
+}  // namespace
+
+double slabVolume(const Feature& feature, const Grid& grid) {
+  double volume = 0;
   for (const FeatureSlice& slice : feature.slices) {
     const int k = grid.layerOfPlane(slice.z);
-    if (k > 0 && k < grid.nz - 1) v.contour += std::abs(regionArea(slice.contours)) * slab(grid, k);
+    if (k > 0 && k < grid.nz - 1) volume += std::abs(regionArea(slice.contours)) * slab(grid, k);
   }
+  return volume;
+}
+
+namespace {
+
+FeatureVolumes volumesOf(const Feature& feature, const FeatureRegion& region, const Grid& grid) {
+  FeatureVolumes v;
+  v.contour = slabVolume(feature, grid);
   for (std::size_t s = 0; s < region.layers.size(); ++s) {
     const std::size_t n = pixelCount(region.runs[s]);
     v.ownVoxels += n;

@@ -44,6 +44,10 @@ std::vector<FeatureRegion> rasterizeFeatures(const ContourSet& contours, const G
 // Volume of one voxel of layer k (1 .. nz-2): pixel area times the layer's slab.
 double voxelVolume(const Grid& grid, int k);
 
+// The slab rule's volume of a feature's contours on the grid: each plane's even-odd area times
+// half the distance between its neighbouring layers (FeatureVolumes::contour).
+double slabVolume(const Feature& feature, const Grid& grid);
+
 // Volumes three ways, shared and touching pairs, each partial overlap's verdict (incidental or
 // real, by `tolerance`: geometry/overlap_split.h), and both layer assignments: real overlaps
 // apart in the surface layers, any shared voxel apart in the mask layers.

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
@@ -19,6 +20,9 @@ struct SmoothingReport {
   std::size_t fixed = 0;   // junction curve meeting points and unrecognised vertices: kept
   std::size_t fitted = 0;  // placed on their contour's crossing and kept there
   int sweeps = 0;          // Jacobi sweeps run over all vertices (super-step stages)
+  // Per vertex: on one label pair's sheet (relaxed, or placed on a contour or an interpolated
+  // crossing), not on a junction curve: volume_restoration.h may move it.
+  std::vector<bool> onSheet;
 };
 
 // Smooths mesh.positions in place; triangles, labels and keys are unchanged. Requires

@@ -49,6 +49,7 @@ std::vector<std::pair<std::string, ReportValue>> runParameters(const RunSettings
           {"smoothing_strength", b.smoothing.strength},
           {"contour_fit", b.smoothing.contourFit},
           {"junction_smoothing", b.smoothing.junctions},
+          {"keep_volume", b.smoothing.keepVolumes},
           {"remeshing", b.remeshing.enabled},
           {"edge_length", built.surfaces.remeshing.ran ? built.surfaces.remeshing.edgeLength : b.remeshing.edgeLength},
           {"curvature_sizing", b.remeshing.curvatureSizing},

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "gpu/gpu_test_env.h"
+#include "support/intersections.h"
 #include "support/shapes.h"
 
 namespace scansurf::test {
@@ -53,12 +54,14 @@ class InterpolationVolumeTest : public EngineTest {
   }
 };
 
-// At 0.25 mm pixels (8 layers per gap): within 3 % for one and two planes, 1 % for three.
+// Within 3 % for one and two planes, 1 % for three, at 1 mm pixels (2 px gaps: no layers
+// between; relaxation alone took 17 % off the scar and added 4 % to the discs), 0.5 mm (4
+// layers a gap) and 0.25 mm (8), every surface closed and none crossing another.
 TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirSlabVolume) {
   const ContourSet set = smallStructures();
-  for (double pixel : {0.25, 0.5}) {
+  for (double pixel : {1.0, 0.5, 0.25}) {
     const BuildResult b = build(set, pixel);
-    ASSERT_TRUE(b.interpolation.used());
+    ASSERT_EQ(b.interpolation.used(), pixel < 1.0);
     std::printf("[ figure   ] %.2f mm pixels, 2 mm planes:", pixel);
     for (std::size_t f = 0; f < set.features.size(); ++f) {
       const double e = volumeError(b, static_cast<int>(f));
@@ -66,15 +69,11 @@ TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirSlabVolume) {
       const MeshStats s = computeMeshStats(b.surfaces.mesh.positions, b.surfaces.features[f].triangles);
       EXPECT_TRUE(s.closed && s.manifold && s.oriented) << set.features[f].name;
       EXPECT_EQ(s.components, 1) << set.features[f].name;
-      if (pixel == 0.25) {
-        const std::size_t planes = set.features[f].slices.size();
-        EXPECT_LE(std::abs(e), planes >= 3 ? 0.01 : 0.03) << set.features[f].name << " at " << pixel << " mm";
-      } else {
-        // 4 layers per gap: the domes are coarse (one plane: -6.6 %, 69 % lost before them).
-        EXPECT_LE(std::abs(e), 0.08) << set.features[f].name << " at " << pixel << " mm";
-      }
+      EXPECT_LE(std::abs(e), set.features[f].slices.size() >= 3 ? 0.01 : 0.03)
+          << set.features[f].name << " at " << pixel << " mm";
     }
     std::printf("\n");
+    if (pixel == 1.0) EXPECT_EQ(findCrossings(b.surfaces.mesh.positions, b.surfaces.mesh.triangles).crossings, 0u);
   }
 }
 
@@ -83,6 +82,24 @@ TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirSlabVolume) {
 
 namespace scansurf::test {
 namespace {
+
+// The volumes restored after smoothing are the same for any thread count, bit for bit.
+TEST_F(InterpolationVolumeTest, RestoredVolumesAreTheSameForAnyThreadCount) {
+  const ContourSet set = smallStructures();
+  std::vector<float> first;
+  for (int threads : {1, 2, 3}) {
+    BuildOptions options;
+    options.grid.voxelSize = 1.0;
+    options.smoothing.enabled = true;
+    options.threads = threads;
+    auto built = engine_->build(set, options);
+    ASSERT_TRUE(built) << built.error().message;
+    if (first.empty())
+      first = built->surfaces.mesh.positions;
+    else
+      EXPECT_EQ(built->surfaces.mesh.positions, first) << threads << " threads";
+  }
+}
 
 // A feature drawn on planes 0, 4, 8 beside one drawn on 2 and 6: on the other's planes each
 // holds its own slab (the nearer of its planes), so neither is cut into one piece per plane
@@ -164,7 +181,8 @@ void addSqueezingPair(ContourSet& set) {
 }
 
 // Each structure's volume follows its slab rule whatever its outline does between the planes
-// (the blended fields alone lost 5 %, 8 % and 15 % here), round caps and flat.
+// (the blended fields alone lost 5 %, 8 % and 15 % here), round caps and flat: the layers
+// between the planes alone, without the volume restoration after smoothing.
 TEST_F(InterpolationVolumeTest, ChangingOutlinesKeepTheirSlabVolume) {
   ContourSet set = changingOutlines();
   addSqueezingPair(set);
@@ -174,6 +192,7 @@ TEST_F(InterpolationVolumeTest, ChangingOutlinesKeepTheirSlabVolume) {
     options.interpolation.factor = InterpolationOptions::kAuto;
     options.interpolation.caps = caps;
     options.smoothing.enabled = true;
+    options.smoothing.keepVolumes = false;
     auto built = engine_->build(set, options);
     ASSERT_TRUE(built) << built.error().message;
     ASSERT_TRUE(built->interpolation.used());

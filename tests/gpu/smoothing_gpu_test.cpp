@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "geometry/smoothing.h"
+#include "geometry/volume_restoration.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -37,9 +38,17 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   EXPECT_EQ(a.keys, b.keys);
   EXPECT_NE(a.positions, b.positions);
 
-  // The engine smooths exactly as the CPU function does on the raw mesh.
+  // The engine smooths exactly as the CPU functions do on the raw mesh: relaxation, then each
+  // feature's volume restored to its slab volume.
   MultiLabelMesh expected = a;
-  smoothMesh(expected, raw->volume.grid, &set, options.smoothing);
+  const Grid& grid = raw->volume.grid;
+  const SmoothingReport relaxed = smoothMesh(expected, grid, &set, options.smoothing);
+  std::vector<double> targets;
+  for (const FeatureVolumes& f : raw->overlaps.features) targets.push_back(f.contour);
+  std::vector<bool> contourLayers(static_cast<std::size_t>(grid.nz), false);
+  for (const Feature& f : set.features)
+    for (const FeatureSlice& s : f.slices) contourLayers[static_cast<std::size_t>(grid.layerOfPlane(s.z))] = true;
+  restoreVolumes(expected, grid, raw->nesting, targets, relaxed.onSheet, contourLayers, 0);
   EXPECT_EQ(expected.positions, b.positions);
 
   for (const FeatureSurface& f : smooth->surfaces.features) {

@@ -19,6 +19,11 @@ struct SmoothingOptions {
   // Vertices on contour planes sit where the original contours cross their grid edges and stay
   // there; off: they relax like the others (still on their plane).
   bool contourFit = true;
+  // Afterwards each feature's volume is restored to its slab volume (the contours' areas times
+  // their slabs; enclosing convention): relaxation shrinks small convex structures and swells
+  // thin ones. Only vertices off the contour planes that bound one feature move, each inside
+  // its own lattice simplex (docs/method.md, "Smoothing"). Off: as relaxed.
+  bool keepVolumes = true;
 };
 
 }  // namespace scansurf
