@@ -14,6 +14,8 @@
 #   IncidentalOverlapsTest.ThreeNeighboursMeetingAtAJunction             52 s (5.4 s)
 #   InterpolationVolumeTest.FewPlaneStructuresKeepTheirSlabVolume        33 s (5.7 s)
 #   IncidentalOverlapsTest.SplitOnTheDeviceEqualsTheHostRoundTrip        21 s (2.6 s)
+#   InterpolatedShapesTest.AccuracyAtThreeGridsAgainstOff   (8 s)
+#   InterpolationVolumeTest.VolumesDoNotDependOnTheOtherStructures   (4.7 s)
 # (ctest -j2 in the clean-clone CI run, 2026-11-30; the whole sanitizer run took 305 s with them.)
 # The other 218 tests (every reader, writer and CPU unit test, the GPU passes on small shapes,
 # the fuzz inputs) take 540 s one at a time, 274 s with ctest -j2 (the VM shared with other
@@ -23,4 +25,5 @@ set_tests_properties(SurfacesTest.Volume512x512x400WorksInSlabs Assembly.RandomV
   InterpolatedShapesTest.FinerGridsNeverIncreaseTheSphereError Remesh.SameResultForAnyThreadCount
   IncidentalOverlapsTest.IndependentlyDrawnNeighboursShareOneSurface IncidentalOverlapsTest.ThreeNeighboursMeetingAtAJunction
   InterpolationVolumeTest.FewPlaneStructuresKeepTheirSlabVolume IncidentalOverlapsTest.SplitOnTheDeviceEqualsTheHostRoundTrip
+  InterpolatedShapesTest.AccuracyAtThreeGridsAgainstOff InterpolationVolumeTest.VolumesDoNotDependOnTheOtherStructures
   PROPERTIES LABELS large)

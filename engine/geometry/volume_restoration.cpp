@@ -1,7 +1,8 @@
 // scansurf: volume restoration after smoothing (see volume_restoration.h). A feature f with
 // volume V and target T moves each of its movable vertices v by the same distance s along its
-// volume gradient g_v (dV/dx_v: a sixth of the cross products of its fan), so V changes by
-// s * sum |g_v| to first order: s = (T - V) / sum |g_v|, at most a quarter voxel a round,
+// volume gradient g_v (dV/dx_v: a sixth of the cross products of its fan) within its carrier
+// (projected onto the carrier's edge or face), so V changes by s * sum |g_v| to first order:
+// s = (T - V) / sum |g_v|, at most a quarter voxel a round,
 // then each vertex is projected back into its carrier; a few rounds absorb the projection's
 // clamping and the second-order terms.
 #include "geometry/volume_restoration.h"
@@ -107,12 +108,14 @@ class Restorer {
     return v;
   }
 
-  // One round: every movable vertex of a feature with a deficit along its gradient.
+  // One round: every movable vertex of a feature with a deficit (non-zero) along its gradient.
   void round(const std::vector<double>& deficit, int threads) {
     std::vector<Vec3> gradient(movable_.size());
     std::vector<double> sum(featureCount_, 0.0);
+    const auto active = [&](std::size_t i) { return deficit[static_cast<std::size_t>(featureOf_[i])] != 0; };
     parallelChunks(movable_.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) gradient[i] = gradientOf(movable_[i]);
+      for (std::size_t i = begin; i < end; ++i)
+        if (active(i)) gradient[i] = alongCarrier(carrierOfKey(mesh_.keys[movable_[i]]), gradientOf(movable_[i]));
     });
     for (std::size_t i = 0; i < movable_.size(); ++i) sum[static_cast<std::size_t>(featureOf_[i])] += glm::length(gradient[i]);
     const double largest = kLargestStep * std::min({grid_.spacingX, grid_.spacingY, smallestGap()});
@@ -120,7 +123,8 @@ class Restorer {
     for (std::size_t f = 0; f < featureCount_; ++f)
       if (sum[f] > 0) step[f] = std::clamp(deficit[f] / sum[f], -largest, largest);
     parallelChunks(movable_.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) move(i, gradient[i], step[static_cast<std::size_t>(featureOf_[i])]);
+      for (std::size_t i = begin; i < end; ++i)
+        if (active(i)) move(i, gradient[i], step[static_cast<std::size_t>(featureOf_[i])]);
     });
   }
 
@@ -167,6 +171,21 @@ class Restorer {
       const Vec3 p1 = position(mesh_, mesh_.triangles[3 * t + (k + 1) % 3]) - origin;
       const Vec3 p2 = position(mesh_, mesh_.triangles[3 * t + (k + 2) % 3]) - origin;
       g += static_cast<double>((*triangleBounds_[t])[0].sign) * glm::cross(p1, p2) / 6.0;
+    }
+    return g;
+  }
+
+  // g projected onto the carrier's affine span (its edge's line, its face's plane): the part of
+  // a move the carrier keeps, so that the first-order volume change is what the step asks for.
+  Vec3 alongCarrier(const Carrier& c, const Vec3& g) const {
+    if (c.count == 2) {
+      const Vec3 e = cornerPosition(grid_, c.corners[1]) - cornerPosition(grid_, c.corners[0]);
+      return e * (glm::dot(g, e) / glm::dot(e, e));
+    }
+    if (c.count == 3) {
+      const Vec3 o = cornerPosition(grid_, c.corners[0]);
+      const Vec3 n = glm::cross(cornerPosition(grid_, c.corners[1]) - o, cornerPosition(grid_, c.corners[2]) - o);
+      return g - n * (glm::dot(g, n) / glm::dot(n, n));
     }
     return g;
   }
@@ -223,7 +242,7 @@ VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, c
   for (int r = 0; r < kRounds && worstError(volumes, targets, restored) > kClose; ++r) {
     std::vector<double> deficit(restored.size(), 0.0);
     for (std::size_t f = 0; f < restored.size(); ++f)
-      if (restored[f]) deficit[f] = targets[f] - volumes[f];
+      if (restored[f] && std::abs(volumes[f] - targets[f]) > kClose * targets[f]) deficit[f] = targets[f] - volumes[f];
     restorer.round(deficit, threads);
     volumes = restorer.volumes(threads);
   }

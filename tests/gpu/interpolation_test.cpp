@@ -569,6 +569,40 @@ TEST_F(InterpolatedShapesTest, FinerGridsNeverIncreaseTheSphereError) {
 namespace scansurf::test {
 namespace {
 
+double surfaceVolume(const BuildResult& b) {
+  return computeMeshStats(b.surfaces.mesh.positions, b.surfaces.features[0].triangles).volume;
+}
+
+// The accuracy table of docs/method.md ("Between the slices"): sphere and torus against their
+// true surfaces and volumes, defaults against --interpolate off, at 1 mm pixels / 3 mm slices,
+// 0.5 mm / 2 mm and the default grid (256 pixels across) / 3 mm.
+TEST_F(InterpolatedShapesTest, AccuracyAtThreeGridsAgainstOff) {
+  const double r = 20, major = 12, tube = 5;
+  const Distance sphere = [=](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - r; };
+  const Distance torus = [=](double x, double y, double z) { return std::hypot(std::hypot(x, y) - major, z) - tube; };
+  const double sphereVolume = 4.0 / 3 * std::numbers::pi * r * r * r;
+  const double torusVolume = 2 * std::numbers::pi * std::numbers::pi * major * tube * tube;
+  struct Case {
+    double pixel, slices;
+  };
+  for (const Case c : {Case{1.0, 3.0}, Case{0.5, 2.0}, Case{0.0, 3.0}}) {
+    for (int shape = 0; shape < 2; ++shape) {
+      const ContourSet set = shape == 0 ? sphereContours(r, c.slices) : torusContours(major, tube, c.slices);
+      const Distance& d = shape == 0 ? sphere : torus;
+      const double truth = shape == 0 ? sphereVolume : torusVolume;
+      const BuildResult on = build(set, c.pixel), off = build(set, c.pixel, 1);
+      const Accuracy a = accuracy(off, d), b = accuracy(on, d);
+      const double va = surfaceVolume(off) / truth - 1, vb = surfaceVolume(on) / truth - 1;
+      std::printf(
+          "[ figure   ] %s, %.3f mm pixels, %.0f mm slices: defaults mean %.3f max %.3f mm volume %+.2f %%; off %.3f / %.3f mm "
+          "%+.2f %%\n",
+          shape == 0 ? "sphere r20" : "torus R12 r5", on.volume.grid.spacingX, c.slices, b.mean, b.max, 100 * vb, a.mean, a.max,
+          100 * va);
+      if (shape == 0) EXPECT_LT(b.mean, a.mean) << c.pixel << " mm pixels";
+    }
+  }
+}
+
 // The stage calls interpolate as build() does (nothing partly overlaps here).
 TEST_F(InterpolatedShapesTest, StageCallsGiveBuildsSurfaces) {
   const ContourSet set = yBranchContours(6, 5, 3, 2.0);
