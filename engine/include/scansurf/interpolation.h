@@ -12,8 +12,8 @@ namespace scansurf {
 // the volume the slab rule gives the end plane beyond it: its contour's area times half the gap.
 enum class CapShape {
   Flat,  // the end contour extruded half a gap, then a flat lid
-  // A dome as high as the whole gap, its cross-section shrinking linearly in area to nothing at
-  // the next plane (a paraboloid over a disc), so it holds a flat half slab's volume; where
+  // Half an ellipsoid over the end contour, 3/4 of the gap high (its cross-section keeps
+  // 1 - (4s/3g)^2 of the area at height s), so it holds a flat half slab's volume; where
   // another feature begins over the end contour on the next plane, flat.
   Round,
 };
