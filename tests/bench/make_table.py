@@ -17,8 +17,33 @@ def cpu_name():
     return platform.processor() or "unknown CPU"
 
 
+def median(values):
+    v = sorted(values)
+    n = len(v)
+    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+
+def by_set(runs):
+    """Per set, in first-seen order: its runs, the run of median total (ours) and the ratios
+    Slicer / scansurf pair by pair (each run's two routes ran back to back)."""
+    sets = {}
+    for r in runs:
+        sets.setdefault(r["set"], []).append(r)
+    rows = []
+    for name, rs in sets.items():
+        ordered = sorted(rs, key=lambda r: r["ours"]["total"])
+        row = dict(ordered[(len(ordered) - 1) // 2])
+        row["runs"] = len(rs)
+        row["ratios"] = [r["slicer"]["total"] / r["ours"]["total"] for r in rs]
+        row["ratios_raw"] = [r["slicer"]["total"] / (r["ours"]["total"] - r["ours"].get("smoothing", 0.0)) for r in rs]
+        row["slicer_totals"] = [r["slicer"]["total"] for r in rs]
+        row["our_totals"] = [r["ours"]["total"] for r in rs]
+        rows.append(row)
+    return rows
+
+
 def main():
-    rows = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
+    rows = by_set([json.loads(line) for line in open(sys.argv[1]) if line.strip()])
     commit = sys.argv[2]
     cores = subprocess.run(["nproc"], capture_output=True, text=True).stdout.strip()
     mem = subprocess.run(["free", "-g"], capture_output=True, text=True).stdout.split("\n")[1].split()[1]
@@ -39,6 +64,8 @@ def main():
                "Both routes use the same grid: 512 square pixels along the longer side, the slices as layers, "
                "one background layer and pixel all around.\n")
     out.append("## Stage times (seconds) and memory\n")
+    out.append("Each set's run of median total among %s; every run's two routes ran back to back, "
+               "interleaved with the other runs.\n" % ", ".join("%d (%s)" % (r["runs"], r["set"]) for r in rows))
     stages = ["parse", "nesting", "grid", "scan conversion", "classification", "assembly", "feature surfaces",
               "smoothing", "write"]
     head = "| set | grid | " + " | ".join(stages) + " | **total** | floor copy | peak RSS MiB | volume+mesh MiB | triangles |"
@@ -53,17 +80,20 @@ def main():
     out.append("\n## Against the 3D Slicer route and the floor\n")
     out.append("Slicer route: `plastimatch convert` to a label map, then per label `vtkDiscreteFlyingEdges3D` "
                "and `vtkWindowedSincPolyDataFilter` (Slicer's defaults) and normals.\n")
-    out.append("| set | scansurf s (without smoothing) | Slicer route s (rasterize / surfaces) | Slicer ÷ scansurf "
-               "(without smoothing) | scan conv. + classif. s | floor s | (scan+classif) ÷ floor | "
+    out.append("Slicer ÷ scansurf: the median of the runs' ratios (each run's two routes back to back) and their "
+               "range; the totals are each route's median.\n")
+    out.append("| set | runs | scansurf s (without smoothing) | Slicer route s (rasterize / surfaces) | Slicer ÷ scansurf, "
+               "median (range) | without smoothing | scan conv. + classif. s | floor s | (scan+classif) ÷ floor | "
                "peak RSS ÷ (volume+mesh) | peak RSS MiB ours / Slicer | triangles ours / Slicer |")
-    out.append("|---|---|---|---|---|---|---|---|---|---|")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         o, s = r["ours"], r["slicer"]
         sc = o["scan conversion"] + o["classification"]
         raw = o["total"] - o.get("smoothing", 0.0)
-        out.append("| %s | %.2f (%.2f) | %.2f (%.2f / %.2f) | %.2f× (%.2f×) | %.3f | %.4f | %.0f× | %.2f× | %.0f / %.0f | %d / %d |" % (
-            r["set"], o["total"], raw, s["total"], s["rasterize"], s["surfaces"], s["total"] / o["total"],
-            s["total"] / raw, sc, o["floor_copy"], sc / o["floor_copy"],
+        q = r["ratios"]
+        out.append("| %s | %d | %.2f (%.2f) | %.2f (%.2f / %.2f) | **%.2f×** (%.2f–%.2f×) | %.2f× | %.3f | %.4f | %.0f× | %.2f× | %.0f / %.0f | %d / %d |" % (
+            r["set"], r["runs"], median(r["our_totals"]), raw, median(r["slicer_totals"]), s["rasterize"], s["surfaces"],
+            median(q), min(q), max(q), median(r["ratios_raw"]), sc, o["floor_copy"], sc / o["floor_copy"],
             o["peak_rss_mib"] / (o["label_volume_mib"] + o["mesh_mib"]), o["peak_rss_mib"], s["peak_rss_mib"],
             o["feature_triangles"], s["triangles"]))
     out.append("""

@@ -5,6 +5,10 @@
 # each on the same grid, prints the table and writes docs/benchmarks.md.
 #
 #   tests/bench/run_benchmarks.sh [SET...]      (default: pelvis head-neck em-cells)
+#
+# Each set runs BENCH_RUNS times (default 3), the two routes interleaved (ours, Slicer's, ours,
+# ...), so that load on the machine slows both alike; the table quotes the median run and the
+# median and range of the ratio pair by pair.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 cd "$root"
@@ -31,16 +35,19 @@ sets=("$@")
 
 results="$work/results.jsonl"
 : > "$results"
+runs=${BENCH_RUNS:-3}
 for set in "${sets[@]}"; do
-  echo "== $set: scansurf" >&2
-  ours=$("$build/tests/scansurf_bench" run "$work/$set.json" 512)
-  echo "$ours" >&2
-  read -r nx ny nz ox oy vs <<< "$("$py" -c 'import json,sys; d=json.loads(sys.argv[1]); print(int(d["nx"]), int(d["ny"]), int(d["nz"]), d["origin_x"], d["origin_y"], d["voxel_size"])' "$ours")"
-  read -r oz sz <<< "$("$py" -c 'import json,sys; zs=sorted({s["z"] for f in json.load(open(sys.argv[1]))["features"] for s in f["slices"]}); d=zs[1]-zs[0]; print(zs[0]-d, d)' "$work/$set.json")"
-  echo "== $set: Slicer route (plastimatch + VTK) on the same ${nx}x${ny}x${nz} grid" >&2
-  slicer=$("$py" tests/bench/slicer_route.py "$work/$set.json" "$nx" "$ny" "$nz" "$ox" "$oy" "$oz" "$vs" "$sz" "$work/slicer-$set")
-  echo "$slicer" >&2
-  "$py" -c 'import json,sys; print(json.dumps({"set": sys.argv[1], "ours": json.loads(sys.argv[2]), "slicer": json.loads(sys.argv[3])}))' "$set" "$ours" "$slicer" >> "$results"
+  for run in $(seq 1 "$runs"); do
+    echo "== $set, run $run of $runs: scansurf" >&2
+    ours=$("$build/tests/scansurf_bench" run "$work/$set.json" 512)
+    echo "$ours" >&2
+    read -r nx ny nz ox oy vs <<< "$("$py" -c 'import json,sys; d=json.loads(sys.argv[1]); print(int(d["nx"]), int(d["ny"]), int(d["nz"]), d["origin_x"], d["origin_y"], d["voxel_size"])' "$ours")"
+    read -r oz sz <<< "$("$py" -c 'import json,sys; zs=sorted({s["z"] for f in json.load(open(sys.argv[1]))["features"] for s in f["slices"]}); d=zs[1]-zs[0]; print(zs[0]-d, d)' "$work/$set.json")"
+    echo "== $set, run $run of $runs: Slicer route (plastimatch + VTK) on the same ${nx}x${ny}x${nz} grid" >&2
+    slicer=$("$py" tests/bench/slicer_route.py "$work/$set.json" "$nx" "$ny" "$nz" "$ox" "$oy" "$oz" "$vs" "$sz" "$work/slicer-$set")
+    echo "$slicer" >&2
+    "$py" -c 'import json,sys; print(json.dumps({"set": sys.argv[1], "run": int(sys.argv[4]), "ours": json.loads(sys.argv[2]), "slicer": json.loads(sys.argv[3])}))' "$set" "$ours" "$slicer" "$run" >> "$results"
+  done
 done
 
 # The hand-measured changes (their own commands, machine, date, commit) survive a rerun.

@@ -73,7 +73,9 @@ TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirSlabVolume) {
           << set.features[f].name << " at " << pixel << " mm";
     }
     std::printf("\n");
-    if (pixel == 1.0) EXPECT_EQ(findCrossings(b.surfaces.mesh.positions, b.surfaces.mesh.triangles).crossings, 0u);
+    if (pixel == 1.0) {
+      EXPECT_EQ(findCrossings(b.surfaces.mesh.positions, b.surfaces.mesh.triangles).crossings, 0u);
+    }
   }
 }
 
