@@ -369,15 +369,16 @@ double domeFraction(int m, int factor) {
   return std::max(0.0, 1 - s * s);
 }
 
-// The surface between two layers of a dome is close to a frustum (its cross-sections are the
-// label's region eroded, alike in shape): h (a + sqrt(a b) + b) / 3, less than the trapezoid
-// h (a + b) / 2 that the fractions integrate. The areas of the dome's layers are scaled by the
-// factor that makes the frusta hold half a gap, the flat half slab (a few per cent).
 // The last layer a dome of n layers is open on, and how far beyond it its tip stands (in
 // layers, at most 1): at 3/4 of the gap, not on the next layer.
 int domeTop(int factor) { return static_cast<int>(std::ceil(kDomeHeight * factor)) - 1; }
 double domeTipHeight(int factor) { return kDomeHeight * factor - domeTop(factor); }
 
+// The surface between two layers of a dome is close to a frustum (its cross-sections are the
+// label's region eroded, alike in shape): h (a + sqrt(a b) + b) / 3, less than the trapezoid
+// h (a + b) / 2 that the fractions integrate. The areas of the dome's layers are scaled by the
+// factor that makes the frusta and the tip's cone hold half a gap, the flat half slab (a few
+// per cent).
 double domeAreaScale(int factor) {
   const int top = domeTop(factor);
   const auto volume = [&](double scale) {
@@ -395,17 +396,12 @@ double domeAreaScale(int factor) {
   return lo;
 }
 
-std::int32_t fieldValue(const shared::DistanceField& f, const std::int32_t* values, int x, int y) {
-  if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
-  return values[static_cast<std::size_t>(x - f.x0) + static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
-}
-
-// A label's area in pixels, read off its signed distances d (unit: one pixel) as each pixel's
-// cover clamp(1/2 - d, 0, 1): the contours' sub-pixel crossings count, where a pixel count is
-// a few per cent short on thin or lattice-aligned outlines.
-double coveredArea(const std::int32_t* values, std::size_t count, double unit) {
+// A label's area in pixels read off its signed distances v less `shift` (1/unit pixel), each
+// pixel's cover clamp(1/2 - d, 0, 1): the contours' sub-pixel crossings count, where a pixel
+// count is a few per cent short on thin or lattice-aligned outlines.
+double coveredArea(const std::int32_t* values, std::size_t count, double unit, std::int32_t shift = 0) {
   double area = 0;
-  for (std::size_t i = 0; i < count; ++i) area += std::clamp(0.5 - values[i] / unit, 0.0, 1.0);
+  for (std::size_t i = 0; i < count; ++i) area += std::clamp(0.5 - (values[i] - shift) / unit, 0.0, 1.0);
   return area;
 }
 
@@ -415,9 +411,7 @@ std::int32_t offsetCovering(const std::vector<std::int32_t>& band, double want, 
   std::int32_t lo = -limit, hi = limit;
   while (hi - lo > 1) {
     const std::int32_t mid = lo + (hi - lo) / 2;
-    double area = 0;
-    for (std::int32_t v : band) area += std::clamp(0.5 - (v - mid) / unit, 0.0, 1.0);
-    (area < want ? lo : hi) = mid;
+    (coveredArea(band.data(), band.size(), unit, mid) < want ? lo : hi) = mid;
   }
   return hi;
 }
@@ -425,13 +419,14 @@ std::int32_t offsetCovering(const std::vector<std::int32_t>& band, double want, 
 }  // namespace
 
 void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& fieldA, const std::int32_t* valuesA,
-                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t unit,
-                  std::int32_t limit, std::int32_t* out) {
+                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t limit,
+                  std::int32_t* out) {
   const int n = factor;
+  constexpr double unit = kFieldPixel;
   out[0] = out[n] = 0;
   const double areaA = coveredArea(valuesA, static_cast<std::size_t>(fieldA.w) * static_cast<std::size_t>(fieldA.h), unit);
   const double areaB = coveredArea(valuesB, static_cast<std::size_t>(fieldB.w) * static_cast<std::size_t>(fieldB.h), unit);
-  const std::int32_t sure = limit + unit;  // beyond: covered, or not, whatever the offset
+  const std::int32_t sure = limit + kFieldPixel;  // beyond: covered, or not, whatever the offset
   std::vector<std::int32_t> band;
   for (int m = 1; m < n; ++m) {
     // As the interpolation samples a shifting label (interpolate.comp, entryValue).
@@ -449,7 +444,7 @@ void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& field
           band.push_back((n - m) * a + m * b);
       }
     const double want = ((n - m) * areaA + m * areaB) / n - static_cast<double>(inside);
-    out[m] = offsetCovering(band, want, static_cast<double>(n) * unit, n * limit);
+    out[m] = offsetCovering(band, want, n * unit, n * limit);
   }
 }
 
@@ -469,7 +464,7 @@ std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const s
       const InterpolationSlab::BlendedEntry& ref = slab.blendedEntries[i - caps];
       const shared::PairEntry& e = slab.entries[ref.entry];
       const auto a = static_cast<std::size_t>(e.fieldA), b = static_cast<std::size_t>(e.fieldB);
-      blendOffsets(e, slab.fields[a], fieldValues[a], slab.fields[b], fieldValues[b], ref.factor, kFieldPixel, slab.blendLimit,
+      blendOffsets(e, slab.fields[a], fieldValues[a], slab.fields[b], fieldValues[b], ref.factor, slab.blendLimit,
                    table.data() + ref.table);
     }
   });
@@ -481,11 +476,7 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, std
   for (std::size_t i = 0; i < count; ++i)
     if (values[i] < kFieldPixel / 2) near.push_back(values[i]);
   const std::int32_t deepest = near.empty() ? 0 : -*std::min_element(near.begin(), near.end());
-  auto cover = [&](std::int32_t erosion) {
-    double area = 0;
-    for (std::int32_t v : near) area += std::clamp(0.5 - (v + erosion) / double{kFieldPixel}, 0.0, 1.0);
-    return area;
-  };
+  auto cover = [&](std::int32_t erosion) { return coveredArea(near.data(), near.size(), kFieldPixel, -erosion); };
   const double area = cover(0);
   out[0] = 0;
   const double scale = domeAreaScale(factor);

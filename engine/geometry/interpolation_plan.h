@@ -9,27 +9,32 @@
 //    labels (edge_crossings.h), so the field keeps the contours' sub-pixel positions; within
 //    two pixels of the boundary, to the segments joining those points cell by cell (marching
 //    squares), where the points alone would leave a pattern of stripes;
-//  - value(L) = (1-t) dA(x) + t dB(x). When L's regions on A and B share no pixel (a vessel
+//  - value(L) = (1-t) dA(x) + t dB(x) - offset(L, m), the offset keeping L's area on the
+//    linear blend of its areas on A and B (blendOffsets; none for the union or a label that
+//    contains others). When L's regions on A and B share no pixel (a vessel
 //    that moved further than its width) both fields are sampled along L's centroid shift
 //    (x - t*shift on A, x + (1-t)*shift on B), so L moves instead of vanishing midway;
 //  - where L is on one plane only, it closes with a cap (CapShape) that takes its voxels from
 //    any label that goes on: flat keeps its region on that plane up to half the gap (an
 //    extrusion and a lid, as planning systems count volume; beyond the lid L only counts as
-//    runner-up, for the lid's clearance); round erodes it layer by layer so that (1 - t) of its
-//    area on that plane remains (domeErosions), a dome as high as the gap holding the flat
-//    half slab's volume. A voxel outside a cap keeps the cap's value as its clearance when
-//    that is smaller, so the surface between them lies where the cap's level crosses zero;
-//  - the union of all features gets a value of its own the same way;
+//    runner-up, for the lid's clearance); round erodes it layer by layer to half an ellipsoid
+//    3/4 of the gap high holding the flat half slab's volume (domeErosions). A voxel outside a
+//    cap (or a lid) keeps the cap's value as its clearance when that is smaller, so the
+//    surface between them lies where the cap's level crosses zero;
+//  - the union of all features gets a value of its own where it is on both planes (it caps
+//    nothing);
 //  - a voxel with one label on both planes, at least deepDistance from that label's boundary
 //    on both and in no tile of a shifting label, keeps that label without the competition
 //    below (it would win it: every field is 1-Lipschitz), with the largest clearance (no
 //    surface vertex comes within four pixels of it);
-//  - the voxel takes the label of smallest value (ties: the smaller label) if that value or
-//    the union's is negative, else background. Its clearance is how far its value is from
+//  - the voxel takes the label of smallest value (ties: the smaller label) if that value is
+//    negative, or the union's is and a runner-up label's value is within n * deepDistance,
+//    else background. Its clearance is how far its value is from
 //    losing the label (to the runner-up label or to the background), which places the surface
-//    vertex between two voxels of different labels (clearance-weighted, as marching cubes). The union keeps abutting features
-//    together where each alone would pull back (no background gap opens between them), and a feature nested in another stays
-//    inside it (its distance is never below its container's).
+//    vertex between two voxels of different labels (clearance-weighted, as marching cubes). The
+//    union keeps abutting features together where each alone would pull back (no background
+//    gap opens between them), and a feature nested in another stays inside it; alone, a
+//    feature keeps its own area-keeping boundary.
 // A label only competes in a window around its pixels on its plane and both neighbours
 // (kWindowMargin pixels around): elsewhere its value is kFarAway.
 #pragma once
@@ -147,13 +152,19 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, std
 // the slab rule (the blended fields alone lose area wherever the outline changes between the
 // planes: 15 % of the volume of an ellipse turned a quarter turn). Its region at layer m is
 // {value < offset(m)}, value the blend (n - m) dA + m dB as the interpolation samples it; areas
-// are the pixels' covers read off the signed distances (unit: one pixel), the offsets solved
-// near the boundary and bounded by n * limit, so that a voxel
-// deep inside one label on both planes still belongs to it. out gets factor + 1 offsets, the
+// are the pixels' covers read off the signed distances, the offsets solved near the boundary
+// and bounded by n * limit, so that a voxel deep inside one label on both planes still
+// belongs to it. out gets factor + 1 offsets, the
 // first and last 0 (the planes are the contours).
 void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& fieldA, const std::int32_t* valuesA,
-                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t unit,
-                  std::int32_t limit, std::int32_t* out);
+                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t limit,
+                  std::int32_t* out);
+
+// A field's value at grid pixel (x, y), kFarAway outside its window (values: the window).
+inline std::int32_t fieldValue(const shared::DistanceField& f, const std::int32_t* values, int x, int y) {
+  if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
+  return values[static_cast<std::size_t>(x - f.x0) + static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
+}
 
 // The layer table (PairEntry::layerTable) of slab.layerInts: every round-capped entry's dome
 // erosions and every blended entry's offsets, from the fields' values (fieldValues[field]:

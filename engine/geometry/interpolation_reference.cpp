@@ -128,9 +128,7 @@ struct Sampler {
 
   std::int32_t at(int field, int x, int y) const {
     const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(field)];
-    if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
-    return fields.values[static_cast<std::size_t>(f.offset) + static_cast<std::size_t>(x - f.x0) +
-                         static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
+    return fieldValue(f, fields.values.data() + f.offset, x, y);
   }
 
   // The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here); `wins`

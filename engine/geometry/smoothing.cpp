@@ -64,6 +64,7 @@
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
 #include "geometry/contour_fit.h"
+#include "geometry/incident_triangles.h"
 #include "geometry/overlap_split.h"
 #include "geometry/vec3.h"
 #include "geometry/vertex_roles.h"
@@ -101,22 +102,6 @@ struct Adjacency {
   // (v, a, b), sorted by v, for their normals.
   std::vector<std::array<std::uint32_t, 3>> pinchedLinks;
 };
-
-// Each vertex's triangles, as offsets (size V + 1) into one list.
-struct IncidentTriangles {
-  HugeVector<std::uint32_t> start, list;
-};
-
-IncidentTriangles incidentTriangles(const MultiLabelMesh& mesh) {
-  const std::size_t vertexCount = mesh.vertexCount(), triangleCount = mesh.triangleCount();
-  IncidentTriangles in{HugeVector<std::uint32_t>(vertexCount + 1, 0), HugeVector<std::uint32_t>(3 * triangleCount)};
-  for (std::uint32_t v : mesh.triangles) ++in.start[v + 1];
-  for (std::size_t v = 0; v < vertexCount; ++v) in.start[v + 1] += in.start[v];
-  HugeVector<std::uint32_t> fill(in.start.begin(), in.start.end() - 1);
-  for (std::size_t t = 0; t < triangleCount; ++t)
-    for (int c = 0; c < 3; ++c) in.list[fill[mesh.triangles[3 * t + c]]++] = static_cast<std::uint32_t>(t);
-  return in;
-}
 
 // One thread's working lists while classifying vertices.
 struct ClassifyScratch {

@@ -14,14 +14,15 @@
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
+#include "geometry/incident_triangles.h"
 #include "geometry/vertex_roles.h"
 
 namespace scansurf {
 namespace {
 
 constexpr int kRounds = 4;
-constexpr double kClose = 1e-4;
-constexpr std::size_t kBlock = 1 << 16;  // triangles summed together        // every feature this close to its target: done
+constexpr double kClose = 1e-4;          // every feature this close to its target: done
+constexpr std::size_t kBlock = 1 << 16;  // triangles summed together
 constexpr double kLargestStep = 0.25;    // of the smallest voxel spacing, per round
 
 // Whether the vertex lies in the plane of a contour layer (its carrier's corners all on it).
@@ -147,13 +148,7 @@ class Restorer {
           o = b[0].feature;
       }
     }
-    firstIncident_.assign(n + 1, 0);
-    for (std::uint32_t v : mesh_.triangles) ++firstIncident_[v + 1];
-    for (std::size_t v = 0; v < n; ++v) firstIncident_[v + 1] += firstIncident_[v];
-    incident_.resize(mesh_.triangles.size());
-    std::vector<std::size_t> fill(firstIncident_.begin(), firstIncident_.end() - 1);
-    for (std::size_t t = 0; t < mesh_.triangleCount(); ++t)
-      for (int k = 0; k < 3; ++k) incident_[fill[mesh_.triangles[3 * t + k]]++] = static_cast<std::uint32_t>(3 * t + k);
+    incident_ = incidentTriangles(mesh_);
     moves_.assign(features, 0);
     for (std::size_t v = 0; v < n; ++v)
       if (v < onSheet.size() && onSheet[v] && only[v] >= 0 && !onContourPlane(mesh_.keys[v], contourLayers)) {
@@ -166,8 +161,10 @@ class Restorer {
   Vec3 gradientOf(std::uint32_t v) const {
     const Vec3 origin = position(mesh_, v);
     Vec3 g{0, 0, 0};
-    for (std::size_t i = firstIncident_[v]; i < firstIncident_[v + 1]; ++i) {
-      const std::uint32_t corner = incident_[i], t = corner / 3, k = corner % 3;
+    for (std::size_t i = incident_.start[v]; i < incident_.start[v + 1]; ++i) {
+      const std::uint32_t t = incident_.list[i];
+      const std::uint32_t* tri = &mesh_.triangles[3 * t];
+      const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
       const Vec3 p1 = position(mesh_, mesh_.triangles[3 * t + (k + 1) % 3]) - origin;
       const Vec3 p2 = position(mesh_, mesh_.triangles[3 * t + (k + 2) % 3]) - origin;
       g += static_cast<double>((*triangleBounds_[t])[0].sign) * glm::cross(p1, p2) / 6.0;
@@ -209,8 +206,7 @@ class Restorer {
   FeatureBounds bounds_;
   std::vector<const std::vector<Bound>*> triangleBounds_;
   std::size_t featureCount_ = 0;
-  std::vector<std::size_t> firstIncident_;
-  std::vector<std::uint32_t> incident_;  // 3 t + corner
+  IncidentTriangles incident_;
   std::vector<std::uint32_t> movable_;
   std::vector<int> featureOf_;
   std::vector<char> moves_;  // per feature: it has movable vertices
