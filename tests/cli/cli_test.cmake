@@ -37,6 +37,16 @@ endif()
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/options" --grid 96 64 -q --smooth-iterations 5
              --smooth-strength 0.5 --no-contour-fit --no-junction-smoothing)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength 1.5)
+# --no-keep-volume leaves the volumes as relaxation made them (other surfaces), and the report
+# says so.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/relaxed" --grid 96 64 -q --no-keep-volume
+             --report "${OUT}/relaxed/report.json")
+file(SHA256 "${OUT}/relaxed/BODY.ply" relaxed_hash)
+file(READ "${OUT}/relaxed/report.json" relaxed_report)
+string(JSON relaxed_keep GET "${relaxed_report}" parameters keep_volume)
+if(relaxed_hash STREQUAL smoothed_hash OR relaxed_keep)
+  message(FATAL_ERROR "--no-keep-volume wrote the default surface, or its report says keep_volume ${relaxed_keep}")
+endif()
 
 # Remeshing (off by default): --remesh remeshes, --no-remesh keeps the smoothed mesh,
 # --edge-length is accepted, and a length that is not a positive finite number is a usage
