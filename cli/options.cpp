@@ -168,6 +168,11 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_flag("--no-junction-smoothing", f.noJunctions, "keep vertices where three or more structures meet in place");
   app.add_flag("--no-keep-volume", f.noKeepVolumes,
                "leave each structure's volume as relaxation made it (default: restored to its contours' slab volume)");
+  app.add_option("--min-angle", s.minAngle,
+                 "smallest triangle angle, degrees, that placing and smoothing vertices may leave (moves that would make a "
+                 "sharper triangle are shortened; costs accuracy, see docs/method.md \"Triangle shape\"); default 0: off")
+      ->check(CLI::Range(0.0, 30.0))
+      ->capture_default_str();
 }
 
 // "auto", "off" or a whole number of layers per gap, 1 to kMaxFactor.

@@ -162,7 +162,7 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, contourLayers(grid, contours),
-                     options.threads);
+                     options.smoothing.minAngle, options.threads);
     clock.lap("smoothing");
   }
   if (options.remeshing.enabled) {

@@ -58,6 +58,8 @@ std::string describeGrid(const Grid& grid) {
 Result<void> checkOptions(const BuildOptions& o) {
   const SmoothingOptions& s = o.smoothing;
   if (s.enabled && !(s.strength > 0 && s.strength <= 1)) return badOption("smoothing.strength", "in (0, 1]", s.strength);
+  if (s.enabled && !(s.minAngle >= 0 && s.minAngle <= 30))
+    return badOption("smoothing.minAngle", "in [0, 30] degrees", s.minAngle);
   if (s.enabled && s.iterations < 1) return badOption("smoothing.iterations", "at least 1", s.iterations);
   const RemeshOptions& r = o.remeshing;
   if (r.enabled && !(std::isfinite(r.edgeLength) && r.edgeLength >= 0))

@@ -61,6 +61,7 @@
 
 #include "core/huge_pages.h"
 #include "core/parallel.h"
+#include "geometry/angle_guard.h"
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
 #include "geometry/contour_fit.h"
@@ -351,7 +352,8 @@ class Relaxation {
  public:
   // Takes over mesh.positions (released until storeInto, its memory serves the sweeps) and
   // the roles in adj.kind, which must outlive this object.
-  Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads);
+  // With a guard, every sweep's moves keep the triangles as it allows.
+  Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, AngleGuard& guard, int threads);
 
   // One Jacobi sweep over every vertex, a stage of a super-step (see Stage); refreshNormals
   // recomputes the slide slopes.
@@ -361,6 +363,7 @@ class Relaxation {
 
  private:
   void startOnCarrierEdges();
+  void findRelaxing();
   Float4 edgeVectorOf(std::uint8_t kind, const Float4& a) const;
   Float4 edgeStartOf(std::size_t v) const;
   Vec3 normalOf(std::size_t v) const;
@@ -372,6 +375,7 @@ class Relaxation {
   Float4 intoCarrier(std::size_t v, const Float4& p, const Float4& d) const;
 
   const Grid& grid_;
+  AngleGuard& guard_;
   const int threads_;
   const std::size_t vertexCount_;
   // The adjacency and keys as plain arrays, for the per-vertex loops.
@@ -394,10 +398,13 @@ class Relaxation {
   // x, y components (one grid spacing), and slope, while the vertex slides along the normal n,
   // holds n / ((b - a) . n). Zero for other vertices.
   HugeVector<Float4> slope_;
+  std::vector<std::uint32_t> relaxing_, umbrellaSet_;  // see findRelaxing
+  std::vector<std::uint32_t> watched_;                 // the triangles of the vertices that relax, for the guard
 };
 
-Relaxation::Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, int threads)
+Relaxation::Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, AngleGuard& guard, int threads)
     : grid_(grid),
+      guard_(guard),
       threads_(threads),
       vertexCount_(mesh.vertexCount()),
       kinds_(adj.kind.data()),
@@ -417,6 +424,23 @@ Relaxation::Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, d
   startOnCarrierEdges();
   next_ = cur_;
   umbrella_.assign(vertexCount_, Float4{0, 0, 0, 0});
+  findRelaxing();
+  if (guard.enabled()) watched_ = guard.trianglesAround(relaxing_);
+}
+
+// The vertices that relax (sheet and curve) and those whose umbrellas their steps read (they
+// and their neighbours): on interpolated volumes almost every vertex is placed and stays, and
+// a sweep over these lists alone costs a small fraction of one over every vertex.
+void Relaxation::findRelaxing() {
+  std::vector<std::uint8_t> needed(vertexCount_, 0);
+  for (std::size_t v = 0; v < vertexCount_; ++v)
+    if (roleOf(kinds_[v]) == VertexRole::Sheet || roleOf(kinds_[v]) == VertexRole::Curve) {
+      relaxing_.push_back(static_cast<std::uint32_t>(v));
+      needed[v] = 1;
+      for (std::uint32_t i = start_[v]; i < start_[v + 1]; ++i) needed[neighbours_[i]] = 1;
+    }
+  for (std::size_t v = 0; v < vertexCount_; ++v)
+    if (needed[v]) umbrellaSet_.push_back(static_cast<std::uint32_t>(v));
 }
 
 // Puts each vertex that slides along its carrier edge into the edge form a + t (b - a).
@@ -472,12 +496,13 @@ Vec3 Relaxation::normalOf(std::size_t v) const {
 }
 
 void Relaxation::sweep(const Stage& stage, bool refreshNormals) {
-  parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) computeUmbrella(v, refreshNormals);
+  parallelChunks(umbrellaSet_.size(), threads_, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) computeUmbrella(umbrellaSet_[i], refreshNormals);
   });
-  parallelChunks(vertexCount_, threads_, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) moveVertex(v, stage);
+  parallelChunks(relaxing_.size(), threads_, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) moveVertex(relaxing_[i], stage);
   });
+  guard_.apply(reinterpret_cast<const float*>(cur_.data()), reinterpret_cast<float*>(next_.data()), 4, &watched_);
   cur_.swap(next_);
 }
 
@@ -594,11 +619,15 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
   const std::size_t vertexCount = mesh.vertexCount();
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
-  if (options.contourFit && (contours || !clearance.empty()))
+  AngleGuard guard(mesh, options.minAngle, threads);
+  if (options.contourFit && (contours || !clearance.empty())) {
+    const std::vector<float> assembled = guard.enabled() ? mesh.positions : std::vector<float>();
     placeFittedVertices(mesh, grid, contours, clearance, adj, threads, medial);
+    guard.apply(assembled.data(), mesh.positions.data(), 3);
+  }
   std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
   SmoothingReport report = settleRoles(mesh.keys, adj.kind);
-  Relaxation relaxation(mesh, grid, adj, options.strength, threads);
+  Relaxation relaxation(mesh, grid, adj, options.strength, guard, threads);
   const std::vector<Stage> schedule = scheduleOf(options.iterations, options.strength);
   for (std::size_t it = 0; it < schedule.size(); ++it) {
     // Normals turn slowly; refreshing them every few sweeps saves most of a sweep's time.

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "core/parallel.h"
+#include "geometry/angle_guard.h"
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
 #include "geometry/incident_triangles.h"
@@ -130,6 +131,7 @@ class Restorer {
   }
 
   std::size_t movableCount() const { return movable_.size(); }
+  const IncidentTriangles& incident() const { return incident_; }
   bool movesFeature(std::size_t f) const { return moves_[f] != 0; }
 
  private:
@@ -223,7 +225,7 @@ double worstError(const std::vector<double>& volumes, std::span<const double> ta
 
 VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting,
                                        std::span<const double> targets, const std::vector<bool>& onSheet,
-                                       const std::vector<bool>& contourLayers, int threads) {
+                                       const std::vector<bool>& contourLayers, double minAngle, int threads) {
   VolumeRestorationReport report;
   if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
   Restorer restorer(mesh, grid, nesting, onSheet, contourLayers);
@@ -233,13 +235,17 @@ VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, c
     report.features += restored[f];
   }
   if (report.features == 0) return report;
+  AngleGuard guard(mesh, minAngle, threads, &restorer.incident());
+  std::vector<float> before;
   std::vector<double> volumes = restorer.volumes(threads);
   report.worstBefore = worstError(volumes, targets, restored);
   for (int r = 0; r < kRounds && worstError(volumes, targets, restored) > kClose; ++r) {
     std::vector<double> deficit(restored.size(), 0.0);
     for (std::size_t f = 0; f < restored.size(); ++f)
       if (restored[f] && std::abs(volumes[f] - targets[f]) > kClose * targets[f]) deficit[f] = targets[f] - volumes[f];
+    if (guard.enabled()) before = mesh.positions;
     restorer.round(deficit, threads);
+    guard.apply(before.data(), mesh.positions.data(), 3);
     volumes = restorer.volumes(threads);
   }
   report.worstAfter = worstError(volumes, targets, restored);

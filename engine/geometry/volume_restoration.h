@@ -30,9 +30,10 @@ struct VolumeRestorationReport {
 // plane, whose in-plane vertices stay on the contours. Only sheet vertices off the contour
 // planes and on exactly one feature's surface move (an interface between siblings, a junction
 // or a contour stays). A feature's region is its label's and its descendants'
-// (Nesting::parent), among the labels in the mesh.
+// (Nesting::parent), among the labels in the mesh. Moves that would leave a triangle sharper
+// than minAngle degrees (and than it was) are shortened (geometry/angle_guard.h; 0: off).
 VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting,
                                        std::span<const double> targets, const std::vector<bool>& onSheet,
-                                       const std::vector<bool>& contourLayers, int threads);
+                                       const std::vector<bool>& contourLayers, double minAngle, int threads);
 
 }  // namespace scansurf

@@ -50,6 +50,7 @@ std::vector<std::pair<std::string, ReportValue>> runParameters(const RunSettings
           {"contour_fit", b.smoothing.contourFit},
           {"junction_smoothing", b.smoothing.junctions},
           {"keep_volume", b.smoothing.keepVolumes},
+          {"min_angle", b.smoothing.minAngle},
           {"remeshing", b.remeshing.enabled},
           {"edge_length", built.surfaces.remeshing.ran ? built.surfaces.remeshing.edgeLength : b.remeshing.edgeLength},
           {"curvature_sizing", b.remeshing.curvatureSizing},

@@ -102,6 +102,7 @@ const std::map<std::string, Setter>& setters() {
        [](BuildOptions& o, const py::handle& v) { o.smoothing.junctions = as<bool>(v, "junction_smoothing", "a bool"); }},
       {"keep_volume",
        [](BuildOptions& o, const py::handle& v) { o.smoothing.keepVolumes = as<bool>(v, "keep_volume", "a bool"); }},
+      {"min_angle", [](BuildOptions& o, const py::handle& v) { o.smoothing.minAngle = as<double>(v, "min_angle", "a number"); }},
       {"remesh", [](BuildOptions& o, const py::handle& v) { o.remeshing.enabled = as<bool>(v, "remesh", "a bool"); }},
       {"edge_length",
        [](BuildOptions& o, const py::handle& v) { o.remeshing.edgeLength = as<double>(v, "edge_length", "a number"); }},

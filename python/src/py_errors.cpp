@@ -26,6 +26,7 @@ std::string inKeywords(std::string message) {
       {"option remeshing.edgeLength ", "option edge_length "},
       {"option smoothing.strength ", "option smooth_strength "},
       {"option smoothing.iterations ", "option smooth_iterations "},
+      {"option smoothing.minAngle ", "option min_angle "},
       {"option interpolation.factor ", "option interpolate "}};
   for (const auto& [field, keyword] : kKeywords)
     if (message.rfind(field, 0) == 0) return keyword + message.substr(std::char_traits<char>::length(field));

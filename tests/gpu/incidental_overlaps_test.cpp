@@ -346,6 +346,9 @@ TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
   o.smoothing.iterations = 0;
   refused(o, "smoothing.iterations");
   o.smoothing.iterations = 150;
+  o.smoothing.minAngle = 45;
+  refused(o, "smoothing.minAngle");
+  o.smoothing.minAngle = 15;
   o.remeshing.enabled = true;
   o.remeshing.edgeLength = -1;
   refused(o, "remeshing.edgeLength");

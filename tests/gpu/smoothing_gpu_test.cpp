@@ -48,7 +48,7 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   std::vector<bool> contourLayers(static_cast<std::size_t>(grid.nz), false);
   for (const Feature& f : set.features)
     for (const FeatureSlice& s : f.slices) contourLayers[static_cast<std::size_t>(grid.layerOfPlane(s.z))] = true;
-  restoreVolumes(expected, grid, raw->nesting, targets, relaxed.onSheet, contourLayers, 0);
+  restoreVolumes(expected, grid, raw->nesting, targets, relaxed.onSheet, contourLayers, options.smoothing.minAngle, 0);
   EXPECT_EQ(expected.positions, b.positions);
 
   for (const FeatureSurface& f : smooth->surfaces.features) {

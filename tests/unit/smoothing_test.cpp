@@ -328,6 +328,32 @@ TEST(SmoothingAccuracy, TorusAt1mmPixels2mmSlices) {
       2 * std::numbers::pi * std::numbers::pi * R * r * r, 0.05, 0.35);
 }
 
+// The opt-in angle guard (SmoothingOptions::minAngle): no triangle below the limit, none
+// crossing, the same for any thread count; and what it costs against the true surface.
+TEST(SmoothingAngles, MinAngleKeepsEveryTriangleAboveItWithoutCrossings) {
+  const Built raw = buildCpu(torusContours(10, 4, 2.0), 1.0);
+  const auto distance = [](double x, double y, double z) { return std::hypot(std::hypot(x, y) - 10, z) - 4; };
+  Built plain = raw;
+  smooth(plain);
+  const Accuracy a0 = accuracy(plain, distance);
+  for (const double limit : {3.0, 15.0}) {
+    SmoothingOptions o = on();
+    o.minAngle = limit;
+    Built guarded = raw, oneThread = raw;
+    smooth(guarded, o);
+    smooth(oneThread, o, 1);
+    EXPECT_EQ(guarded.mesh.positions, oneThread.mesh.positions) << limit;
+    const Angles angles = minAngles(guarded.mesh);
+    EXPECT_GE(angles.min, limit - 1e-3) << limit;
+    EXPECT_EQ(findCrossings(guarded.mesh.positions, guarded.mesh.triangles).crossings, 0u) << limit;
+    const Accuracy a = accuracy(guarded, distance);
+    EXPECT_LE(a.mean, (limit <= 3 ? 1.1 : 3.0) * a0.mean) << limit;
+    EXPECT_LE(crossSectionError(guarded), limit <= 3 ? 0.05 : 0.15) << limit;
+    std::printf("[ figure   ] torus R10 r4 min angle %4.1f: smallest %.1f (5%% %.1f), mean distance %.4f mm against %.4f off\n",
+                limit, angles.min, angles.p5, a.mean, a0.mean);
+  }
+}
+
 }  // namespace
 }  // namespace scansurf::test
 
