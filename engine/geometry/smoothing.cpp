@@ -29,7 +29,9 @@
 // flattens the caps beyond the last contours. A sheet vertex then slides along its carrier
 // edge to where the target's tangent plane cuts it (tangential drift would otherwise turn into
 // normal error on slanted edges); junction vertices take the nearest point of their carrier.
-// Vertices fitted to the contours (geometry/contour_fit.h) stay.
+// Vertices fitted to the contours (geometry/contour_fit.h) stay. With SmoothingOptions::minAngle,
+// the placement and every stage shorten moves that would leave a sliver (geometry/angle_guard.h);
+// a shortened move stays on a segment inside the carrier, so the argument above still holds.
 //
 // Schedule: the relaxation is a low-pass filter, not a solver run to convergence. Its fixed
 // point is worse than its 150th sweep (the tension shrinks and the fairing extrapolates caps:
@@ -355,7 +357,7 @@ class Relaxation {
   // With a guard, every sweep's moves keep the triangles as it allows.
   Relaxation(MultiLabelMesh& mesh, const Grid& grid, Adjacency& adj, double strength, AngleGuard& guard, int threads);
 
-  // One Jacobi sweep over every vertex, a stage of a super-step (see Stage); refreshNormals
+  // One Jacobi sweep over the vertices that relax, a stage of a super-step (see Stage); refreshNormals
   // recomputes the slide slopes.
   void sweep(const Stage& stage, bool refreshNormals);
   // Frees the working set and writes the positions back into mesh.positions.
