@@ -35,6 +35,8 @@ int exitCode(Errc code) { return static_cast<int>(code) + 1; }
 std::string inFlags(std::string message) {
   static constexpr std::pair<const char*, const char*> kFlags[] = {
       {"option remeshing.edgeLength ", "option --edge-length "},
+      {"option simplification.tolerance ", "option --simplify-tolerance "},
+      {"option simplification.edgeLength ", "option --simplify-edge-length "},
       {"option smoothing.strength ", "option --smooth-strength "},
       {"option smoothing.iterations ", "option --smooth-iterations "},
       {"option threads ", "option --threads "},
@@ -120,7 +122,7 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
 int plannedStages(const cli::CliOptions& o, int layers) {
   const BuildOptions& b = o.build;
   const int cli = 3 + (!o.quiet || !o.report.empty()) + !o.preview.empty();  // read, device, write; statistics, preview
-  const int perLayer = 4 + (b.interpolation.factor != 1) + b.smoothing.enabled + b.remeshing.enabled;
+  const int perLayer = 4 + (b.interpolation.factor != 1) + b.smoothing.enabled + b.simplification.enabled + b.remeshing.enabled;
   return cli + 3 + layers * perLayer;
 }
 

@@ -89,7 +89,7 @@ struct Flags {
   std::string overlaps = "layers";
   std::string overlapTolerance = "auto";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noKeepVolumes = false, noDraco = false;
-  bool remesh = false, noCurvatureSizing = false;
+  bool remesh = false, noCurvatureSizing = false, simplify = false;
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
@@ -204,6 +204,24 @@ void addInterpolation(CLI::App& app, Flags& f) {
       ->capture_default_str();
 }
 
+void addSimplification(CLI::App& app, CliOptions& o, Flags& f) {
+  SimplificationOptions& s = o.build.simplification;
+  app.add_flag("--simplify,!--no-simplify", f.simplify,
+               "merge the smoothed surfaces' triangles into fewer, better-shaped ones, every contour-plane cross-section "
+               "and junction curve kept (default: off; 1.6 to 2.5 times fewer triangles for 3 to 9 times smoothing's "
+               "time, see docs/method.md \"Simplification\")");
+  app.add_option("--simplify-tolerance", s.tolerance, "how far simplification may move the surface, in-plane voxels")
+      ->check(numberIn(0, SimplificationOptions::kMostTolerance, true, "a number in (0, 0.5]"))
+      ->capture_default_str();
+  app.add_option("--simplify-edge-length", s.edgeLength, "edge length simplification stops at, in-plane voxels")
+      ->check(CLI::Range(SimplificationOptions::kLeastEdge, SimplificationOptions::kMostEdge))
+      ->capture_default_str();
+  app.add_option("--simplify-min-angle", s.minAngle,
+                 "smallest angle, degrees, below which simplification never makes a triangle sharper than those it replaces")
+      ->check(CLI::Range(0.0, 30.0))
+      ->capture_default_str();
+}
+
 void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_flag("--remesh,!--no-remesh", f.remesh,
                "remesh the smoothed surfaces into well-shaped triangles of about --edge-length (default: off; "
@@ -281,6 +299,7 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
   o.build.smoothing.keepVolumes = !f.noKeepVolumes;
+  o.build.simplification.enabled = f.simplify;
   o.build.remeshing.enabled = f.remesh;
   o.build.remeshing.curvatureSizing = !f.noCurvatureSizing;
   o.scene.draco = !f.noDraco;
@@ -304,6 +323,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   addGeneral(app, parsed.options, flags);
   addInterpolation(app, flags);
   addSmoothing(app, parsed.options, flags);
+  addSimplification(app, parsed.options, flags);
   addRemeshing(app, parsed.options, flags);
   addDicom(app, parsed.options, flags);
   addObjects(app, parsed.options);

@@ -151,6 +151,12 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
                 volumeFlag(s.volume, v.contour).c_str());
   }
   printOverlaps(set, built.overlaps);
+  if (const SimplificationReport& r = built.surfaces.simplification; r.ran)
+    std::printf(
+        "simplification: %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> %.1f, mean %.1f -> "
+        "%.1f; %zu of %zu patches kept as smoothed (%zu by their checks, %zu crossing)\n",
+        r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min, r.anglesAfter.min, r.anglesBefore.p5, r.anglesAfter.p5,
+        r.anglesBefore.mean, r.anglesAfter.mean, r.refused + r.crossing, r.patches, r.refused, r.crossing);
   if (const RemeshReport& r = built.surfaces.remeshing; r.ran)
     std::printf(
         "remeshing (edge length %g %s): %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> "

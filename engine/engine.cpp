@@ -20,6 +20,7 @@
 #include "geometry/overlaps.h"
 #include "geometry/own_slabs.h"
 #include "geometry/remesh.h"
+#include "geometry/simplification.h"
 #include "geometry/smoothing.h"
 #include "geometry/validate.h"
 #include "geometry/volume_restoration.h"
@@ -164,6 +165,12 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, contourLayers(grid, contours),
                      options.smoothing.minAngle, options.threads);
     clock.lap("smoothing");
+  }
+  if (options.simplification.enabled) {
+    clock.begin("simplification");
+    surfaces.simplification =
+        simplifyMesh(surfaces.mesh, grid, contourLayers(grid, contours), options.simplification, options.threads);
+    clock.lap("simplification");
   }
   if (options.remeshing.enabled) {
     clock.begin("remeshing");

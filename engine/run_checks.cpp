@@ -61,6 +61,13 @@ Result<void> checkOptions(const BuildOptions& o) {
   if (s.enabled && !(s.minAngle >= 0 && s.minAngle <= 30))
     return badOption("smoothing.minAngle", "in [0, 30] degrees", s.minAngle);
   if (s.enabled && s.iterations < 1) return badOption("smoothing.iterations", "at least 1", s.iterations);
+  if (const SimplificationOptions& p = o.simplification; p.enabled) {
+    if (!(p.tolerance > 0 && p.tolerance <= SimplificationOptions::kMostTolerance))
+      return badOption("simplification.tolerance", "in (0, 0.5] in-plane voxels", p.tolerance);
+    if (!(p.edgeLength >= SimplificationOptions::kLeastEdge && p.edgeLength <= SimplificationOptions::kMostEdge))
+      return badOption("simplification.edgeLength", "in [0.5, 8] in-plane voxels", p.edgeLength);
+    if (!(p.minAngle >= 0 && p.minAngle <= 30)) return badOption("simplification.minAngle", "in [0, 30] degrees", p.minAngle);
+  }
   const RemeshOptions& r = o.remeshing;
   if (r.enabled && !(std::isfinite(r.edgeLength) && r.edgeLength >= 0))
     return badOption("remeshing.edgeLength", "0 (automatic) or a positive length", r.edgeLength);

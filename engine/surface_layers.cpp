@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "geometry/remesh.h"
+#include "geometry/simplification.h"
 
 namespace scansurf {
 
@@ -34,6 +35,7 @@ void appendLayer(Surfaces& into, Surfaces&& layer, const OverlapReport& report, 
   for (std::size_t i = first; i < into.mesh.triangles.size(); ++i) into.mesh.triangles[i] += offset;
   into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
   accumulate(into.remeshing, layer.remeshing);
+  accumulate(into.simplification, layer.simplification);
   for (std::size_t f = 0; f < layer.features.size(); ++f) {
     if (report.features[f].layer != index) continue;
     std::vector<std::uint32_t>& to = into.features[f].triangles;

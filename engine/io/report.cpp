@@ -126,6 +126,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.interpolation = built.interpolation;
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   r.remeshing = built.surfaces.remeshing;
+  r.simplification = built.surfaces.simplification;
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
   return r;
@@ -148,6 +149,18 @@ nlohmann::ordered_json remeshingJson(const RemeshReport& r) {
           {"bands", r.bands},
           {"operations",
            {{"splits", r.splits}, {"collapses", r.collapses}, {"flips", r.flips}, {"moves", r.moves}, {"refused", r.rejected}}}};
+}
+
+// Simplification's figures: triangle counts and smallest angles before and after, and the
+// patches put back as smoothed by their own checks or the crossing test.
+nlohmann::ordered_json simplificationJson(const SimplificationReport& r) {
+  return {{"triangles_before", r.trianglesBefore},
+          {"triangles_after", r.trianglesAfter},
+          {"smallest_angle_before", anglesJson(r.anglesBefore)},
+          {"smallest_angle_after", anglesJson(r.anglesAfter)},
+          {"patches", r.patches},
+          {"refused", r.refused},
+          {"crossing", r.crossing}};
 }
 
 nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, double>>& overlaps) {
@@ -289,6 +302,7 @@ std::string reportJson(const RunReport& report) {
   j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
   j["features"] = featuresJson(report);
   j["overlaps"] = overlapsSectionJson(report);
+  if (report.simplification.ran) j["simplification"] = simplificationJson(report.simplification);
   if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
   double total = 0;
   j["timings"] = timingsJson(report, total);

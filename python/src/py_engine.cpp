@@ -103,6 +103,17 @@ const std::map<std::string, Setter>& setters() {
       {"keep_volume",
        [](BuildOptions& o, const py::handle& v) { o.smoothing.keepVolumes = as<bool>(v, "keep_volume", "a bool"); }},
       {"min_angle", [](BuildOptions& o, const py::handle& v) { o.smoothing.minAngle = as<double>(v, "min_angle", "a number"); }},
+      {"simplify", [](BuildOptions& o, const py::handle& v) { o.simplification.enabled = as<bool>(v, "simplify", "a bool"); }},
+      {"simplify_tolerance",
+       [](BuildOptions& o, const py::handle& v) {
+         o.simplification.tolerance = as<double>(v, "simplify_tolerance", "a number");
+       }},
+      {"simplify_edge_length",
+       [](BuildOptions& o, const py::handle& v) {
+         o.simplification.edgeLength = as<double>(v, "simplify_edge_length", "a number");
+       }},
+      {"simplify_min_angle",
+       [](BuildOptions& o, const py::handle& v) { o.simplification.minAngle = as<double>(v, "simplify_min_angle", "a number"); }},
       {"remesh", [](BuildOptions& o, const py::handle& v) { o.remeshing.enabled = as<bool>(v, "remesh", "a bool"); }},
       {"edge_length",
        [](BuildOptions& o, const py::handle& v) { o.remeshing.edgeLength = as<double>(v, "edge_length", "a number"); }},

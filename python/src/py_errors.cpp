@@ -27,6 +27,9 @@ std::string inKeywords(std::string message) {
       {"option smoothing.strength ", "option smooth_strength "},
       {"option smoothing.iterations ", "option smooth_iterations "},
       {"option smoothing.minAngle ", "option min_angle "},
+      {"option simplification.tolerance ", "option simplify_tolerance "},
+      {"option simplification.edgeLength ", "option simplify_edge_length "},
+      {"option simplification.minAngle ", "option simplify_min_angle "},
       {"option interpolation.factor ", "option interpolate "}};
   for (const auto& [field, keyword] : kKeywords)
     if (message.rfind(field, 0) == 0) return keyword + message.substr(std::char_traits<char>::length(field));

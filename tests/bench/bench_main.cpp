@@ -74,7 +74,7 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
   return 0;
 }
 
-int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate, bool remesh) {
+int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate, bool remesh, bool simplify) {
   std::string json = "{";
   auto add = [&](const std::string& key, double value) {
     char buf[64];
@@ -96,10 +96,11 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   }
 
   BuildOptions options;
-  options.smoothing.enabled = smooth;            // as the command-line tool does by default
-  options.interpolation.factor = interpolate;    // kAuto, as the command-line tool does by default
-  options.remeshing.enabled = smooth && remesh;  // off, as the command-line tool does by default (--remesh)
-  options.keepLabelVolume = false;               // as the command-line tool: the labels stay on the device
+  options.smoothing.enabled = smooth;                   // as the command-line tool does by default
+  options.interpolation.factor = interpolate;           // kAuto, as the command-line tool does by default
+  options.simplification.enabled = smooth && simplify;  // off, as the command-line tool does by default (--simplify)
+  options.remeshing.enabled = smooth && remesh;         // off, as the command-line tool does by default (--remesh)
+  options.keepLabelVolume = false;                      // as the command-line tool: the labels stay on the device
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {
@@ -202,20 +203,21 @@ int main(int argc, char** argv) {
   if (args.size() >= 2 && args[0] == "generate") return generate(args[1], {args.begin() + 2, args.end()});
   if (args.size() >= 3 && args[0] == "run") {
     int repeat = 1, interpolate = InterpolationOptions::kAuto;
-    bool smooth = true, remesh = false;
+    bool smooth = true, remesh = false, simplify = false;
     for (std::size_t a = 3; a < args.size(); ++a) {
       if (args[a] == "--repeat" && a + 1 < args.size()) repeat = std::stoi(args[++a]);
       if (args[a] == "--no-smooth") smooth = false;
       if (args[a] == "--remesh") remesh = true;
+      if (args[a] == "--simplify") simplify = true;
       if (args[a] == "--interpolate" && a + 1 < args.size()) {
         const std::string& v = args[++a];
         interpolate = v == "auto" ? InterpolationOptions::kAuto : v == "off" ? 1 : std::stoi(v);
       }
     }
-    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate, remesh);
+    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate, remesh, simplify);
   }
   std::fprintf(stderr,
                "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth] "
-               "[--interpolate auto|off|N] [--remesh]\n");
+               "[--interpolate auto|off|N] [--simplify] [--remesh]\n");
   return 2;
 }

@@ -349,6 +349,16 @@ TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
   o.smoothing.minAngle = 45;
   refused(o, "smoothing.minAngle");
   o.smoothing.minAngle = 15;
+  o.simplification.enabled = true;
+  o.simplification.tolerance = 0;
+  refused(o, "simplification.tolerance");
+  o.simplification.tolerance = 0.05;
+  o.simplification.edgeLength = 9;
+  refused(o, "simplification.edgeLength");
+  o.simplification.edgeLength = 2;
+  o.simplification.minAngle = -1;
+  refused(o, "simplification.minAngle");
+  o.simplification = {};
   o.remeshing.enabled = true;
   o.remeshing.edgeLength = -1;
   refused(o, "remeshing.edgeLength");
@@ -367,6 +377,36 @@ TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
   auto extracted = engine_->extract(*volume, computeNesting(set), o, &set);
   ASSERT_FALSE(extracted);
   EXPECT_NE(extracted.error().message.find("smoothing.strength"), std::string::npos);
+}
+
+// Simplification through build(): the figures reported, and
+// every feature surface still a closed oriented manifold of the same genus and components.
+TEST_F(BuildOptionsTest, SimplificationThroughBuildKeepsEverySurface) {
+  const ContourSet set = drawnPelvisContours();
+  BuildOptions o;
+  o.grid.voxelSize = 1.0;
+  o.smoothing.enabled = true;
+  auto plain = engine_->build(set, o);
+  o.simplification.enabled = true;
+  auto simplified = engine_->build(set, o);
+  ASSERT_TRUE(plain && simplified);
+  const SimplificationReport& r = simplified->surfaces.simplification;
+  EXPECT_TRUE(r.ran);
+  EXPECT_FALSE(plain->surfaces.simplification.ran);
+  EXPECT_EQ(r.trianglesBefore, plain->surfaces.mesh.triangleCount());
+  EXPECT_EQ(r.trianglesAfter, simplified->surfaces.mesh.triangleCount());
+  EXPECT_LT(r.trianglesAfter, r.trianglesBefore * 4 / 5);
+  EXPECT_GE(r.anglesAfter.min, r.anglesBefore.min - 1e-3);
+  for (std::size_t f = 0; f < set.features.size(); ++f) {
+    const MeshStats a = computeMeshStats(plain->surfaces.mesh.positions, plain->surfaces.features[f].triangles);
+    const MeshStats b = computeMeshStats(simplified->surfaces.mesh.positions, simplified->surfaces.features[f].triangles);
+    EXPECT_TRUE(b.closed && b.manifold && b.oriented) << set.features[f].name;
+    EXPECT_EQ(b.genus, a.genus) << set.features[f].name;
+    EXPECT_EQ(b.components, a.components) << set.features[f].name;
+    EXPECT_NEAR(b.volume, a.volume, 0.01 * a.volume) << set.features[f].name;
+  }
+  std::printf("[ figure   ] drawn pelvis, 1 mm: %zu -> %zu triangles, %zu patches, %zu refused, %zu crossing, %d layers\n",
+              r.trianglesBefore, r.trianglesAfter, r.patches, r.refused, r.crossing, simplified->overlaps.layers);
 }
 
 }  // namespace

@@ -35,6 +35,7 @@
 #include "scansurf/preview.h"
 #include "scansurf/remesh.h"
 #include "scansurf/result.h"
+#include "scansurf/simplification.h"
 #include "scansurf/smoothing.h"
 #include "scansurf/surfaces.h"
 
@@ -68,7 +69,9 @@ struct BuildOptions {
   InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
-  // Isotropic remeshing after smoothing (stage "remeshing"); off unless enabled.
+  // Verified simplification after smoothing (stage "simplification"); off unless enabled.
+  SimplificationOptions simplification;
+  // Isotropic remeshing after smoothing and simplification (stage "remeshing"); off unless enabled.
   RemeshOptions remeshing;
   // BuildResult::volume's labels. true: the scan-converted labels are read back to the host.
   // false: they stay on the device from scan conversion to classification (no readback and no

@@ -83,6 +83,7 @@ struct RunReport {
   };
   std::vector<Overlap> partialOverlaps;
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  SimplificationReport simplification;                  // BuildResult::surfaces.simplification
   RemeshReport remeshing;                               // BuildResult::surfaces.remeshing
   std::vector<std::string> warnings;
   std::vector<std::string> outputs;

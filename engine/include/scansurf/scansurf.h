@@ -29,6 +29,7 @@
 #include "scansurf/remesh.h"
 #include "scansurf/report.h"
 #include "scansurf/result.h"
+#include "scansurf/simplification.h"
 #include "scansurf/smoothing.h"
 #include "scansurf/surfaces.h"
 #include "scansurf/version.h"

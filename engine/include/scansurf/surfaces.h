@@ -10,6 +10,7 @@
 
 #include "scansurf/label_volume.h"
 #include "scansurf/remesh.h"
+#include "scansurf/simplification.h"
 
 namespace scansurf {
 
@@ -52,6 +53,9 @@ struct Surfaces {
   // What remeshing did (ran = false when it did not run); with several layers, the layers'
   // counts summed, their smallest angles' minimum and their means weighted by triangles.
   RemeshReport remeshing;
+  // What simplification did (ran = false when it did not run); with several layers, summed
+  // and the largest error.
+  SimplificationReport simplification;
 };
 
 // Topological and metric properties of a triangle mesh.

@@ -1,0 +1,20 @@
+// scansurf: which changed triangles of a mesh cross another (simplification's last check).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace scansurf {
+
+// Pairs {a, b} of triangles (3 indices each into xyz positions) that cross (exact test,
+// trianglesCross: shared vertices and edges are allowed to meet where they must), for every
+// triangle a with changed[a]; pairs of two unchanged triangles are not tested, degenerate
+// unchanged ones are skipped. Candidates come from a uniform grid of `cell` (input units).
+// The same pairs, in the same order, for any thread count (0: all).
+std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> positions,
+                                                        std::span<const std::uint32_t> triangles,
+                                                        const std::vector<char>& changed, double cell, int threads = 0);
+
+}  // namespace scansurf

@@ -1,0 +1,171 @@
+// scansurf: the checks a simplified patch passes before it replaces the original. Together they
+// say the patch is the same surface piece (same border, Euler characteristic and components, a
+// manifold with one orientation) whose contour-plane cross-sections gained no chord.
+#include "geometry/patch_checks.h"
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <vector>
+
+#include "geometry/triangle_intersection.h"
+
+namespace scansurf {
+namespace {
+
+std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) { return std::uint64_t{a} << 32 | b; }
+std::uint32_t from(std::uint64_t e) { return static_cast<std::uint32_t>(e >> 32); }
+std::uint32_t to(std::uint64_t e) { return static_cast<std::uint32_t>(e); }
+
+Point3 pointAt(std::span<const float> p, std::uint32_t v) {
+  return {p[3 * std::size_t{v}], p[3 * std::size_t{v} + 1], p[3 * std::size_t{v} + 2]};
+}
+
+// Every triangle's three directed edges, sorted.
+std::vector<std::uint64_t> directedEdges(std::span<const std::uint32_t> tris) {
+  std::vector<std::uint64_t> edges;
+  edges.reserve(tris.size());
+  for (std::size_t t = 0; t < tris.size(); t += 3)
+    for (int c = 0; c < 3; ++c) edges.push_back(edgeKey(tris[t + c], tris[t + (c + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+// The directed edges whose reverse is not there: the border, sorted.
+std::vector<std::uint64_t> borderOf(const std::vector<std::uint64_t>& edges) {
+  std::vector<std::uint64_t> border;
+  for (std::uint64_t e : edges)
+    if (!std::binary_search(edges.begin(), edges.end(), edgeKey(to(e), from(e)))) border.push_back(e);
+  return border;
+}
+
+std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+// Euler characteristic V - E + F and edge-connected components, of a patch whose directed
+// edges (sorted) are unique.
+std::array<long long, 2> topologyOf(std::span<const std::uint32_t> tris, const std::vector<std::uint64_t>& edges,
+                                    std::size_t borderEdges, std::size_t vertexCount) {
+  std::vector<std::uint32_t> parent(vertexCount);
+  std::iota(parent.begin(), parent.end(), 0u);
+  std::vector<char> used(vertexCount, 0);
+  for (std::uint64_t e : edges) {
+    used[from(e)] = used[to(e)] = 1;
+    parent[findRoot(parent, from(e))] = findRoot(parent, to(e));
+  }
+  long long vertices = 0, components = 0;
+  for (std::uint32_t v = 0; v < vertexCount; ++v)
+    if (used[v]) ++vertices, components += findRoot(parent, v) == v;
+  const auto undirected = static_cast<long long>((edges.size() + borderEdges) / 2);
+  return {vertices - undirected + static_cast<long long>(tris.size() / 3), components};
+}
+
+// Whether a vertex's link (b -> c for each of its triangles v, b, c; each b once, as the
+// directed edges are unique) is one path (a border vertex) or one cycle.
+bool oneFan(std::vector<std::array<std::uint32_t, 2>>& link) {
+  std::sort(link.begin(), link.end());
+  auto next = [&](std::uint32_t b) {
+    const auto it = std::lower_bound(link.begin(), link.end(), std::array<std::uint32_t, 2>{b, 0});
+    return it != link.end() && (*it)[0] == b ? static_cast<long long>((*it)[1]) : -1LL;
+  };
+  std::uint32_t start = link.front()[0];
+  int starts = 0;  // b that is no link's c: where a path begins
+  for (const auto& l : link)
+    if (std::none_of(link.begin(), link.end(), [&](const auto& m) { return m[1] == l[0]; })) start = l[0], ++starts;
+  if (starts > 1) return false;
+  std::size_t walked = 0;
+  for (long long b = next(start); b >= 0 && walked < link.size(); b = next(static_cast<std::uint32_t>(b))) {
+    ++walked;
+    if (b == start) break;
+  }
+  return walked == link.size();
+}
+
+bool everyVertexOneFan(std::span<const std::uint32_t> tris) {
+  std::vector<std::array<std::uint32_t, 3>> corners;  // v, b, c
+  corners.reserve(tris.size());
+  for (std::size_t t = 0; t < tris.size(); t += 3)
+    for (int c = 0; c < 3; ++c) corners.push_back({tris[t + c], tris[t + (c + 1) % 3], tris[t + (c + 2) % 3]});
+  std::sort(corners.begin(), corners.end());
+  std::vector<std::array<std::uint32_t, 2>> link;
+  for (std::size_t i = 0; i < corners.size();) {
+    link.clear();
+    const std::uint32_t v = corners[i][0];
+    for (; i < corners.size() && corners[i][0] == v; ++i) link.push_back({corners[i][1], corners[i][2]});
+    if (!oneFan(link)) return false;
+  }
+  return true;
+}
+
+// Both ends on one contour plane: a piece of its cross-section.
+bool alongPlane(std::span<const int> plane, std::uint64_t e) { return plane[from(e)] >= 0 && plane[from(e)] == plane[to(e)]; }
+
+// Every edge along a contour plane in `after` is one of `before`'s (either direction).
+bool noNewPlaneEdge(std::span<const int> plane, const std::vector<std::uint64_t>& before,
+                    const std::vector<std::uint64_t>& after) {
+  for (std::uint64_t e : after)
+    if (alongPlane(plane, e) && !std::binary_search(before.begin(), before.end(), e) &&
+        !std::binary_search(before.begin(), before.end(), edgeKey(to(e), from(e))))
+      return false;
+  return true;
+}
+
+Point3 normalOf(std::span<const float> p, const std::uint32_t* t) {
+  const Point3 a = pointAt(p, t[0]);
+  return cross(pointAt(p, t[1]) - a, pointAt(p, t[2]) - a);
+}
+
+// A triangle's corners from its smallest index on (the same triangle, however listed).
+std::array<std::uint32_t, 3> canonical(const std::uint32_t* t) {
+  const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+  return {t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
+}
+
+// Every new triangle of `after` faces the same side as `before`'s area-weighted normal at each
+// of its corners (the triangles kept as they were may face as they did).
+bool noneTurned(std::span<const float> p, std::span<const std::uint32_t> before, std::span<const std::uint32_t> after) {
+  std::vector<std::array<std::uint32_t, 3>> old;
+  for (std::size_t t = 0; t < before.size(); t += 3) old.push_back(canonical(&before[t]));
+  std::sort(old.begin(), old.end());
+  std::vector<Point3> normal(p.size() / 3, Point3{0, 0, 0});
+  for (std::size_t t = 0; t < before.size(); t += 3) {
+    const Point3 n = normalOf(p, &before[t]);
+    for (int c = 0; c < 3; ++c) normal[before[t + c]] = normal[before[t + c]] + n;
+  }
+  for (std::size_t t = 0; t < after.size(); t += 3) {
+    if (std::binary_search(old.begin(), old.end(), canonical(&after[t]))) continue;
+    const Point3 n = normalOf(p, &after[t]);
+    for (int c = 0; c < 3; ++c)
+      if (dot(n, normal[after[t + c]]) <= 0) return false;
+  }
+  return true;
+}
+
+bool anyDegenerate(std::span<const float> p, std::span<const std::uint32_t> tris) {
+  for (std::size_t t = 0; t < tris.size(); t += 3)
+    if (isDegenerate({pointAt(p, tris[t]), pointAt(p, tris[t + 1]), pointAt(p, tris[t + 2])})) return true;
+  return false;
+}
+
+}  // namespace
+
+PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
+                        std::span<const std::uint32_t> after) {
+  if (anyDegenerate(positions, after)) return PatchVerdict::Degenerate;
+  const std::vector<std::uint64_t> edgesBefore = directedEdges(before), edgesAfter = directedEdges(after);
+  if (std::adjacent_find(edgesAfter.begin(), edgesAfter.end()) != edgesAfter.end()) return PatchVerdict::NotOriented;
+  const std::vector<std::uint64_t> borderBefore = borderOf(edgesBefore), borderAfter = borderOf(edgesAfter);
+  if (borderBefore != borderAfter) return PatchVerdict::Border;
+  const std::size_t vertices = plane.size();
+  if (topologyOf(before, edgesBefore, borderBefore.size(), vertices) !=
+      topologyOf(after, edgesAfter, borderAfter.size(), vertices))
+    return PatchVerdict::Topology;
+  if (!everyVertexOneFan(after)) return PatchVerdict::Pinched;
+  if (!noNewPlaneEdge(plane, edgesBefore, edgesAfter)) return PatchVerdict::PlaneEdge;
+  if (!noneTurned(positions, before, after)) return PatchVerdict::Turned;
+  return PatchVerdict::Kept;
+}
+
+}  // namespace scansurf

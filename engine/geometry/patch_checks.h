@@ -1,0 +1,26 @@
+// scansurf: whether a simplified surface patch may replace the original (simplification.h).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+namespace scansurf {
+
+// What a patch's simplification must keep, or the first thing it lost.
+enum class PatchVerdict {
+  Kept,
+  Degenerate,   // a triangle with collinear corners (exact test)
+  NotOriented,  // a directed edge used twice: not a manifold with one orientation
+  Border,       // the edges used one way only changed
+  Topology,     // Euler characteristic or edge-connected components changed
+  Pinched,      // a vertex whose triangles form more than one fan
+  PlaneEdge,    // an edge along a contour plane that the original did not have
+  Turned,       // a triangle facing against the original surface at one of its corners
+};
+
+// Compares `after` with `before` (3 indices per triangle into positions, xyz per vertex);
+// plane[v] is the contour plane vertex v lies on, or -1.
+PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
+                        std::span<const std::uint32_t> after);
+
+}  // namespace scansurf

@@ -1,0 +1,363 @@
+// Verified simplification of the separating-surface network (issue 28), on the CPU pipeline:
+// makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh ->
+// simplifyMesh. Every shape the smoothing tests use, checked exactly afterwards; the collapses
+// and the patch checks on small hand-made patches.
+#include "geometry/simplification.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <set>
+#include <vector>
+
+#include "geometry/edge_collapse.h"
+#include "geometry/feature_surfaces.h"
+#include "geometry/patch_checks.h"
+#include "geometry/smoothing.h"
+#include "support/intersections.h"
+#include "support/shapes.h"
+#include "support/surface_checks.h"
+
+namespace scansurf::test {
+namespace {
+
+SimplificationOptions simplifyOn() {
+  SimplificationOptions o;
+  o.enabled = true;
+  return o;
+}
+
+void smooth(Built& b, int threads = 0) {
+  SmoothingOptions o;
+  o.enabled = true;
+  smoothMesh(b.mesh, b.grid, &b.set, o, threads);
+}
+
+// Per layer of the grid: whether a contour lies on it (as the engine passes it).
+std::vector<bool> contourLayersOf(const Built& b) {
+  std::vector<bool> out(static_cast<std::size_t>(b.grid.nz), false);
+  for (const Feature& f : b.set.features)
+    for (const FeatureSlice& s : f.slices)
+      if (const int k = b.grid.layerOfPlane(s.z); k >= 0) out[static_cast<std::size_t>(k)] = true;
+  return out;
+}
+
+SimplificationReport simplify(Built& b, const SimplificationOptions& options = simplifyOn(), int threads = 0) {
+  const SimplificationReport r = simplifyMesh(b.mesh, b.grid, contourLayersOf(b), options, threads);
+  refreshFeatures(b);
+  return r;
+}
+
+std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention) {
+  std::vector<MeshStats> out;
+  for (const FeatureSurface& s : extractFeatureSurfaces(b.mesh, static_cast<int>(b.set.features.size()), b.nesting, convention))
+    out.push_back(computeMeshStats(b.mesh.positions, s.triangles));
+  return out;
+}
+
+using Position = std::array<float, 3>;
+using PositionEdge = std::pair<Position, Position>;
+
+Position positionOf(const MultiLabelMesh& m, std::uint32_t v) {
+  return {m.positions[3 * std::size_t{v}], m.positions[3 * std::size_t{v} + 1], m.positions[3 * std::size_t{v} + 2]};
+}
+
+// Every edge as a pair of positions (smaller first), with the label pairs of its triangles.
+std::map<PositionEdge, std::set<std::pair<Label, Label>>> edgesByPosition(const MultiLabelMesh& m) {
+  std::map<PositionEdge, std::set<std::pair<Label, Label>>> out;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      Position a = positionOf(m, m.triangles[3 * t + c]), b = positionOf(m, m.triangles[3 * t + (c + 1) % 3]);
+      if (b < a) std::swap(a, b);
+      out[{a, b}].insert({m.labels[2 * t], m.labels[2 * t + 1]});
+    }
+  return out;
+}
+
+// Junction edges (triangles of more than one label pair), by position.
+std::set<PositionEdge> junctionEdges(const MultiLabelMesh& m) {
+  std::set<PositionEdge> out;
+  for (const auto& [e, pairs] : edgesByPosition(m))
+    if (pairs.size() > 1) out.insert(e);
+  return out;
+}
+
+// Edges with both ends on one contour plane, by position.
+std::set<PositionEdge> planeEdges(const Built& b) {
+  std::set<PositionEdge> out;
+  for (const auto& [e, pairs] : edgesByPosition(b.mesh))
+    if (e.first[2] == e.second[2] && b.grid.layerOfPlane(e.first[2]) >= 0 && contourLayersOf(b)[b.grid.layerOfPlane(e.first[2])])
+      out.insert(e);
+  return out;
+}
+
+std::map<std::pair<Label, Label>, std::size_t> trianglesByPair(const MultiLabelMesh& m) {
+  std::map<std::pair<Label, Label>, std::size_t> out;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) ++out[{m.labels[2 * t], m.labels[2 * t + 1]}];
+  return out;
+}
+
+// Smooths and simplifies `set`, checking every promise against the smoothed mesh; `fewer`: the
+// most the triangle count may keep (a bound, printed with the figures).
+Built checkSimplify(const ContourSet& set, double voxel, double fewer) {
+  Built b = buildCpu(set, voxel);
+  smooth(b);
+  const Built smoothed = b;
+  const std::vector<MeshStats> enclosing = surfaceStats(b, SurfaceConvention::Enclosing);
+  const std::vector<MeshStats> partition = surfaceStats(b, SurfaceConvention::Partition);
+  const Angles anglesBefore = minAngles(b.mesh);
+  const auto t0 = std::chrono::steady_clock::now();
+  const SimplificationReport r = simplify(b);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_TRUE(r.ran);
+  EXPECT_TRUE(b.mesh.keys.empty());
+  EXPECT_EQ(r.trianglesAfter, b.mesh.triangleCount());
+  for (const auto& [convention, before] :
+       {std::pair{SurfaceConvention::Enclosing, enclosing}, std::pair{SurfaceConvention::Partition, partition}}) {
+    const std::vector<MeshStats> after = surfaceStats(b, convention);
+    for (std::size_t f = 0; f < after.size(); ++f) {
+      const MeshStats &s = after[f], &o = before[f];
+      const char* name = convention == SurfaceConvention::Enclosing ? "enclosing" : "partition";
+      EXPECT_EQ(s.triangles == 0, o.triangles == 0) << set.source << " " << name << " feature " << f;
+      if (o.triangles == 0) continue;
+      EXPECT_TRUE(s.closed && s.manifold && s.oriented) << set.source << " " << name << " feature " << f;
+      EXPECT_EQ(s.genus, o.genus) << set.source << " " << name << " feature " << f;
+      EXPECT_EQ(s.components, o.components) << set.source << " " << name << " feature " << f;
+      EXPECT_NEAR(s.volume, o.volume, 0.01 * std::abs(o.volume)) << set.source << " " << name << " feature " << f;
+    }
+  }
+  const auto pairsBefore = trianglesByPair(smoothed.mesh), pairsAfter = trianglesByPair(b.mesh);
+  EXPECT_EQ(pairsAfter.size(), pairsBefore.size()) << set.source << ": every label pair keeps triangles";
+  EXPECT_EQ(junctionEdges(b.mesh), junctionEdges(smoothed.mesh)) << set.source << ": junction curves edge for edge";
+  EXPECT_EQ(planeEdges(b), planeEdges(smoothed)) << set.source << ": contour-plane cross-sections edge for edge";
+  const IntersectionReport x = findCrossings(b.mesh.positions, b.mesh.triangles);
+  EXPECT_EQ(x.crossings, 0u) << set.source;
+  EXPECT_EQ(x.degenerate, 0u) << set.source;
+  const Angles a = minAngles(b.mesh);
+  EXPECT_GE(a.min, anglesBefore.min - 1e-3) << set.source << ": no triangle sharper than the sharpest before";
+  EXPECT_LE(static_cast<double>(r.trianglesAfter), fewer * static_cast<double>(r.trianglesBefore)) << set.source;
+  std::printf(
+      "[ figure   ] %-14s triangles %7zu -> %7zu (%.2fx), min angle %5.1f -> %5.1f, 5%% %5.1f -> %5.1f; %zu patches, %zu "
+      "refused, %zu crossing; %.3f s\n",
+      set.source.c_str(), r.trianglesBefore, r.trianglesAfter,
+      static_cast<double>(r.trianglesAfter) / static_cast<double>(r.trianglesBefore), anglesBefore.min, a.min, anglesBefore.p5,
+      a.p5, r.patches, r.refused, r.crossing, seconds);
+  return b;
+}
+
+// ---------------------------------------------------------------- soundness on every shape
+
+TEST(Simplification, NestedSpheres) { checkSimplify(nestedSpheresContours(), 1.0, 0.75); }
+TEST(Simplification, AbuttingHalves) { checkSimplify(abuttingContours(10, 6, 2.5), 0.5, 0.7); }
+TEST(Simplification, BranchingVessel) { checkSimplify(yBranchContours(), 0.5, 0.85); }
+TEST(Simplification, Phantom) { checkSimplify(phantomContours(), 1.0, 0.65); }
+TEST(Simplification, ThinBarsOnePixelApart) { checkSimplify(thinBarsContours(2.2), 1.0, 0.85); }
+TEST(Simplification, FeatureThinnerThanTwoVoxelsDoesNotCollapseThroughItself) {
+  const Built b = checkSimplify(thinBarsContours(1.4), 1.0, 0.85);
+  for (const FeatureSurface& f : b.features) EXPECT_GT(computeMeshStats(b.mesh.positions, f.triangles).volume, 0);
+}
+TEST(Simplification, SphereAtPixelsEqualToTheSlices) { checkSimplify(sphereContours(10, 1.0), 1.0, 0.8); }
+
+// Three features meeting along the axis of a cylinder: the junction curves stay edge for edge
+// (checkSimplify), and so do their meeting points.
+TEST(Simplification, JunctionCurvesWhereThreeFeaturesMeet) {
+  ContourSet set;
+  set.source = "three sectors";
+  for (int f = 0; f < 3; ++f) {
+    Feature feature;
+    feature.name = std::string(1, static_cast<char>('a' + f));
+    for (int k = 0; k < 6; ++k) {
+      Contour c;
+      c.points.push_back({0.13, 0.07});
+      const double a0 = 2 * std::numbers::pi * f / 3, a1 = 2 * std::numbers::pi * (f + 1) / 3;
+      for (int i = 0; i <= 40; ++i) {
+        const double a = a0 + (a1 - a0) * i / 40;
+        c.points.push_back({0.13 + 8 * std::cos(a), 0.07 + 8 * std::sin(a)});
+      }
+      feature.slices.push_back({2.0 * k, {c}});
+    }
+    set.features.push_back(feature);
+  }
+  const Built b = checkSimplify(set, 0.5, 0.8);
+  std::set<std::set<std::pair<Label, Label>>> kinds;
+  for (const auto& [e, pairs] : edgesByPosition(b.mesh))
+    if (pairs.size() > 1) kinds.insert(pairs);
+  EXPECT_TRUE(kinds.count({{1, 2}, {1, 3}, {2, 3}})) << "the three sectors still meet along the axis";
+}
+
+// ---------------------------------------------------------------- accuracy, determinism
+
+TEST(SimplificationAccuracy, SphereAndTorusWithinATenthMoreDistance) {
+  const auto sphere = [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z) - 20; };
+  const auto torus = [](double x, double y, double z) { return std::hypot(std::hypot(x, y) - 10, z) - 4; };
+  for (const auto& [set, distance] :
+       {std::pair{sphereContours(20, 2.0), Distance(sphere)}, std::pair{torusContours(10, 4, 2.0), Distance(torus)}}) {
+    Built b = buildCpu(set, 1.0);
+    smooth(b);
+    const Accuracy before = accuracy(b, distance);
+    const double sectionBefore = crossSectionError(b);
+    const SimplificationReport r = simplify(b);
+    const Accuracy after = accuracy(b, distance);
+    const double sectionAfter = crossSectionError(b);
+    std::printf(
+        "[ figure   ] %-14s 1 mm / 2 mm: %zu -> %zu triangles; mean distance %.4f -> %.4f mm, max %.4f -> %.4f; "
+        "cross-section %.4f -> %.4f px\n",
+        set.source.c_str(), r.trianglesBefore, r.trianglesAfter, before.mean, after.mean, before.max, after.max, sectionBefore,
+        sectionAfter);
+    EXPECT_LE(after.mean, 1.1 * before.mean) << set.source;
+    EXPECT_LE(after.max, before.max + 0.05) << set.source;
+    EXPECT_NEAR(after.volume, before.volume, 0.005 * before.volume) << set.source;
+    EXPECT_LE(sectionAfter, sectionBefore + 1e-6) << set.source;
+  }
+}
+
+TEST(Simplification, SameResultForAnyThreadCount) {
+  Built one = buildCpu(phantomContours(), 2.0);
+  smooth(one);
+  Built two = one, many = one;
+  simplify(one, simplifyOn(), 1);
+  simplify(two, simplifyOn(), 2);
+  simplify(many, simplifyOn(), 7);
+  EXPECT_EQ(one.mesh.positions, two.mesh.positions);
+  EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
+  EXPECT_EQ(one.mesh.labels, two.mesh.labels);
+  EXPECT_EQ(one.mesh.triangles, many.mesh.triangles);
+}
+
+TEST(Simplification, OffLeavesTheMeshAsItIs) {
+  Built b = buildCpu(sphereContours(10, 2.0), 1.0);
+  smooth(b);
+  const MultiLabelMesh before = b.mesh;
+  const SimplificationReport r = simplify(b, SimplificationOptions{});
+  EXPECT_FALSE(r.ran);
+  EXPECT_EQ(b.mesh.positions, before.positions);
+  EXPECT_EQ(b.mesh.triangles, before.triangles);
+  EXPECT_EQ(b.mesh.keys, before.keys);
+}
+
+TEST(Simplification, LongerEdgesAndLooserTolerancesGiveFewerTriangles) {
+  Built base = buildCpu(sphereContours(20, 2.0), 1.0);
+  smooth(base);
+  std::size_t last = base.mesh.triangleCount() + 1;
+  for (const auto& [tolerance, edge] : {std::pair{0.02, 1.0}, std::pair{0.05, 2.0}, std::pair{0.2, 4.0}}) {
+    Built b = base;
+    SimplificationOptions o = simplifyOn();
+    o.tolerance = tolerance, o.edgeLength = edge;
+    const SimplificationReport r = simplify(b, o);
+    EXPECT_LT(r.trianglesAfter, last) << tolerance << " " << edge;
+    last = r.trianglesAfter;
+  }
+}
+
+// ---------------------------------------------------------------- collapses and patch checks
+
+// A flat n x n grid of squares split in two, in z = 0 (2 n^2 triangles, normals up).
+struct Flat {
+  std::vector<float> positions;
+  std::vector<std::uint32_t> triangles;
+  std::vector<char> border;
+};
+
+Flat flatGrid(int n, double spacing) {
+  Flat f;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      f.positions.insert(f.positions.end(), {static_cast<float>(i * spacing), static_cast<float>(j * spacing), 0.0f});
+      f.border.push_back(i == 0 || j == 0 || i == n || j == n);
+    }
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      f.triangles.insert(f.triangles.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+  return f;
+}
+
+TEST(EdgeCollapse, FlatPatchMergesDownToTheEdgeLengthAndKeepsItsBorder) {
+  const Flat f = flatGrid(12, 0.25);
+  const std::vector<int> noPlane(f.border.size(), -1);
+  const std::vector<std::uint32_t> after = collapseEdges(f.positions, f.triangles, f.border, noPlane, {0.01, 1.0, 15});
+  EXPECT_LT(after.size(), f.triangles.size() / 2);
+  EXPECT_EQ(checkPatch(f.positions, noPlane, f.triangles, after), PatchVerdict::Kept);
+  for (std::size_t i = 0; i < after.size(); i += 3) {
+    const auto p = [&](int c) { return &f.positions[3 * std::size_t{after[i + c]}]; };
+    for (int c = 0; c < 3; ++c) EXPECT_LE(std::hypot(p(c)[0] - p((c + 1) % 3)[0], p(c)[1] - p((c + 1) % 3)[1]), 1.0 + 1e-6);
+  }
+  // Everything locked: nothing moves.
+  const std::vector<char> all(f.border.size(), 1);
+  EXPECT_EQ(collapseEdges(f.positions, f.triangles, all, noPlane, {0.01, 1.0, 20}).size(), f.triangles.size());
+}
+
+TEST(EdgeCollapse, CurvedPatchKeepsWithinTheDistanceBound) {
+  Flat f = flatGrid(16, 0.25);  // bent onto a cylinder of radius 2 about the y axis
+  for (std::size_t v = 0; v < f.positions.size() / 3; ++v) {
+    const double x = f.positions[3 * v] - 2, a = x / 2;
+    f.positions[3 * v] = static_cast<float>(2 * std::sin(a)), f.positions[3 * v + 2] = static_cast<float>(2 * std::cos(a));
+  }
+  const std::vector<int> noPlane(f.border.size(), -1);
+  const std::vector<std::uint32_t> tight = collapseEdges(f.positions, f.triangles, f.border, noPlane, {1e-4, 2.0, 0});
+  const std::vector<std::uint32_t> loose = collapseEdges(f.positions, f.triangles, f.border, noPlane, {0.2, 2.0, 0});
+  EXPECT_LT(loose.size(), tight.size());
+  // Tight, only collapses along the axis are free: every centroid stays within a chord's sag.
+  for (std::size_t i = 0; i < tight.size(); i += 3) {
+    double c[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) c[d] += f.positions[3 * std::size_t{tight[i + k]} + d] / 3;
+    EXPECT_LE(2 - std::hypot(c[0], c[2]), 0.01);
+  }
+}
+
+TEST(EdgeCollapse, NoEdgeAlongAContourPlaneThatWasNotThere) {
+  Flat f = flatGrid(8, 0.25);  // stood up: the row j = 0 lies on a contour plane
+  for (std::size_t v = 0; v < f.positions.size() / 3; ++v) std::swap(f.positions[3 * v + 1], f.positions[3 * v + 2]);
+  std::vector<int> plane(f.border.size(), -1);
+  for (int i = 0; i <= 8; ++i) plane[static_cast<std::size_t>(i)] = 3;
+  std::vector<char> locked(f.border.size(), 0);
+  for (std::size_t v = 0; v < locked.size(); ++v) locked[v] = plane[v] >= 0 || f.border[v];
+  const std::vector<std::uint32_t> after = collapseEdges(f.positions, f.triangles, locked, plane, {0.01, 4.0, 0});
+  EXPECT_LT(after.size(), f.triangles.size());
+  EXPECT_EQ(checkPatch(f.positions, plane, f.triangles, after), PatchVerdict::Kept);
+}
+
+TEST(PatchChecks, EachLossIsNamed) {
+  const Flat f = flatGrid(2, 1.0);  // 9 vertices, 8 triangles; vertex 4 in the middle
+  const std::vector<int> noPlane(9, -1);
+  const std::vector<std::uint32_t>& t = f.triangles;
+  EXPECT_EQ(checkPatch(f.positions, noPlane, t, t), PatchVerdict::Kept);
+  std::vector<std::uint32_t> flipped = t;
+  std::swap(flipped[1], flipped[2]);
+  EXPECT_EQ(checkPatch(f.positions, noPlane, t, flipped), PatchVerdict::NotOriented);
+  const std::vector<std::uint32_t> lost(t.begin() + 3, t.end());
+  EXPECT_EQ(checkPatch(f.positions, noPlane, t, lost), PatchVerdict::Border);
+  std::vector<float> collinear = f.positions;
+  collinear[3 * 4 + 1] = 0;  // the middle vertex onto the row below: triangle 0, 1, 4 degenerate
+  EXPECT_EQ(checkPatch(collinear, noPlane, t, t), PatchVerdict::Degenerate);
+  // Vertices 0 and 2 on a contour plane, not joined; 4 joined to all eight (a fan). Replacing
+  // the fan's triangles 0-1-4 and 1-2-4 by 0-1-2 and 0-2-4 keeps border and topology but joins
+  // 0 and 2 along the plane (vertex 1 lowered so that 0-1-2 is a triangle).
+  std::vector<float> lowered = f.positions;
+  lowered[3 * 1 + 1] = -0.5f;
+  std::vector<int> plane(9, -1);
+  plane[0] = plane[2] = 0;
+  const std::vector<std::uint32_t> fan = {0, 1, 4, 1, 2, 4, 2, 5, 4, 5, 8, 4, 8, 7, 4, 7, 6, 4, 6, 3, 4, 3, 0, 4};
+  const std::vector<std::uint32_t> chord = {0, 1, 2, 0, 2, 4, 2, 5, 4, 5, 8, 4, 8, 7, 4, 7, 6, 4, 6, 3, 4, 3, 0, 4};
+  EXPECT_EQ(checkPatch(lowered, noPlane, fan, chord), PatchVerdict::Kept);
+  EXPECT_EQ(checkPatch(lowered, plane, fan, chord), PatchVerdict::PlaneEdge);
+  // A concave quad A B C D (reflex at C): flipping its diagonal C-A to B-D turns B-C-D over.
+  const std::vector<float> quad = {0, 0, 0, 2, 0, 0, 1, 0.5f, 0, 1, 2, 0};
+  const std::vector<int> quadPlanes(4, -1);
+  EXPECT_EQ(
+      checkPatch(quad, quadPlanes, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}, std::vector<std::uint32_t>{0, 1, 3, 1, 2, 3}),
+      PatchVerdict::Turned);
+  // Two fans sharing vertex 4 only (a pinch) are refused, even as they came.
+  const std::vector<std::uint32_t> twoFans = {0, 1, 4, 1, 2, 4, 2, 0, 4, 3, 7, 4, 7, 6, 4, 6, 3, 4};
+  EXPECT_EQ(checkPatch(f.positions, noPlane, twoFans, twoFans), PatchVerdict::Pinched);
+}
+
+}  // namespace
+}  // namespace scansurf::test
