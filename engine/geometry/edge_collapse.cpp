@@ -3,7 +3,11 @@
 // triangle merged into it, so a cost of at most d^2 keeps it within d of each of those planes.
 // Half-edge collapses (onto an existing vertex, as meshoptimizer's) keep every vertex where
 // smoothing put it: a triangle never leaves the slab its vertices span. Candidates sit in one
-// heap with version stamps; a stale entry is skipped when it comes up.
+// heap with version stamps; a stale entry is skipped when it comes up. An edge no longer than
+// the bound collapses at no cost (its ends may have merged many planes, whose summed squared
+// distances would refuse it): that is what removes most needle slivers. After the collapses,
+// edge flips (Lawson's, restricted): a flip that blunts the pair's sharpest corner, keeps the
+// surface within the bound and turns nothing; then collapses again, which the flips open up.
 #include "geometry/edge_collapse.h"
 
 #include <algorithm>
@@ -17,7 +21,9 @@
 namespace scansurf {
 namespace {
 
-constexpr double kLeastTurnCosine = 0.5;  // a collapse may turn a triangle by at most 60 degrees
+constexpr double kLeastTurnCosine = 0.5;  // a collapse or flip may turn a triangle by at most 60 degrees
+constexpr int kFlipPasses = 4;            // passes of edge flips after the collapses (later ones flip few)
+constexpr int kRounds = 2;                // collapses then flips, twice: flips open collapses refused before
 
 // A symmetric 4x4 quadric, upper triangle: xx xy xz xw yy yz yw zz zw ww.
 struct Quadric {
@@ -89,12 +95,13 @@ class Collapser {
 
   std::vector<std::uint32_t> run() {
     for (std::uint32_t v = 0; v < pos_.size(); ++v) pushAround(v);
-    while (!heap_.empty()) {
-      const Candidate c = heap_.top();
-      heap_.pop();
-      if (version_[c.from] != c.fromVersion || version_[c.to] != c.toVersion || !canCollapse(c.from, c.to)) continue;
-      collapse(c.from, c.to);
-      pushAround(c.to);
+    for (int round = 0; round < kRounds; ++round) {
+      collapseQueued();
+      for (int pass = 0; pass < kFlipPasses && flipPass() > 0; ++pass) {
+      }
+      for (std::uint32_t v : flipped_)  // the second round: around the flips only
+        if (!vtris_[v].empty()) pushAround(v);
+      flipped_.clear();
     }
     std::vector<std::uint32_t> out;
     for (std::size_t t = 0; t < tris_.size(); ++t)
@@ -103,6 +110,82 @@ class Collapser {
   }
 
  private:
+  // The queued candidates, cheapest first, until none is left within the bound.
+  void collapseQueued() {
+    while (!heap_.empty()) {
+      const Candidate c = heap_.top();
+      heap_.pop();
+      if (version_[c.from] != c.fromVersion || version_[c.to] != c.toVersion || !canCollapse(c.from, c.to)) continue;
+      collapse(c.from, c.to);
+      pushAround(c.to);
+    }
+  }
+
+  // One pass of edge flips over every triangle's edges, in order; returns how many were made.
+  std::size_t flipPass() {
+    std::size_t flips = 0;
+    for (std::uint32_t t = 0; t < tris_.size(); ++t)
+      for (int c = 0; c < 3 && alive_[t]; ++c)
+        if (tryFlip(t, tris_[t][c], tris_[t][(c + 1) % 3])) ++flips, c = 3;
+    return flips;
+  }
+
+  // The other live triangle on edge a-b (a -> b in t), or ~0u when there is none or several.
+  std::uint32_t across(std::uint32_t t, std::uint32_t a, std::uint32_t b) const {
+    std::uint32_t found = ~0u;
+    for (std::uint32_t u : vtris_[a])
+      if (u != t && contains(u, b)) {
+        if (found != ~0u) return ~0u;
+        found = u;
+      }
+    return found;
+  }
+
+  std::uint32_t opposite(std::uint32_t t, std::uint32_t a, std::uint32_t b) const {
+    for (std::uint32_t w : tris_[t])
+      if (w != a && w != b) return w;
+    return a;
+  }
+
+  // Flips edge a-b of t (t = a, b, c; its neighbour b, a, d) to c-d when that sharpens no
+  // corner: the pair's sharpest corner gets blunter, the surface moves within the distance
+  // bound, no triangle turns, and no edge is added along a contour plane or twice.
+  bool tryFlip(std::uint32_t t, std::uint32_t a, std::uint32_t b) {
+    if (plane_[a] >= 0 && plane_[a] == plane_[b]) return false;  // a piece of a cross-section
+    const std::uint32_t u = across(t, a, b);
+    if (u == ~0u) return false;
+    const std::uint32_t c = opposite(t, a, b), d = opposite(u, a, b);
+    if (c == d || (plane_[c] >= 0 && plane_[c] == plane_[d])) return false;
+    for (std::uint32_t w : vtris_[c])
+      if (contains(w, d)) return false;  // c and d are joined already
+    const Vec3 &pa = pos_[a], &pb = pos_[b], &pc = pos_[c], &pd = pos_[d];
+    const double before = std::max(cosine_[t], cosine_[u]);
+    const double after = std::max(sharpestCosine(pa, pd, pc), sharpestCosine(pd, pb, pc));
+    if (after >= before - 1e-9) return false;
+    const Vec3 n1 = normalOf(pa, pd, pc), n2 = normalOf(pd, pb, pc), m1 = normalOf(pa, pb, pc), m2 = normalOf(pb, pa, pd);
+    const double l1 = glm::length(n1), l2 = glm::length(n2), k1 = glm::length(m1), k2 = glm::length(m2);
+    if (l1 == 0 || l2 == 0 || k1 == 0 || k2 == 0) return false;
+    for (const Vec3& n : {n1 / l1, n2 / l2})
+      for (const Vec3& m : {m1 / k1, m2 / k2})
+        if (glm::dot(n, m) < kLeastTurnCosine) return false;
+    if (std::abs(glm::dot(pd - pa, m1 / k1)) > limits_.maxDistance) return false;  // the tetrahedron a b c d is flat
+    for (std::uint32_t w : {a, d, c})
+      if (glm::dot(n1, normal_[w]) <= 0) return false;
+    for (std::uint32_t w : {d, b, c})
+      if (glm::dot(n2, normal_[w]) <= 0) return false;
+    flip(t, u, a, b, c, d);
+    return true;
+  }
+
+  // t = a, b, c and u = b, a, d become a, d, c and d, b, c.
+  void flip(std::uint32_t t, std::uint32_t u, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    tris_[t] = {a, d, c}, tris_[u] = {d, b, c};
+    std::erase(vtris_[a], u), std::erase(vtris_[b], t);
+    vtris_[d].push_back(t), vtris_[c].push_back(u);
+    flipped_.insert(flipped_.end(), {a, b, c, d});
+    cosine_[t] = sharpestCosine(pos_[a], pos_[d], pos_[c]), cosine_[u] = sharpestCosine(pos_[d], pos_[b], pos_[c]);
+  }
+
   // v's neighbours, sorted, into `out`.
   void neighbours(std::uint32_t v, std::vector<std::uint32_t>& out) const {
     out.clear();
@@ -117,7 +200,9 @@ class Collapser {
     if (locked_[from]) return;
     Quadric q = quadric_[from];
     q += quadric_[to];
-    const double cost = std::max(0.0, q.at(pos_[to]));
+    // An edge no longer than the bound moves the surface by less than that however many planes
+    // its ends have merged: it goes first, at no cost.
+    const double cost = glm::length(pos_[to] - pos_[from]) <= limits_.maxDistance ? 0.0 : std::max(0.0, q.at(pos_[to]));
     if (cost <= maxCost_) heap_.push({cost, from, to, version_[from], version_[to]});
   }
 
@@ -200,6 +285,7 @@ class Collapser {
   std::vector<char> alive_;
   std::vector<double> cosine_;                   // per triangle, its sharpest corner's cosine
   std::vector<std::uint32_t> nv_, nu_, around_;  // scratch neighbour lists
+  std::vector<std::uint32_t> flipped_;           // corners of this round's flips
   std::vector<std::vector<std::uint32_t>> vtris_;
   std::vector<Quadric> quadric_;
   std::vector<std::uint32_t> version_;

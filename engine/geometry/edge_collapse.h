@@ -19,9 +19,12 @@ struct CollapseLimits {
 // Collapses edges of the patch (3 indices per triangle into xyz positions) in order of quadric
 // error, each moving a vertex onto a neighbour; vertices with locked[v] never move. A collapse is
 // made only if it keeps the patch a manifold (link condition), turns no triangle by more than
-// 60 degrees or to a degenerate one, keeps the limits, and adds no edge between two vertices on
-// one contour plane (plane[v], -1 for none) that were not joined. Returns the triangles left, in
-// the same indices; the same output for the same input.
+// 60 degrees, to a degenerate one or against the patch's normal at one of its corners, keeps the
+// limits (an edge no longer than maxDistance counts as within it), and adds no edge between two
+// vertices on one contour plane (plane[v], -1 for none) that were not joined. Then flips the
+// patch's inner edges where that blunts the two triangles' sharpest corner, within the same
+// rules (the two triangles' tetrahedron no thicker than maxDistance), and collapses again.
+// Returns the triangles left, in the same indices; the same output for the same input.
 std::vector<std::uint32_t> collapseEdges(std::span<const float> positions, std::span<const std::uint32_t> triangles,
                                          std::span<const char> locked, std::span<const int> plane, const CollapseLimits& limits);
 
