@@ -91,6 +91,19 @@ def test_options_as_keywords(phantom):
     assert raw.grid["spacing_x"] == 2.0
 
 
+def test_simplify_merges_triangles_and_reports_it(phantom):
+    plain = scansurf.build(phantom, voxel_size=2.0)
+    fewer = scansurf.build(phantom, voxel_size=2.0, simplify=True, simplify_min_angle=10)
+    figures = fewer.report["simplification"]
+    assert "simplification" not in plain.report
+    assert fewer.report["parameters"]["simplification"] is True and fewer.report["parameters"]["simplify_min_angle"] == 10
+    assert figures["triangles_after"] < 0.8 * figures["triangles_before"]
+    for name, surface in fewer.surfaces.items():
+        assert surface.closed and surface.volume == pytest.approx(plain.surfaces[name].volume, rel=0.01), name
+    with pytest.raises(scansurf.InvalidArgument, match="option simplify_tolerance"):
+        scansurf.build(phantom, voxel_size=2.0, simplify=True, simplify_tolerance=0.9)
+
+
 def test_a_build_with_no_options_is_the_command_line_tools(tmp_path, phantom_result, cli):
     py = tmp_path / "py"
     written = phantom_result.write(py, formats=["ply", "glb"])
