@@ -217,6 +217,51 @@ TEST(SimplificationAccuracy, SphereAndTorusWithinATenthMoreDistance) {
   }
 }
 
+// Area-weighted mean and 95th percentile of the angle between each face's normal and the true
+// sphere's at its centroid, degrees (issue 28's smoothness measure).
+std::pair<double, double> normalErrors(const MultiLabelMesh& m) {
+  std::vector<std::pair<double, double>> angleArea;
+  double total = 0, sum = 0;
+  for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+    double p[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) p[c][k] = m.positions[3 * std::size_t{m.triangles[3 * t + c]} + k];
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double c[3] = {(p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3, (p[0][2] + p[1][2] + p[2][2]) / 3};
+    const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), lc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    if (ln == 0 || lc == 0) continue;
+    // The mesh's normals point from the lower label (background) into the higher: inward here.
+    const double cosine = std::clamp(-(n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / (ln * lc), -1.0, 1.0);
+    const double angle = std::acos(cosine) * 180 / std::numbers::pi, area = ln / 2;
+    angleArea.push_back({angle, area});
+    total += area, sum += angle * area;
+  }
+  std::sort(angleArea.begin(), angleArea.end());
+  double seen = 0, p95 = 0;
+  for (const auto& [angle, area] : angleArea)
+    if ((seen += area) >= 0.95 * total) {
+      p95 = angle;
+      break;
+    }
+  return {sum / total, p95};
+}
+
+TEST(SimplificationAccuracy, FaceNormalsOnTheSphereAt1mmPixels3mmSlices) {
+  Built b = buildCpu(sphereContours(20, 3.0), 1.0);
+  smooth(b);
+  const auto [mean0, p95_0] = normalErrors(b.mesh);
+  const SimplificationReport r = simplify(b);
+  const auto [mean1, p95_1] = normalErrors(b.mesh);
+  std::printf(
+      "[ figure   ] sphere r 20, 1 mm / 3 mm: face normal error mean %.1f -> %.1f deg, 95th percentile %.1f -> %.1f "
+      "(%zu -> %zu faces)\n",
+      mean0, mean1, p95_0, p95_1, r.trianglesBefore, r.trianglesAfter);
+  EXPECT_LE(mean1, mean0 + 0.5);
+  EXPECT_LE(p95_1, p95_0 + 2.0);
+}
+
 TEST(Simplification, SameResultForAnyThreadCount) {
   Built one = buildCpu(phantomContours(), 2.0);
   smooth(one);

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""The analytic sphere's shape figures (issue 28): a sphere of radius 20 mm drawn on slices 3 mm
+apart (256 points per contour), surfaced at 1 mm pixels with scansurf's defaults plus any flags
+given; prints the faces, the area-weighted mean and 95th percentile of the angle between each
+face's normal and the true sphere's at its centroid, and the smallest and 5th-percentile angle.
+
+  tests/bench/sphere_shape.py build/cli/scansurf [FLAG...]      e.g. --simplify, --remesh
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from wireframe import read_ply  # noqa: E402
+
+
+def sphere_contours(radius=20.0, gap=3.0, points=256):
+    slices, z = [], -radius + gap
+    while z < radius - 1e-9:
+        r = math.sqrt(radius * radius - z * z)
+        ring = [[r * math.cos(2 * math.pi * i / points), r * math.sin(2 * math.pi * i / points)] for i in range(points)]
+        slices.append({"z": z, "contours": [ring]})
+        z += gap
+    return {"version": 1, "units": "mm", "features": [{"name": "ball", "slices": slices}]}
+
+
+def main():
+    scansurf, flags = sys.argv[1], sys.argv[2:]
+    with tempfile.TemporaryDirectory() as work:
+        source = os.path.join(work, "sphere.json")
+        with open(source, "w") as f:
+            json.dump(sphere_contours(), f)
+        out = os.path.join(work, "out")
+        subprocess.run([scansurf, source, "-o", out, "--voxel-size", "1", "-q", *flags], check=True)
+        v, faces = read_ply(os.path.join(out, "ball.ply"))
+    p = v[faces]
+    n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    centre = p.mean(1)
+    area = np.linalg.norm(n, axis=1) / 2
+    cosine = (n * centre).sum(1) / (np.linalg.norm(n, axis=1) * np.linalg.norm(centre, axis=1))
+    error = np.degrees(np.arccos(np.clip(cosine, -1, 1)))
+    order = np.argsort(error)
+    p95 = error[order][np.searchsorted(np.cumsum(area[order]) / area.sum(), 0.95)]
+
+    def corner(a, b, c):
+        u, w = b - a, c - a
+        return np.degrees(np.arccos(np.clip((u * w).sum(1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1)), -1, 1)))
+
+    smallest = np.minimum(np.minimum(corner(p[:, 0], p[:, 1], p[:, 2]), corner(p[:, 1], p[:, 2], p[:, 0])),
+                          corner(p[:, 2], p[:, 0], p[:, 1]))
+    print("sphere r 20, 1 mm / 3 mm, %s: %d faces; face normal error mean %.1f, 95th percentile %.1f deg; "
+          "smallest angle %.1f, 5th percentile %.1f deg" % (" ".join(flags) or "defaults", len(faces),
+                                                           (error * area).sum() / area.sum(), p95, smallest.min(),
+                                                           np.percentile(smallest, 5)))
+
+
+if __name__ == "__main__":
+    main()
