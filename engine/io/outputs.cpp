@@ -238,12 +238,23 @@ Result<void> writePreview(const fs::path& path, const PreviewImage& image) {
 namespace {
 
 // A feature whose files are not named after it as such says so: a name too long for a file
-// system, or one that differs from another only in case or in characters a file name cannot hold.
-void warnAboutFileStem(const std::string& name, const std::string& stem, std::vector<std::string>& warnings) {
+// system, one that names the multi-label mesh's or the scene's files (the input's name), or one
+// that differs from another only in case or in characters a file name cannot hold.
+void warnAboutFileStem(const std::string& name, const std::string& stem, const std::string& sceneName,
+                       std::vector<std::string>& warnings) {
   const std::string plain = sanitized(name);
+  const auto same = [](const std::string& a, const std::string& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                      [](unsigned char x, unsigned char y) { return std::tolower(x) == std::tolower(y); });
+  };
   if (plain.size() > kMaxFileStem)
     warnings.push_back("feature \"" + name.substr(0, 40) + "...\": its name is too long for a file name; its files are " + stem +
                        ".* (the report keeps the whole name)");
+  else if (stem != plain && (same(plain, "multilabel") || same(plain, sceneName)))
+    warnings.push_back("feature \"" + name + "\": its name is that of the " +
+                       (same(plain, "multilabel") ? std::string("multi-label mesh's files (multilabel.*)")
+                                                  : "scene files, named after the input (" + sceneName + ".glb, .seg.vtm)") +
+                       "; its files are " + stem + ".*");
   else if (stem != plain && stem.rfind(plain + "_", 0) == 0)
     warnings.push_back("feature \"" + name +
                        "\": another feature's file name differs only in case or in characters a file name "
@@ -273,7 +284,7 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
     SCANSURF_ASSIGN_OR_RETURN(CompactMesh mesh, compactor.compact(surfaces.features[f]));
     if (!plan.dir.empty()) {
       const std::string stem = fileStem(name, used);
-      warnAboutFileStem(name, stem, out.warnings);
+      warnAboutFileStem(name, stem, plan.sceneName, out.warnings);
       SCANSURF_TRY(
           stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, colors[f], contours.units, draco, out));
     }

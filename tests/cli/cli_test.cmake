@@ -198,6 +198,17 @@ foreach(file Body.ply BODY_2.ply)
     message(FATAL_ERROR "missing ${OUT}/names/${file}")
   endif()
 endforeach()
+# A feature named as the input names the scene files (ball.glb): its own files are ball_2.*,
+# and the warning says why.
+file(WRITE "${OUT}/ball.json" "{\"version\": 1, \"units\": \"mm\", \"features\": [{\"name\": \"ball\", \"slices\": [
+  {\"z\": 0, \"contours\": [[[0, 0], [4, 0], [4, 4], [0, 4]]]}, {\"z\": 2, \"contours\": [[[0, 0], [4, 0], [4, 4], [0, 4]]]}]}]}")
+run_scansurf(0 "${OUT}/ball.json" -o "${OUT}/ball" --voxel-size 1 --format ply,glb)
+expect_output("feature \"ball\": its name is that of the scene files, named after the input \\(ball.glb, .seg.vtm\\); its files are ball_2")
+foreach(file ball_2.ply ball.glb)
+  if(NOT EXISTS "${OUT}/ball/${file}")
+    message(FATAL_ERROR "missing ${OUT}/ball/${file}")
+  endif()
+endforeach()
 file(GLOB long_names "${OUT}/names/LLLL*.ply")
 list(LENGTH long_names long_count)
 file(READ "${OUT}/names/r.json" names_report)
