@@ -126,16 +126,14 @@ std::array<std::uint32_t, 3> canonical(const std::uint32_t* t) {
 // Every new triangle of `after` faces the same side as `before`'s area-weighted normal at each
 // of its corners (the triangles kept as they were may face as they did).
 bool noneTurned(std::span<const float> p, std::span<const std::uint32_t> before, std::span<const std::uint32_t> after) {
-  std::vector<std::array<std::uint32_t, 3>> old;
-  for (std::size_t t = 0; t < before.size(); t += 3) old.push_back(canonical(&before[t]));
-  std::sort(old.begin(), old.end());
+  const std::vector<char> fresh = newTriangles(before, after);
   std::vector<Point3> normal(p.size() / 3, Point3{0, 0, 0});
   for (std::size_t t = 0; t < before.size(); t += 3) {
     const Point3 n = normalOf(p, &before[t]);
     for (int c = 0; c < 3; ++c) normal[before[t + c]] = normal[before[t + c]] + n;
   }
   for (std::size_t t = 0; t < after.size(); t += 3) {
-    if (std::binary_search(old.begin(), old.end(), canonical(&after[t]))) continue;
+    if (!fresh[t / 3]) continue;
     const Point3 n = normalOf(p, &after[t]);
     for (int c = 0; c < 3; ++c)
       if (dot(n, normal[after[t + c]]) <= 0) return false;
@@ -150,6 +148,16 @@ bool anyDegenerate(std::span<const float> p, std::span<const std::uint32_t> tris
 }
 
 }  // namespace
+
+std::vector<char> newTriangles(std::span<const std::uint32_t> before, std::span<const std::uint32_t> after) {
+  std::vector<std::array<std::uint32_t, 3>> old;
+  for (std::size_t t = 0; t < before.size(); t += 3) old.push_back(canonical(&before[t]));
+  std::sort(old.begin(), old.end());
+  std::vector<char> fresh(after.size() / 3);
+  for (std::size_t t = 0; t < after.size(); t += 3)
+    fresh[t / 3] = !std::binary_search(old.begin(), old.end(), canonical(&after[t]));
+  return fresh;
+}
 
 PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
                         std::span<const std::uint32_t> after) {

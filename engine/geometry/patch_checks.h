@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace scansurf {
 
@@ -22,5 +23,8 @@ enum class PatchVerdict {
 // plane[v] is the contour plane vertex v lies on, or -1.
 PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
                         std::span<const std::uint32_t> after);
+
+// Per triangle of `after`, whether it is new: not one of `before`'s, however its corners are listed.
+std::vector<char> newTriangles(std::span<const std::uint32_t> before, std::span<const std::uint32_t> after);
 
 }  // namespace scansurf

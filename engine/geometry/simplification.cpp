@@ -40,6 +40,7 @@ struct Patch {
 // A patch's outcome: its triangles (mesh vertex ids), or empty when it stays as it was.
 struct PatchResult {
   std::vector<std::uint32_t> triangles;
+  std::vector<char> changed;  // per triangle: not one of the patch's as it was
   bool refused = false;
 };
 
@@ -167,6 +168,7 @@ PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t
     result.refused = true;
     return result;
   }
+  result.changed = newTriangles(p.triangles, after);
   for (std::uint32_t& v : after) v = p.vertices[v];
   result.triangles = std::move(after);
   return result;
@@ -190,7 +192,7 @@ std::vector<char> sharedVertices(const MultiLabelMesh& mesh, const std::vector<s
 }
 
 // The mesh's triangles with the kept patches simplified: triangles, labels, and per triangle
-// its patch and whether it is new.
+// its patch and whether it is new (only new triangles can cross: the smoothed ones do not).
 struct Candidate {
   std::vector<std::uint32_t> triangles, patchOf;
   std::vector<Label> labels;
@@ -211,7 +213,10 @@ Candidate candidateMesh(const MultiLabelMesh& mesh, const std::vector<std::uint3
     }
     const std::size_t added = (c.triangles.size() - before) / 3;
     c.patchOf.insert(c.patchOf.end(), added, i);
-    c.changed.insert(c.changed.end(), added, kept[i]);
+    if (kept[i])
+      c.changed.insert(c.changed.end(), results[i].changed.begin(), results[i].changed.end());
+    else
+      c.changed.insert(c.changed.end(), added, 0);
     for (std::size_t t = 0; t < added; ++t)
       c.labels.push_back(static_cast<Label>(p.key & 0xffff)), c.labels.push_back(static_cast<Label>(p.key >> 16 & 0xffff));
   }
