@@ -6,12 +6,12 @@
 // no other patch's surroundings change; collapses only merge vertices onto their neighbours, so
 // the triangles stay inside the slab between the patch's cuts. Per patch, the same border,
 // Euler characteristic and components and a manifold, oriented result mean the same topology;
-// the exact crossing test against every triangle near a changed one (afterwards, over the whole
+// the exact crossing test against every triangle near a new one (afterwards, over the whole
 // mesh) keeps the surfaces from crossing.
 // Not meshoptimizer's meshopt_simplify (Debian 12 ships 0.18): it cannot keep chosen vertices
 // (only the whole border) nor let a caller refuse a collapse, and on the bundled example its
 // results failed these checks in 784 of 1493 patches (degenerate and turned triangles, folds
-// onto the contour planes), for 1.3 times fewer triangles against 1.7 here.
+// onto the contour planes), for 1.3 times fewer triangles against 2.7 here.
 #include "geometry/simplification.h"
 
 #include <algorithm>
@@ -23,15 +23,12 @@
 #include "geometry/edge_collapse.h"
 #include "geometry/patch_checks.h"
 #include "geometry/remesh.h"  // computeAngleFigures
-#include "geometry/triangle_intersection.h"
 #include "geometry/vertex_roles.h"
 
 namespace scansurf {
 namespace {
 
-using Tri = std::array<std::uint32_t, 3>;
-
-// A patch: triangles order[first, first + count) of one key (slab << 32 | label pair).
+// A patch: triangles order[first, first + count) of one key (slab << 48 | tile << 32 | label pair).
 struct Patch {
   std::uint64_t key = 0;
   std::size_t first = 0, count = 0;
@@ -162,7 +159,6 @@ PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t
   for (std::size_t v = 0; v < locked.size(); ++v) locked[v] = ctx.shared[p.vertices[v]] || p.plane[v] >= 0;
   const CollapseLimits limits{ctx.tolerance, ctx.edgeLength, ctx.minAngle};
   std::vector<std::uint32_t> after = collapseEdges(p.positions, p.triangles, locked, p.plane, limits);
-
   if (after.size() == p.triangles.size()) return result;
   if (checkPatch(p.positions, p.plane, p.triangles, after) != PatchVerdict::Kept) {
     result.refused = true;
