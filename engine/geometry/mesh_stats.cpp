@@ -8,29 +8,10 @@
 #include <numeric>
 #include <vector>
 
+#include "geometry/mesh_topology.h"
 #include "scansurf/surfaces.h"
 
 namespace scansurf {
-namespace {
-
-constexpr std::uint32_t kNone = ~std::uint32_t{0};
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::uint32_t{0}); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::uint32_t> parent_;
-};
 
 // True when the triangles around v (given as the opposite edges of v's link) form one fan.
 bool singleFan(std::span<const std::array<std::uint32_t, 2>> link, std::vector<std::uint32_t>& scratch) {
@@ -50,6 +31,10 @@ bool singleFan(std::span<const std::array<std::uint32_t, 2>> link, std::vector<s
     if (uf.find(i) != 0) return false;
   return true;
 }
+
+namespace {
+
+constexpr std::uint32_t kNone = ~std::uint32_t{0};
 
 // Area and enclosed volume (signed tetrahedra against the origin: p0 . (p1 x p2) / 6).
 void measure(std::span<const float> positions, std::span<const std::uint32_t> triangles, MeshStats& stats) {

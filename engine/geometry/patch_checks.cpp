@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <array>
-#include <numeric>
 #include <vector>
 
+#include "geometry/mesh_topology.h"
 #include "geometry/triangle_intersection.h"
 
 namespace scansurf {
@@ -39,48 +39,21 @@ std::vector<std::uint64_t> borderOf(const std::vector<std::uint64_t>& edges) {
   return border;
 }
 
-std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
 // Euler characteristic V - E + F and edge-connected components, of a patch whose directed
 // edges (sorted) are unique.
 std::array<long long, 2> topologyOf(std::span<const std::uint32_t> tris, const std::vector<std::uint64_t>& edges,
                                     std::size_t borderEdges, std::size_t vertexCount) {
-  std::vector<std::uint32_t> parent(vertexCount);
-  std::iota(parent.begin(), parent.end(), 0u);
+  UnionFind sets(vertexCount);
   std::vector<char> used(vertexCount, 0);
   for (std::uint64_t e : edges) {
     used[from(e)] = used[to(e)] = 1;
-    parent[findRoot(parent, from(e))] = findRoot(parent, to(e));
+    sets.unite(from(e), to(e));
   }
   long long vertices = 0, components = 0;
   for (std::uint32_t v = 0; v < vertexCount; ++v)
-    if (used[v]) ++vertices, components += findRoot(parent, v) == v;
+    if (used[v]) ++vertices, components += sets.find(v) == v;
   const auto undirected = static_cast<long long>((edges.size() + borderEdges) / 2);
   return {vertices - undirected + static_cast<long long>(tris.size() / 3), components};
-}
-
-// Whether a vertex's link (b -> c for each of its triangles v, b, c; each b once, as the
-// directed edges are unique) is one path (a border vertex) or one cycle.
-bool oneFan(std::vector<std::array<std::uint32_t, 2>>& link) {
-  std::sort(link.begin(), link.end());
-  auto next = [&](std::uint32_t b) {
-    const auto it = std::lower_bound(link.begin(), link.end(), std::array<std::uint32_t, 2>{b, 0});
-    return it != link.end() && (*it)[0] == b ? static_cast<long long>((*it)[1]) : -1LL;
-  };
-  std::uint32_t start = link.front()[0];
-  int starts = 0;  // b that is no link's c: where a path begins
-  for (const auto& l : link)
-    if (std::none_of(link.begin(), link.end(), [&](const auto& m) { return m[1] == l[0]; })) start = l[0], ++starts;
-  if (starts > 1) return false;
-  std::size_t walked = 0;
-  for (long long b = next(start); b >= 0 && walked < link.size(); b = next(static_cast<std::uint32_t>(b))) {
-    ++walked;
-    if (b == start) break;
-  }
-  return walked == link.size();
 }
 
 bool everyVertexOneFan(std::span<const std::uint32_t> tris) {
@@ -90,11 +63,12 @@ bool everyVertexOneFan(std::span<const std::uint32_t> tris) {
     for (int c = 0; c < 3; ++c) corners.push_back({tris[t + c], tris[t + (c + 1) % 3], tris[t + (c + 2) % 3]});
   std::sort(corners.begin(), corners.end());
   std::vector<std::array<std::uint32_t, 2>> link;
+  std::vector<std::uint32_t> scratch;
   for (std::size_t i = 0; i < corners.size();) {
     link.clear();
     const std::uint32_t v = corners[i][0];
     for (; i < corners.size() && corners[i][0] == v; ++i) link.push_back({corners[i][1], corners[i][2]});
-    if (!oneFan(link)) return false;
+    if (!singleFan(link, scratch)) return false;
   }
   return true;
 }
