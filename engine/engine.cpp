@@ -11,6 +11,7 @@
 #include "core/memory.h"
 #include "core/parallel.h"
 #include "geometry/assembly.h"
+#include "geometry/contour_layers.h"
 #include "geometry/coverage.h"
 #include "geometry/edge_crossings.h"
 #include "geometry/feature_surfaces.h"
@@ -129,16 +130,6 @@ std::vector<double> slabVolumes(const OverlapReport& overlaps) {
   return out;
 }
 
-// Per layer of the grid: whether a contour lies on it.
-std::vector<bool> contourLayers(const Grid& grid, const ContourSet* contours) {
-  std::vector<bool> out(static_cast<std::size_t>(grid.nz), false);
-  if (contours)
-    for (const Feature& f : contours->features)
-      for (const FeatureSlice& slice : f.slices)
-        if (const int k = grid.layerOfPlane(slice.z); k >= 0) out[static_cast<std::size_t>(k)] = true;
-  return out;
-}
-
 // The stage calls' targets: each feature's slab volume on the grid of its planes (no medial split).
 SurfaceTargets slabTargets(const ContourSet* contours, const Grid& grid) {
   SurfaceTargets targets;
@@ -157,19 +148,19 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
   surfaces.mesh = assembleMesh(grid, cells, options.threads);
   cells = {};
   clock.lap("assembly");
+  const std::vector<bool> planes = contourLayers(grid, contours);
   if (options.smoothing.enabled) {
     clock.begin("smoothing");
     const SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
-      restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, contourLayers(grid, contours),
-                     options.smoothing.minAngle, options.threads);
+      restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,
+                     options.threads);
     clock.lap("smoothing");
   }
   if (options.simplification.enabled) {
     clock.begin("simplification");
-    surfaces.simplification =
-        simplifyMesh(surfaces.mesh, grid, contourLayers(grid, contours), options.simplification, options.threads);
+    surfaces.simplification = simplifyMesh(surfaces.mesh, grid, planes, options.simplification, options.threads);
     clock.lap("simplification");
   }
   if (options.remeshing.enabled) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "geometry/contour_layers.h"
 #include "geometry/polygon.h"
 #include "geometry/validate.h"
 #include "scansurf/grid.h"
@@ -287,6 +288,15 @@ int layerOfZ(const Grid& grid, double z, double tolerance) {
     }
   }
   return best;
+}
+
+std::vector<bool> contourLayers(const Grid& grid, const ContourSet* contours) {
+  std::vector<bool> out(static_cast<std::size_t>(grid.nz), false);
+  if (contours)
+    for (const Feature& f : contours->features)
+      for (const FeatureSlice& slice : f.slices)
+        if (const int k = grid.layerOfPlane(slice.z); k >= 0) out[static_cast<std::size_t>(k)] = true;
+  return out;
 }
 
 }  // namespace scansurf

@@ -16,6 +16,7 @@
 #include <set>
 #include <vector>
 
+#include "geometry/contour_layers.h"
 #include "geometry/edge_collapse.h"
 #include "geometry/feature_surfaces.h"
 #include "geometry/patch_checks.h"
@@ -39,17 +40,8 @@ void smooth(Built& b, int threads = 0) {
   smoothMesh(b.mesh, b.grid, &b.set, o, threads);
 }
 
-// Per layer of the grid: whether a contour lies on it (as the engine passes it).
-std::vector<bool> contourLayersOf(const Built& b) {
-  std::vector<bool> out(static_cast<std::size_t>(b.grid.nz), false);
-  for (const Feature& f : b.set.features)
-    for (const FeatureSlice& s : f.slices)
-      if (const int k = b.grid.layerOfPlane(s.z); k >= 0) out[static_cast<std::size_t>(k)] = true;
-  return out;
-}
-
 SimplificationReport simplify(Built& b, const SimplificationOptions& options = simplifyOn(), int threads = 0) {
-  const SimplificationReport r = simplifyMesh(b.mesh, b.grid, contourLayersOf(b), options, threads);
+  const SimplificationReport r = simplifyMesh(b.mesh, b.grid, contourLayers(b.grid, &b.set), options, threads);
   refreshFeatures(b);
   return r;
 }
@@ -92,7 +84,8 @@ std::set<PositionEdge> junctionEdges(const MultiLabelMesh& m) {
 std::set<PositionEdge> planeEdges(const Built& b) {
   std::set<PositionEdge> out;
   for (const auto& [e, pairs] : edgesByPosition(b.mesh))
-    if (e.first[2] == e.second[2] && b.grid.layerOfPlane(e.first[2]) >= 0 && contourLayersOf(b)[b.grid.layerOfPlane(e.first[2])])
+    if (e.first[2] == e.second[2] && b.grid.layerOfPlane(e.first[2]) >= 0 &&
+        contourLayers(b.grid, &b.set)[b.grid.layerOfPlane(e.first[2])])
       out.insert(e);
   return out;
 }
