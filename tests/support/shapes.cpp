@@ -266,4 +266,25 @@ Contour randomPolygon(ShapeRng& rng, Point2 centre, double minRadius, double max
   return c;
 }
 
+ContourSet threeSectorsContours() {
+  ContourSet set;
+  set.source = "three sectors";
+  for (int f = 0; f < 3; ++f) {
+    Feature feature;
+    feature.name = std::string(1, static_cast<char>('a' + f));
+    for (int k = 0; k < 6; ++k) {
+      Contour c;
+      c.points.push_back({0.13, 0.07});  // off the pixel lattice
+      const double a0 = 2 * std::numbers::pi * f / 3, a1 = 2 * std::numbers::pi * (f + 1) / 3;
+      for (int i = 0; i <= 40; ++i) {
+        const double a = a0 + (a1 - a0) * i / 40;
+        c.points.push_back({0.13 + 8 * std::cos(a), 0.07 + 8 * std::sin(a)});
+      }
+      feature.slices.push_back({2.0 * k, {c}});
+    }
+    set.features.push_back(feature);
+  }
+  return set;
+}
+
 }  // namespace scansurf

@@ -39,6 +39,11 @@ ContourSet abuttingContours(double radius = 10, int slices = 6, double sliceSpac
 // half-length 10 - k on slice k), centres 3.2 mm apart, on five slices 2 mm apart from z = 0.
 ContourSet thinBarsContours(double width);
 
+// Features "a", "b" and "c": three sectors of a disc of radius 8 on six slices 2 mm apart,
+// meeting along the cylinder's axis (off the pixel lattice): junction curves where the three
+// meet and where two of them meet the background.
+ContourSet threeSectorsContours();
+
 // The bundled demo: BODY (ellipse skin), abutting "prostate" and "rectum", "target" nested in
 // the prostate, a branching "vessel", and a "vertebra" that is ring-shaped on its middle
 // slices; 40 slices at 2.5 mm, about 1 mm between contour points, coordinates rounded to 0.01.

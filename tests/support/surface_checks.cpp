@@ -11,6 +11,7 @@
 #include "geometry/assembly.h"
 #include "geometry/cell_cases.h"
 #include "geometry/feature_surfaces.h"
+#include "geometry/smoothing.h"
 #include "support/reference_rasterizer.h"
 
 namespace scansurf::test {
@@ -139,6 +140,45 @@ InterfaceUse interfaceUse(const MultiLabelMesh& mesh, const FeatureSurface& a, c
     }
   }
   return use;
+}
+
+void smoothWithDefaults(Built& b, int threads) {
+  SmoothingOptions o;
+  o.enabled = true;
+  smoothMesh(b.mesh, b.grid, &b.set, o, threads);
+}
+
+std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention) {
+  std::vector<MeshStats> out;
+  for (const FeatureSurface& s : extractFeatureSurfaces(b.mesh, static_cast<int>(b.set.features.size()), b.nesting, convention))
+    out.push_back(computeMeshStats(b.mesh.positions, s.triangles));
+  return out;
+}
+
+SurfaceSnapshot snapshotSurfaces(const Built& b) {
+  return {surfaceStats(b, SurfaceConvention::Enclosing), surfaceStats(b, SurfaceConvention::Partition)};
+}
+
+std::vector<std::string> surfacesLost(const Built& b, const SurfaceSnapshot& before, double volumeTolerance) {
+  std::vector<std::string> lost;
+  for (const auto& [convention, was] :
+       {std::pair{SurfaceConvention::Enclosing, &before.enclosing}, std::pair{SurfaceConvention::Partition, &before.partition}}) {
+    const std::vector<MeshStats> now = surfaceStats(b, convention);
+    for (std::size_t f = 0; f < now.size(); ++f) {
+      const MeshStats &s = now[f], &o = (*was)[f];
+      const std::string at = std::string(convention == SurfaceConvention::Enclosing ? "enclosing" : "partition") + " feature " +
+                             std::to_string(f) + ": ";
+      if ((s.triangles == 0) != (o.triangles == 0)) lost.push_back(at + "surface lost or made");
+      if (o.triangles == 0 || s.triangles == 0) continue;
+      if (!(s.closed && s.manifold && s.oriented)) lost.push_back(at + "not a closed oriented manifold");
+      if (s.genus != o.genus) lost.push_back(at + "genus " + std::to_string(o.genus) + " -> " + std::to_string(s.genus));
+      if (s.components != o.components)
+        lost.push_back(at + "components " + std::to_string(o.components) + " -> " + std::to_string(s.components));
+      if (std::abs(s.volume - o.volume) > volumeTolerance * std::abs(o.volume))
+        lost.push_back(at + "volume " + std::to_string(o.volume) + " -> " + std::to_string(s.volume));
+    }
+  }
+  return lost;
 }
 
 }  // namespace scansurf::test

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "scansurf/contours.h"
@@ -24,6 +25,20 @@ struct Built {
 Built buildCpu(const ContourSet& set, double voxelSize);
 // Recomputes b.features (Enclosing) after the mesh changed.
 void refreshFeatures(Built& b);
+// Smooths b.mesh with SmoothingOptions' defaults, smoothing on.
+void smoothWithDefaults(Built& b, int threads = 0);
+
+// Per feature surface of one convention, its statistics.
+std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention);
+// Both conventions' statistics, taken before a change to the mesh.
+struct SurfaceSnapshot {
+  std::vector<MeshStats> enclosing, partition;
+};
+SurfaceSnapshot snapshotSurfaces(const Built& b);
+// What no longer holds of `before` after the change, one line per fault (naming the convention
+// and feature): a surface lost or made, not a closed oriented manifold, another genus or
+// components, or a volume off by more than volumeTolerance (relative). Empty: all kept.
+std::vector<std::string> surfacesLost(const Built& b, const SurfaceSnapshot& before, double volumeTolerance);
 
 struct Angles {
   double min = 180, p5 = 180;

@@ -34,23 +34,10 @@ SimplificationOptions simplifyOn() {
   return o;
 }
 
-void smooth(Built& b, int threads = 0) {
-  SmoothingOptions o;
-  o.enabled = true;
-  smoothMesh(b.mesh, b.grid, &b.set, o, threads);
-}
-
 SimplificationReport simplify(Built& b, const SimplificationOptions& options = simplifyOn(), int threads = 0) {
   const SimplificationReport r = simplifyMesh(b.mesh, b.grid, contourLayers(b.grid, &b.set), options, threads);
   refreshFeatures(b);
   return r;
-}
-
-std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention) {
-  std::vector<MeshStats> out;
-  for (const FeatureSurface& s : extractFeatureSurfaces(b.mesh, static_cast<int>(b.set.features.size()), b.nesting, convention))
-    out.push_back(computeMeshStats(b.mesh.positions, s.triangles));
-  return out;
 }
 
 using Position = std::array<float, 3>;
@@ -100,10 +87,9 @@ std::map<std::pair<Label, Label>, std::size_t> trianglesByPair(const MultiLabelM
 // most the triangle count may keep (a bound, printed with the figures).
 Built checkSimplify(const ContourSet& set, double voxel, double fewer) {
   Built b = buildCpu(set, voxel);
-  smooth(b);
+  smoothWithDefaults(b);
   const Built smoothed = b;
-  const std::vector<MeshStats> enclosing = surfaceStats(b, SurfaceConvention::Enclosing);
-  const std::vector<MeshStats> partition = surfaceStats(b, SurfaceConvention::Partition);
+  const SurfaceSnapshot surfaces = snapshotSurfaces(b);
   const Angles anglesBefore = minAngles(b.mesh);
   const auto t0 = std::chrono::steady_clock::now();
   const SimplificationReport r = simplify(b);
@@ -111,20 +97,7 @@ Built checkSimplify(const ContourSet& set, double voxel, double fewer) {
   EXPECT_TRUE(r.ran);
   EXPECT_TRUE(b.mesh.keys.empty());
   EXPECT_EQ(r.trianglesAfter, b.mesh.triangleCount());
-  for (const auto& [convention, before] :
-       {std::pair{SurfaceConvention::Enclosing, enclosing}, std::pair{SurfaceConvention::Partition, partition}}) {
-    const std::vector<MeshStats> after = surfaceStats(b, convention);
-    for (std::size_t f = 0; f < after.size(); ++f) {
-      const MeshStats &s = after[f], &o = before[f];
-      const char* name = convention == SurfaceConvention::Enclosing ? "enclosing" : "partition";
-      EXPECT_EQ(s.triangles == 0, o.triangles == 0) << set.source << " " << name << " feature " << f;
-      if (o.triangles == 0) continue;
-      EXPECT_TRUE(s.closed && s.manifold && s.oriented) << set.source << " " << name << " feature " << f;
-      EXPECT_EQ(s.genus, o.genus) << set.source << " " << name << " feature " << f;
-      EXPECT_EQ(s.components, o.components) << set.source << " " << name << " feature " << f;
-      EXPECT_NEAR(s.volume, o.volume, 0.01 * std::abs(o.volume)) << set.source << " " << name << " feature " << f;
-    }
-  }
+  for (const std::string& lost : surfacesLost(b, surfaces, 0.01)) ADD_FAILURE() << set.source << " " << lost;
   const auto pairsBefore = trianglesByPair(smoothed.mesh), pairsAfter = trianglesByPair(b.mesh);
   EXPECT_EQ(pairsAfter.size(), pairsBefore.size()) << set.source << ": every label pair keeps triangles";
   EXPECT_EQ(junctionEdges(b.mesh), junctionEdges(smoothed.mesh)) << set.source << ": junction curves edge for edge";
@@ -160,23 +133,7 @@ TEST(Simplification, SphereAtPixelsEqualToTheSlices) { checkSimplify(sphereConto
 // Three features meeting along the axis of a cylinder: the junction curves stay edge for edge
 // (checkSimplify), and so do their meeting points.
 TEST(Simplification, JunctionCurvesWhereThreeFeaturesMeet) {
-  ContourSet set;
-  set.source = "three sectors";
-  for (int f = 0; f < 3; ++f) {
-    Feature feature;
-    feature.name = std::string(1, static_cast<char>('a' + f));
-    for (int k = 0; k < 6; ++k) {
-      Contour c;
-      c.points.push_back({0.13, 0.07});
-      const double a0 = 2 * std::numbers::pi * f / 3, a1 = 2 * std::numbers::pi * (f + 1) / 3;
-      for (int i = 0; i <= 40; ++i) {
-        const double a = a0 + (a1 - a0) * i / 40;
-        c.points.push_back({0.13 + 8 * std::cos(a), 0.07 + 8 * std::sin(a)});
-      }
-      feature.slices.push_back({2.0 * k, {c}});
-    }
-    set.features.push_back(feature);
-  }
+  const ContourSet set = threeSectorsContours();
   const Built b = checkSimplify(set, 0.5, 0.8);
   std::set<std::set<std::pair<Label, Label>>> kinds;
   for (const auto& [e, pairs] : edgesByPosition(b.mesh))
@@ -192,7 +149,7 @@ TEST(SimplificationAccuracy, SphereAndTorusWithinATenthMoreDistance) {
   for (const auto& [set, distance] :
        {std::pair{sphereContours(20, 2.0), Distance(sphere)}, std::pair{torusContours(10, 4, 2.0), Distance(torus)}}) {
     Built b = buildCpu(set, 1.0);
-    smooth(b);
+    smoothWithDefaults(b);
     const Accuracy before = accuracy(b, distance);
     const double sectionBefore = crossSectionError(b);
     const SimplificationReport r = simplify(b);
@@ -243,7 +200,7 @@ std::pair<double, double> normalErrors(const MultiLabelMesh& m) {
 
 TEST(SimplificationAccuracy, FaceNormalsOnTheSphereAt1mmPixels3mmSlices) {
   Built b = buildCpu(sphereContours(20, 3.0), 1.0);
-  smooth(b);
+  smoothWithDefaults(b);
   const auto [mean0, p95_0] = normalErrors(b.mesh);
   const SimplificationReport r = simplify(b);
   const auto [mean1, p95_1] = normalErrors(b.mesh);
@@ -257,7 +214,7 @@ TEST(SimplificationAccuracy, FaceNormalsOnTheSphereAt1mmPixels3mmSlices) {
 
 TEST(Simplification, SameResultForAnyThreadCount) {
   Built one = buildCpu(phantomContours(), 2.0);
-  smooth(one);
+  smoothWithDefaults(one);
   Built two = one, many = one;
   simplify(one, simplifyOn(), 1);
   simplify(two, simplifyOn(), 2);
@@ -270,7 +227,7 @@ TEST(Simplification, SameResultForAnyThreadCount) {
 
 TEST(Simplification, OffLeavesTheMeshAsItIs) {
   Built b = buildCpu(sphereContours(10, 2.0), 1.0);
-  smooth(b);
+  smoothWithDefaults(b);
   const MultiLabelMesh before = b.mesh;
   const SimplificationReport r = simplify(b, SimplificationOptions{});
   EXPECT_FALSE(r.ran);
@@ -281,7 +238,7 @@ TEST(Simplification, OffLeavesTheMeshAsItIs) {
 
 TEST(Simplification, LongerEdgesAndLooserTolerancesGiveFewerTriangles) {
   Built base = buildCpu(sphereContours(20, 2.0), 1.0);
-  smooth(base);
+  smoothWithDefaults(base);
   std::size_t last = base.mesh.triangleCount() + 1;
   for (const auto& [tolerance, edge] : {std::pair{0.02, 1.0}, std::pair{0.05, 2.0}, std::pair{0.2, 4.0}}) {
     Built b = base;
