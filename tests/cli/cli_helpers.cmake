@@ -18,6 +18,15 @@ function(expect_output pattern)
   endif()
 endfunction()
 
+# Fails unless every file named in ARGN exists in `dir`.
+function(expect_files dir)
+  foreach(file ${ARGN})
+    if(NOT EXISTS "${dir}/${file}")
+      message(FATAL_ERROR "missing ${dir}/${file}")
+    endif()
+  endforeach()
+endfunction()
+
 # Fails when a failed run left anything in `dir` (which may not exist).
 function(expect_nothing_left dir)
   if(EXISTS "${dir}")
