@@ -82,8 +82,8 @@ class BucketGrid {
 }  // namespace
 
 std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> positions,
-                                                        std::span<const std::uint32_t> triangles,
-                                                        const std::vector<char>& changed, double cell, int threads) {
+                                                        std::span<const std::uint32_t> triangles, const std::vector<char>& query,
+                                                        const std::vector<char>& isNew, double cell, int threads) {
   const std::size_t count = triangles.size() / 3;
   std::vector<Box> boxes(count);
   parallelChunks(count, threads, [&](int, std::size_t begin, std::size_t end) {
@@ -92,7 +92,7 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
   const BucketGrid grid(boxes, cell);
   std::vector<std::uint32_t> queries;
   for (std::uint32_t t = 0; t < count; ++t)
-    if (changed[t]) queries.push_back(t);
+    if (query[t]) queries.push_back(t);
   if (queries.empty()) return {};
   std::vector<std::vector<std::array<std::uint32_t, 2>>> found(static_cast<std::size_t>(chunkCount(queries.size(), threads)));
   parallelChunks(queries.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
@@ -101,7 +101,7 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
       const std::uint32_t a = queries[q];
       candidates.clear();
       grid.forCandidates(boxes[a], [&](std::uint32_t b) {
-        if (b != a && !(changed[b] && b < a) && overlap(boxes[a], boxes[b])) candidates.push_back(b);
+        if (b != a && !(query[b] && b < a) && (isNew[a] || isNew[b]) && overlap(boxes[a], boxes[b])) candidates.push_back(b);
       });
       std::sort(candidates.begin(), candidates.end());
       candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
@@ -109,7 +109,7 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
       const std::array<std::uint32_t, 3> ia{triangles[3 * a], triangles[3 * a + 1], triangles[3 * a + 2]};
       for (std::uint32_t b : candidates) {
         const std::array<Point3, 3> pb = cornersOf(positions, triangles, b);
-        if (!changed[b] && isDegenerate(pb)) continue;
+        if (!isNew[b] && isDegenerate(pb)) continue;
         if (trianglesCross(ia, pa, {triangles[3 * b], triangles[3 * b + 1], triangles[3 * b + 2]}, pb))
           found[static_cast<std::size_t>(chunk)].push_back({a, b});
       }

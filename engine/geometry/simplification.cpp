@@ -220,18 +220,25 @@ Candidate candidateMesh(const MultiLabelMesh& mesh, const std::vector<std::uint3
 }
 
 // Drops the kept patches whose new triangles cross another triangle (both patches, when both
-// are new), until none does; returns how many were dropped.
+// are new), until none does; returns how many were dropped. After the first round only the
+// triangles put back need testing, against the new ones: every other pair was tested as it is.
 std::size_t dropCrossingPatches(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& order,
                                 const std::vector<Patch>& patches, const std::vector<PatchResult>& results,
                                 std::vector<char>& kept, Candidate& candidate, double cell, int threads) {
   std::size_t dropped = 0;
-  for (;;) {
+  std::vector<char> putBack;  // per patch: dropped in the last round
+  for (bool first = true;; first = false) {
     candidate = candidateMesh(mesh, order, patches, results, kept);
-    const auto crossings = crossingPairs(mesh.positions, candidate.triangles, candidate.changed, cell, threads);
+    std::vector<char> query = candidate.changed;
+    if (!first)
+      for (std::size_t t = 0; t < query.size(); ++t) query[t] = putBack[candidate.patchOf[t]];
+    const auto crossings = crossingPairs(mesh.positions, candidate.triangles, query, candidate.changed, cell, threads);
     if (crossings.empty()) return dropped;
+    putBack.assign(patches.size(), 0);
     for (const auto& [a, b] : crossings)
       for (std::uint32_t t : {a, b})
-        if (candidate.changed[t] && kept[candidate.patchOf[t]]) kept[candidate.patchOf[t]] = 0, ++dropped;
+        if (candidate.changed[t] && kept[candidate.patchOf[t]])
+          kept[candidate.patchOf[t]] = 0, putBack[candidate.patchOf[t]] = 1, ++dropped;
   }
 }
 
