@@ -173,6 +173,11 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
                  "sharper triangle are shortened; costs accuracy, see docs/method.md \"Triangle shape\"); default 0: off")
       ->check(CLI::Range(0.0, 30.0))
       ->capture_default_str();
+  app.add_option("--snap", s.snap,
+                 "merge the vertices crowding a voxel centre into it when one lies within this fraction of its lattice "
+                 "edge of it (removes slivers; docs/method.md \"Triangle shape\"); 0: off")
+      ->check(numberIn(0, 0.45, false, "a number in [0, 0.45]"))
+      ->capture_default_str();
 }
 
 // "auto", "off" or a whole number of layers per gap, 1 to kMaxFactor.

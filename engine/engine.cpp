@@ -20,9 +20,11 @@
 #include "geometry/overlap_split.h"
 #include "geometry/overlaps.h"
 #include "geometry/own_slabs.h"
+#include "geometry/quad_diagonals.h"
 #include "geometry/remesh.h"
 #include "geometry/simplification.h"
 #include "geometry/smoothing.h"
+#include "geometry/snapping.h"
 #include "geometry/validate.h"
 #include "geometry/volume_restoration.h"
 #include "gpu/commands.h"
@@ -151,8 +153,10 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
   const std::vector<bool> planes = contourLayers(grid, contours);
   if (options.smoothing.enabled) {
     clock.begin("smoothing");
-    const SmoothingReport smoothed =
+    SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
+    snapToLattice(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet, options.threads);
+    chooseQuadDiagonals(surfaces.mesh, options.threads);
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,
                      options.threads);

@@ -60,6 +60,7 @@ Result<void> checkOptions(const BuildOptions& o) {
   if (s.enabled && !(s.strength > 0 && s.strength <= 1)) return badOption("smoothing.strength", "in (0, 1]", s.strength);
   if (s.enabled && !(s.minAngle >= 0 && s.minAngle <= 30))
     return badOption("smoothing.minAngle", "in [0, 30] degrees", s.minAngle);
+  if (s.enabled && !(s.snap >= 0 && s.snap <= 0.45)) return badOption("smoothing.snap", "in [0, 0.45] of a lattice edge", s.snap);
   if (s.enabled && s.iterations < 1) return badOption("smoothing.iterations", "at least 1", s.iterations);
   if (const SimplificationOptions& p = o.simplification; p.enabled) {
     if (!(p.tolerance > 0 && p.tolerance <= SimplificationOptions::kMostTolerance))

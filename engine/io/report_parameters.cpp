@@ -51,6 +51,7 @@ std::vector<std::pair<std::string, ReportValue>> runParameters(const RunSettings
           {"junction_smoothing", b.smoothing.junctions},
           {"keep_volume", b.smoothing.keepVolumes},
           {"min_angle", b.smoothing.minAngle},
+          {"snap", b.smoothing.snap},
           {"simplification", b.simplification.enabled},
           {"simplify_tolerance", b.simplification.tolerance},
           {"simplify_edge_length", b.simplification.edgeLength},

@@ -103,6 +103,7 @@ const std::map<std::string, Setter>& setters() {
       {"keep_volume",
        [](BuildOptions& o, const py::handle& v) { o.smoothing.keepVolumes = as<bool>(v, "keep_volume", "a bool"); }},
       {"min_angle", [](BuildOptions& o, const py::handle& v) { o.smoothing.minAngle = as<double>(v, "min_angle", "a number"); }},
+      {"snap", [](BuildOptions& o, const py::handle& v) { o.smoothing.snap = as<double>(v, "snap", "a number"); }},
       {"simplify", [](BuildOptions& o, const py::handle& v) { o.simplification.enabled = as<bool>(v, "simplify", "a bool"); }},
       {"simplify_tolerance",
        [](BuildOptions& o, const py::handle& v) {

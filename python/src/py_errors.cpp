@@ -27,6 +27,7 @@ std::string inKeywords(std::string message) {
       {"option smoothing.strength ", "option smooth_strength "},
       {"option smoothing.iterations ", "option smooth_iterations "},
       {"option smoothing.minAngle ", "option min_angle "},
+      {"option smoothing.snap ", "option snap "},
       {"option simplification.tolerance ", "option simplify_tolerance "},
       {"option simplification.edgeLength ", "option simplify_edge_length "},
       {"option simplification.minAngle ", "option simplify_min_angle "},

@@ -30,6 +30,12 @@ struct SmoothingOptions {
   // accuracy (3 degrees: up to 8 % more mean distance; 15: up to twice; docs/method.md,
   // "Triangle shape"). 0: off.
   double minAngle = 0;
+  // Vertices crowding a voxel centre merge into it after relaxation, before the volumes are
+  // restored (Raman & Wenger's snapping; geometry/snapping.h): every voxel centre that a vertex
+  // on one of its lattice edges lies within this fraction of the edge from becomes a vertex,
+  // where one label pair meets around it. Removes the slivers that sliding vertices make near
+  // voxel centres, and their triangles. In [0, 0.45]; 0: off.
+  double snap = 0.05;
 };
 
 }  // namespace scansurf

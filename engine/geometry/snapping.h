@@ -1,0 +1,30 @@
+// scansurf: smoothed surface vertices that crowd a lattice point merge into it (issue 28), after
+// Raman & Wenger, "Quality isosurface mesh generation using an extended marching cubes lookup
+// table" (EuroVis 2008): the slivers of the separating surfaces are triangles with two or three
+// vertices close to one voxel centre, and moving those vertices onto the centre removes them.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "scansurf/grid.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf {
+
+struct SnapReport {
+  std::size_t points = 0;            // lattice points that became vertices
+  std::size_t mergedVertices = 0;    // vertices merged into them
+  std::size_t removedTriangles = 0;  // triangles that collapsed to an edge
+};
+
+// Every voxel centre p that a vertex on one of p's 14 lattice edges lies within `fraction` of
+// that edge's length from, whose star carries one label pair (no junction near p), whose
+// surface there is one disk, and that no snapped neighbour already took: all vertices on p's
+// edges merge into one vertex at p. Triangles with two of them vanish; the others keep their
+// tetrahedron, orientation and face curves, so the surfaces still never cross (snapping.cpp).
+// mesh.keys stays sorted (p's key is 12 p); onSheet (SmoothingReport) follows the vertices,
+// false at snapped points. Deterministic for any thread count (0 = all). fraction 0: nothing.
+SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads = 0);
+
+}  // namespace scansurf
