@@ -14,64 +14,59 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "geometry/assembly.h"
 #include "geometry/contour_fit.h"
 #include "geometry/vec3.h"
 
 namespace scansurf {
 namespace {
 
-using Corners = std::array<std::array<int, 3>, 2>;
-
-// Per vertex: the two corners of its lattice edge, or a marker (count 0) off lattice edges.
+// Per vertex: the two corners of its lattice edge as packed keys (12 p), both 0 off lattice edges.
 struct EdgeCarrier {
-  Corners corners{};
-  bool onEdge = false;
+  std::uint64_t a = 0, b = 0;
 };
+
+std::uint64_t cornerKey(const int c[3]) {
+  return packVertexKey(12 * static_cast<std::uint64_t>(c[0]), 12 * static_cast<std::uint64_t>(c[1]),
+                       12 * static_cast<std::uint64_t>(c[2]));
+}
 
 std::vector<EdgeCarrier> edgeCarriers(const MultiLabelMesh& mesh, int threads) {
   std::vector<EdgeCarrier> out(mesh.vertexCount());
   parallelChunks(out.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      const Carrier c = carrierOfKey(mesh.keys[v]);
-      if (c.count != 2) continue;
-      out[v].onEdge = true;
-      for (int m = 0; m < 2; ++m) out[v].corners[m] = {c.corners[m][0], c.corners[m][1], c.corners[m][2]};
-    }
+    for (std::size_t v = begin; v < end; ++v)
+      if (const Carrier c = carrierOfKey(mesh.keys[v]); c.count == 2) out[v] = {cornerKey(c.corners[0]), cornerKey(c.corners[1])};
   });
   return out;
 }
 
 // Two lattice edges with no corner in common: in one tetrahedron, its opposite edges.
-bool opposite(const EdgeCarrier& a, const EdgeCarrier& b) {
-  if (!a.onEdge || !b.onEdge) return false;
-  for (const auto& p : a.corners)
-    for (const auto& q : b.corners)
-      if (p == q) return false;
-  return true;
+bool opposite(const EdgeCarrier& e, const EdgeCarrier& f) {
+  return e.b != 0 && f.b != 0 && e.a != f.a && e.a != f.b && e.b != f.a && e.b != f.b;
 }
 
-// Each quad diagonal as (edge, triangle): triangles of one quad share the edge's key.
-std::vector<std::pair<std::uint64_t, std::uint32_t>> diagonals(const MultiLabelMesh& mesh,
-                                                               const std::vector<EdgeCarrier>& carriers) {
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> out;
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t u = mesh.triangles[3 * t + c], w = mesh.triangles[3 * t + (c + 1) % 3];
-      if (opposite(carriers[u], carriers[w]))
-        out.emplace_back(std::uint64_t{std::min(u, w)} << 32 | std::max(u, w), static_cast<std::uint32_t>(t));
+// The edge of triangle t that is a quad's diagonal: its two vertices as (from, to) in t's
+// winding; false if t has none (a 3+1 triangle, or one with a vertex off the lattice edges).
+bool diagonalOf(const MultiLabelMesh& mesh, const std::vector<EdgeCarrier>& carriers, std::size_t t, std::uint32_t edge[2]) {
+  for (int c = 0; c < 3; ++c) {
+    const std::uint32_t u = mesh.triangles[3 * t + c], w = mesh.triangles[3 * t + (c + 1) % 3];
+    if (opposite(carriers[u], carriers[w])) {
+      edge[0] = u, edge[1] = w;
+      return true;
     }
-  std::sort(out.begin(), out.end());
-  return out;
+  }
+  return false;
 }
 
 Vec3 at(const MultiLabelMesh& m, std::uint32_t v) { return {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]}; }
 
-double smallestAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+// The cosine of the triangle's smallest angle: the larger, the sharper.
+double sharpness(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const auto cosine = [](const Vec3& p, const Vec3& q, const Vec3& r) {
     const Vec3 u = q - p, w = r - p;
-    return std::atan2(glm::length(glm::cross(u, w)), glm::dot(u, w));
+    return glm::dot(u, w) / std::sqrt(glm::dot(u, u) * glm::dot(w, w));
   };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  return std::max({cosine(a, b, c), cosine(b, c, a), cosine(c, a, b)});
 }
 
 // Rotates triangle t so that its first edge runs from `from` to `to`; false if it has no such edge.
@@ -99,9 +94,9 @@ bool flipIfBetter(MultiLabelMesh& mesh, std::uint32_t t1, std::uint32_t t2) {
   const Vec3 facing = glm::cross(c - a, b - a) + glm::cross(a - c, d - c);
   const Vec3 m1 = glm::cross(d - a, b - a), m2 = glm::cross(c - d, b - d);
   if (!(glm::dot(m1, m2) > 0 && glm::dot(m1, facing) > 0 && glm::dot(m2, facing) > 0)) return false;
-  const double before = std::min(smallestAngle(a, c, b), smallestAngle(c, a, d));
-  const double after = std::min(smallestAngle(a, d, b), smallestAngle(d, c, b));
-  if (!(after > before)) return false;
+  const double before = std::max(sharpness(a, c, b), sharpness(c, a, d));
+  const double after = std::max(sharpness(a, d, b), sharpness(d, c, b));
+  if (!(after < before)) return false;
   const std::uint32_t n1[3] = {ia, id, ib}, n2[3] = {id, ic, ib};
   std::copy(n1, n1 + 3, first), std::copy(n2, n2 + 3, second);
   return true;
@@ -109,21 +104,27 @@ bool flipIfBetter(MultiLabelMesh& mesh, std::uint32_t t1, std::uint32_t t2) {
 
 }  // namespace
 
+// Assembly emits a quad's two triangles one after the other, and snapping keeps the order, so
+// a quad is a triangle and the next one sharing its diagonal.
 std::size_t chooseQuadDiagonals(MultiLabelMesh& mesh, int threads) {
-  if (mesh.keys.size() != mesh.vertexCount()) return 0;
+  if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() < 2) return 0;
   const std::vector<EdgeCarrier> carriers = edgeCarriers(mesh, threads);
-  const auto diagonal = diagonals(mesh, carriers);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> quads;
-  for (std::size_t i = 0; i + 1 < diagonal.size(); ++i)
-    if (diagonal[i].first == diagonal[i + 1].first && (i + 2 == diagonal.size() || diagonal[i + 2].first != diagonal[i].first) &&
-        (i == 0 || diagonal[i - 1].first != diagonal[i].first) &&
-        mesh.labels[2 * diagonal[i].second] == mesh.labels[2 * diagonal[i + 1].second] &&
-        mesh.labels[2 * diagonal[i].second + 1] == mesh.labels[2 * diagonal[i + 1].second + 1])
-      quads.emplace_back(diagonal[i].second, diagonal[i + 1].second);
-  std::vector<std::size_t> flips(static_cast<std::size_t>(chunkCount(quads.size(), threads)), 0);
-  parallelChunks(quads.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
-    for (std::size_t q = begin; q < end; ++q)
-      flips[static_cast<std::size_t>(chunk)] += flipIfBetter(mesh, quads[q].first, quads[q].second);
+  const std::size_t pairs = mesh.triangleCount() - 1;
+  std::vector<char> quadAt(pairs, 0);  // triangles t and t + 1 are one quad: read first, then flipped
+  parallelChunks(pairs, threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      std::uint32_t first[2], second[2];
+      quadAt[t] = diagonalOf(mesh, carriers, t, first) && diagonalOf(mesh, carriers, t + 1, second) && first[0] == second[1] &&
+                  first[1] == second[0] && mesh.labels[2 * t] == mesh.labels[2 * t + 2] &&
+                  mesh.labels[2 * t + 1] == mesh.labels[2 * t + 3];
+    }
+  });
+  std::vector<std::size_t> flips(static_cast<std::size_t>(chunkCount(pairs, threads)), 0);
+  parallelChunks(pairs, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+      if (quadAt[t])
+        flips[static_cast<std::size_t>(chunk)] +=
+            flipIfBetter(mesh, static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(t + 1));
   });
   std::size_t total = 0;
   for (std::size_t f : flips) total += f;

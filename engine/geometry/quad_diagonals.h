@@ -9,8 +9,9 @@
 
 namespace scansurf {
 
-// Every pair of triangles that shares an edge joining points of two opposite lattice edges of
-// one tetrahedron (the quad of a 2+2 tetrahedron; needs mesh.keys) is split along the other
+// Every two consecutive triangles that share an edge joining points of two opposite lattice edges
+// of one tetrahedron (the quad of a 2+2 tetrahedron, as assembly emits it; needs mesh.keys) is
+// split along the other
 // diagonal instead where that raises the pair's smallest angle and both new triangles face
 // the way the pair did. Both triangulations lie in that tetrahedron with the same edges on its
 // faces, so the surfaces still never cross (quad_diagonals.cpp). Positions, labels and keys are

@@ -23,7 +23,6 @@
 #include <array>
 #include <cstdint>
 #include <span>
-#include <unordered_set>
 
 #include "core/parallel.h"
 #include "geometry/assembly.h"
@@ -67,22 +66,27 @@ struct Candidate {
   bool operator<(const Candidate& o) const { return point != o.point ? point < o.point : along < o.along; }
 };
 
-// Per vertex: on a lattice edge? And the candidates its position makes.
-std::vector<Candidate> findCandidates(const MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<char>& onEdge,
-                                      int threads) {
+// Per vertex on a lattice edge, its two corners as point keys (b = 0: not on an edge).
+struct EdgeCorners {
+  Key a = 0, b = 0;
+};
+
+// Per vertex: its edge's corners, and the candidates its position makes.
+std::vector<Candidate> findCandidates(const MultiLabelMesh& mesh, const Grid& grid, double fraction,
+                                      std::vector<EdgeCorners>& corners, int threads) {
   const std::size_t count = mesh.vertexCount();
-  onEdge.assign(count, 0);
+  corners.assign(count, {});
   std::vector<std::vector<Candidate>> perChunk(static_cast<std::size_t>(chunkCount(count, threads)));
   parallelChunks(count, threads, [&](int chunk, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       const Carrier carrier = carrierOfKey(mesh.keys[v]);
       if (carrier.count != 2) continue;
-      onEdge[v] = 1;
+      corners[v] = {pointKey(carrier.corners[0]), pointKey(carrier.corners[1])};
       const Vec3 a = cornerPosition(grid, carrier.corners[0]), b = cornerPosition(grid, carrier.corners[1]);
       const Vec3 x{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
       const double t = glm::dot(x - a, b - a) / glm::dot(b - a, b - a);
-      if (t <= fraction) perChunk[static_cast<std::size_t>(chunk)].push_back({pointKey(carrier.corners[0]), t});
-      if (1 - t <= fraction) perChunk[static_cast<std::size_t>(chunk)].push_back({pointKey(carrier.corners[1]), 1 - t});
+      if (t <= fraction) perChunk[static_cast<std::size_t>(chunk)].push_back({corners[v].a, t});
+      if (1 - t <= fraction) perChunk[static_cast<std::size_t>(chunk)].push_back({corners[v].b, 1 - t});
     }
   });
   std::vector<Candidate> out;
@@ -91,21 +95,69 @@ std::vector<Candidate> findCandidates(const MultiLabelMesh& mesh, const Grid& gr
   return out;
 }
 
-// The vertices on p's 14 lattice edges (keys 12 p +- 6 e), ascending.
-void mergingVertices(std::span<const Key> keys, Key p, std::vector<std::uint32_t>& out) {
-  out.clear();
-  for (int e = 1; e < 8; ++e)
-    for (int sign : {-1, 1}) {
-      Key key;
-      if (!shifted(p, e, sign, 6, key)) continue;
-      const auto it = std::lower_bound(keys.begin(), keys.end(), key);
-      if (it != keys.end() && *it == key) out.push_back(static_cast<std::uint32_t>(it - keys.begin()));
-    }
-  std::sort(out.begin(), out.end());
+// One bit per voxel centre of the grid: the candidates, then the points taken.
+class LatticeBits {
+ public:
+  explicit LatticeBits(const Grid& grid)
+      : nx_(static_cast<std::uint64_t>(grid.nx)),
+        ny_(static_cast<std::uint64_t>(grid.ny)),
+        words_((nx_ * ny_ * static_cast<std::uint64_t>(grid.nz) + 63) / 64, 0) {}
+  bool inside(Key p) const {
+    const Coords c = unpack(p);
+    return static_cast<std::uint64_t>(c[0] / 12) < nx_ && static_cast<std::uint64_t>(c[1] / 12) < ny_ &&
+           indexOf(p) / 64 < words_.size();
+  }
+  bool test(Key p) const { return inside(p) && (words_[indexOf(p) / 64] >> (indexOf(p) % 64) & 1); }
+  void set(Key p) { words_[indexOf(p) / 64] |= std::uint64_t{1} << (indexOf(p) % 64); }
+
+ private:
+  std::uint64_t indexOf(Key p) const {
+    const Coords c = unpack(p);
+    return static_cast<std::uint64_t>(c[0] / 12) +
+           nx_ * (static_cast<std::uint64_t>(c[1] / 12) + ny_ * static_cast<std::uint64_t>(c[2] / 12));
+  }
+  std::uint64_t nx_, ny_;
+  std::vector<std::uint64_t> words_;
+};
+
+// Per candidate point (ascending), the vertices on its lattice edges, ascending: one scan of the
+// vertices' edge corners against the candidates' bits.
+struct Stars {
+  std::vector<Key> points;
+  std::vector<double> along;            // per point, its closest vertex's fraction
+  std::vector<std::size_t> start;       // size points + 1, into vertices
+  std::vector<std::uint32_t> vertices;  // the vertices that merge into each point
+  std::span<const std::uint32_t> of(std::size_t i) const { return {&vertices[start[i]], start[i + 1] - start[i]}; }
+};
+
+Stars starsOf(const std::vector<Candidate>& candidates, const std::vector<EdgeCorners>& corners, const LatticeBits& bits,
+              int threads) {
+  Stars out;
+  for (const Candidate& c : candidates)  // sorted: the first of each point is its closest
+    if (out.points.empty() || out.points.back() != c.point) out.points.push_back(c.point), out.along.push_back(c.along);
+  std::vector<std::vector<std::pair<Key, std::uint32_t>>> perChunk(static_cast<std::size_t>(chunkCount(corners.size(), threads)));
+  parallelChunks(corners.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+      for (const Key p : {corners[v].a, corners[v].b})
+        if (corners[v].b != 0 && bits.test(p))
+          perChunk[static_cast<std::size_t>(chunk)].emplace_back(p, static_cast<std::uint32_t>(v));
+  });
+  std::vector<std::pair<Key, std::uint32_t>> pairs;
+  for (const auto& c : perChunk) pairs.insert(pairs.end(), c.begin(), c.end());
+  std::sort(pairs.begin(), pairs.end());
+  out.start.assign(out.points.size() + 1, 0);
+  std::size_t i = 0;
+  for (const auto& [p, v] : pairs) {
+    while (out.points[i] != p) out.start[++i] = out.vertices.size();
+    out.vertices.push_back(v);
+  }
+  while (i < out.points.size()) out.start[++i] = out.vertices.size();
+  return out;
 }
 
 struct StarScratch {
-  std::vector<std::uint32_t> merging, triangles, vertices;
+  std::span<const std::uint32_t> merging;
+  std::vector<std::uint32_t> triangles, vertices;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> rim, edges;
 };
 
@@ -127,7 +179,8 @@ bool rimIsOneCycle(std::vector<std::pair<std::uint32_t, std::uint32_t>>& rim) {
 
 // The merged vertices' triangles: one label pair, lattice-edge vertices only, a disk (Euler
 // characteristic 1) whose rim is one cycle.
-bool starIsDisk(const MultiLabelMesh& mesh, const IncidentTriangles& incident, const std::vector<char>& onEdge, StarScratch& s) {
+bool starIsDisk(const MultiLabelMesh& mesh, const IncidentTriangles& incident, const std::vector<EdgeCorners>& corners,
+                StarScratch& s) {
   s.triangles.clear(), s.vertices.clear(), s.rim.clear(), s.edges.clear();
   for (std::uint32_t m : s.merging)
     s.triangles.insert(s.triangles.end(), &incident.list[incident.start[m]], &incident.list[incident.start[m + 1]]);
@@ -140,7 +193,7 @@ bool starIsDisk(const MultiLabelMesh& mesh, const IncidentTriangles& incident, c
     const std::uint32_t* tri = &mesh.triangles[3 * std::size_t{t}];
     int merged = 0, at = 0;
     for (int c = 0; c < 3; ++c) {
-      if (!onEdge[tri[c]]) return false;
+      if (corners[tri[c]].b == 0) return false;
       if (std::binary_search(s.merging.begin(), s.merging.end(), tri[c])) ++merged, at = c;
       s.vertices.push_back(tri[c]);
       s.edges.push_back(std::minmax(tri[c], tri[(c + 1) % 3]));
@@ -154,54 +207,86 @@ bool starIsDisk(const MultiLabelMesh& mesh, const IncidentTriangles& incident, c
   return vertices - edges + static_cast<std::ptrdiff_t>(s.triangles.size()) == 1 && rimIsOneCycle(s.rim);
 }
 
-// The points to snap: the closest-crowded first, each unless a neighbour was taken.
-std::vector<Key> choosePoints(const MultiLabelMesh& mesh, const std::vector<Candidate>& candidates,
-                              const std::vector<char>& onEdge, int threads) {
-  std::vector<Candidate> best;  // per point its closest vertex (candidates are sorted)
-  for (const Candidate& c : candidates)
-    if (best.empty() || best.back().point != c.point) best.push_back(c);
+// The points to snap (indices into stars, ascending): the closest-crowded first, each whose star
+// is a disk unless a neighbour was taken.
+std::vector<std::size_t> choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners,
+                                      LatticeBits& taken, int threads) {
   const IncidentTriangles incident = incidentTriangles(mesh);
-  std::vector<char> disk(best.size(), 0);
-  parallelChunks(best.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+  std::vector<char> disk(stars.points.size(), 0);
+  parallelChunks(stars.points.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     StarScratch s;
     for (std::size_t i = begin; i < end; ++i) {
-      mergingVertices(mesh.keys, best[i].point, s.merging);
-      disk[i] = starIsDisk(mesh, incident, onEdge, s);
+      s.merging = stars.of(i);
+      disk[i] = starIsDisk(mesh, incident, corners, s);
     }
   });
   std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < best.size(); ++i)
+  for (std::size_t i = 0; i < stars.points.size(); ++i)
     if (disk[i]) order.push_back(i);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return best[a].along != best[b].along ? best[a].along < best[b].along : best[a].point < best[b].point;
+    return stars.along[a] != stars.along[b] ? stars.along[a] < stars.along[b] : stars.points[a] < stars.points[b];
   });
-  std::unordered_set<Key> taken;
-  std::vector<Key> out;
+  std::vector<std::size_t> out;
   for (std::size_t i : order) {
     bool free = true;
     for (int e = 1; e < 8 && free; ++e)
       for (int sign : {-1, 1}) {
         Key n;
-        if (shifted(best[i].point, e, sign, 12, n) && taken.count(n)) free = false;
+        if (shifted(stars.points[i], e, sign, 12, n) && taken.test(n)) free = false;
       }
-    if (free) taken.insert(best[i].point), out.push_back(best[i].point);
+    if (free) taken.set(stars.points[i]), out.push_back(i);
   }
   std::sort(out.begin(), out.end());
   return out;
 }
 
+// The triangles with each vertex renumbered (merged ones to their point's vertex), those that
+// collapsed dropped, in order; in parallel chunks, each writing after the ones before it.
+void remapTriangles(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& pointOf,
+                    const std::vector<std::uint32_t>& newIndex, const std::vector<std::uint32_t>& newPoint, MultiLabelMesh& out,
+                    SnapReport& report, int threads) {
+  constexpr std::uint32_t kKept = ~0u;
+  const std::size_t count = mesh.triangleCount();
+  const auto mapped = [&](std::size_t t, int c) {
+    const std::uint32_t v = mesh.triangles[3 * t + c];
+    return pointOf[v] == kKept ? newIndex[v] : newPoint[pointOf[v]];
+  };
+  const auto collapsed = [&](std::size_t t) {
+    const std::uint32_t a = mapped(t, 0), b = mapped(t, 1), c = mapped(t, 2);
+    return a == b || b == c || c == a;
+  };
+  const int chunks = chunkCount(count, threads);
+  std::vector<std::size_t> kept(static_cast<std::size_t>(chunks) + 1, 0);
+  parallelChunks(count, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) kept[static_cast<std::size_t>(chunk) + 1] += !collapsed(t);
+  });
+  for (std::size_t c = 1; c < kept.size(); ++c) kept[c] += kept[c - 1];
+  out.triangles.resize(3 * kept.back());
+  out.labels.resize(2 * kept.back());
+  parallelChunks(count, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::size_t at = kept[static_cast<std::size_t>(chunk)];
+    for (std::size_t t = begin; t < end; ++t) {
+      if (collapsed(t)) continue;
+      for (int c = 0; c < 3; ++c) out.triangles[3 * at + static_cast<std::size_t>(c)] = mapped(t, c);
+      out.labels[2 * at] = mesh.labels[2 * t], out.labels[2 * at + 1] = mesh.labels[2 * t + 1];
+      ++at;
+    }
+  });
+  report.removedTriangles = count - kept.back();
+}
+
 // Rebuilds the mesh with each chosen point's merged vertices replaced by one vertex at it,
 // vertices in key order, the triangles that collapsed dropped.
-void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const std::vector<Key>& points, std::vector<bool>& onSheet,
-                     SnapReport& report) {
+void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const Stars& stars, const std::vector<std::size_t>& chosen,
+                     std::vector<bool>& onSheet, SnapReport& report, int threads) {
   constexpr std::uint32_t kKept = ~0u;
   const std::size_t count = mesh.vertexCount();
   std::vector<std::uint32_t> pointOf(count, kKept);
-  std::vector<std::uint32_t> merging;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    mergingVertices(mesh.keys, points[i], merging);
-    for (std::uint32_t m : merging) pointOf[m] = static_cast<std::uint32_t>(i);
-    report.mergedVertices += merging.size();
+  std::vector<Key> points;
+  for (std::size_t i : chosen) {
+    for (std::uint32_t m : stars.of(i)) pointOf[m] = static_cast<std::uint32_t>(points.size());
+    report.mergedVertices += stars.of(i).size();
+    points.push_back(stars.points[i]);
   }
   MultiLabelMesh out;
   std::vector<bool> sheet;
@@ -223,19 +308,7 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const std::vector<K
     out.positions.insert(out.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v] + 3);
   }
   while (p < points.size()) emitPoint();
-  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
-    std::uint32_t tri[3];
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t v = mesh.triangles[3 * t + c];
-      tri[c] = pointOf[v] == kKept ? newIndex[v] : newPoint[pointOf[v]];
-    }
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) {
-      ++report.removedTriangles;
-      continue;
-    }
-    out.triangles.insert(out.triangles.end(), tri, tri + 3);
-    out.labels.insert(out.labels.end(), &mesh.labels[2 * t], &mesh.labels[2 * t] + 2);
-  }
+  remapTriangles(mesh, pointOf, newIndex, newPoint, out, report, threads);
   mesh = std::move(out);
   onSheet = std::move(sheet);
 }
@@ -245,11 +318,15 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const std::vector<K
 SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads) {
   SnapReport report;
   if (!(fraction > 0) || mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
-  std::vector<char> onEdge;
-  const std::vector<Candidate> candidates = findCandidates(mesh, grid, fraction, onEdge, threads);
-  const std::vector<Key> points = choosePoints(mesh, candidates, onEdge, threads);
-  report.points = points.size();
-  if (!points.empty()) mergeIntoPoints(mesh, grid, points, onSheet, report);
+  std::vector<EdgeCorners> corners;
+  const std::vector<Candidate> candidates = findCandidates(mesh, grid, fraction, corners, threads);
+  LatticeBits bits(grid);
+  for (const Candidate& c : candidates) bits.set(c.point);
+  const Stars stars = starsOf(candidates, corners, bits, threads);
+  LatticeBits taken(grid);
+  const std::vector<std::size_t> chosen = choosePoints(mesh, stars, corners, taken, threads);
+  report.points = chosen.size();
+  if (!chosen.empty()) mergeIntoPoints(mesh, grid, stars, chosen, onSheet, report, threads);
   return report;
 }
 
