@@ -2,7 +2,7 @@
 //
 //   scansurf_bench generate OUTDIR [SET...]    writes OUTDIR/<set>.json and OUTDIR/<set>.dcm (RTSTRUCT)
 //                                              for the sets pelvis, head-neck, em-cells
-//   scansurf_bench run INPUT.json PIXELS [--repeat N] [--no-smooth] [--interpolate auto|off|N] [--remesh]
+//   scansurf_bench run INPUT.json PIXELS [--repeat N] [--no-smooth] [--interpolate auto|off|N] [--snap F] [--remesh]
 //
 // `run` times every stage of the method on one input (parse, nesting, grid, scan conversion,
 // classification, assembly, smoothing and remeshing when enabled, feature surfaces, writing PLY), reports
@@ -74,7 +74,7 @@ int generate(const fs::path& outDir, std::vector<std::string> names) {
   return 0;
 }
 
-int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate, bool remesh, bool simplify) {
+int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpolate, bool remesh, bool simplify, double snap) {
   std::string json = "{";
   auto add = [&](const std::string& key, double value) {
     char buf[64];
@@ -97,6 +97,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
 
   BuildOptions options;
   options.smoothing.enabled = smooth;                   // as the command-line tool does by default
+  options.smoothing.snap = snap;                        // SmoothingOptions' default unless --snap
   options.interpolation.factor = interpolate;           // kAuto, as the command-line tool does by default
   options.simplification.enabled = smooth && simplify;  // off, as the command-line tool does by default (--simplify)
   options.remeshing.enabled = smooth && remesh;         // off, as the command-line tool does by default (--remesh)
@@ -204,20 +205,22 @@ int main(int argc, char** argv) {
   if (args.size() >= 3 && args[0] == "run") {
     int repeat = 1, interpolate = InterpolationOptions::kAuto;
     bool smooth = true, remesh = false, simplify = false;
+    double snap = SmoothingOptions{}.snap;
     for (std::size_t a = 3; a < args.size(); ++a) {
       if (args[a] == "--repeat" && a + 1 < args.size()) repeat = std::stoi(args[++a]);
       if (args[a] == "--no-smooth") smooth = false;
       if (args[a] == "--remesh") remesh = true;
       if (args[a] == "--simplify") simplify = true;
+      if (args[a] == "--snap" && a + 1 < args.size()) snap = std::stod(args[++a]);
       if (args[a] == "--interpolate" && a + 1 < args.size()) {
         const std::string& v = args[++a];
         interpolate = v == "auto" ? InterpolationOptions::kAuto : v == "off" ? 1 : std::stoi(v);
       }
     }
-    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate, remesh, simplify);
+    return run(args[1], std::stoi(args[2]), repeat, smooth, interpolate, remesh, simplify, snap);
   }
   std::fprintf(stderr,
                "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth] "
-               "[--interpolate auto|off|N] [--simplify] [--remesh]\n");
+               "[--interpolate auto|off|N] [--snap F] [--simplify] [--remesh]\n");
   return 2;
 }

@@ -52,7 +52,7 @@ def main():
     out.append("# Benchmarks\n")
     out.append("Reproduce with one command: `tests/bench/run_benchmarks.sh` (installs plastimatch and "
                "python3-vtk9, builds, generates the sets, runs both routes, rewrites this file above \"Measured changes\"). "
-               "`scansurf_bench run INPUT.json PIXELS [--no-smooth] [--interpolate auto|off|N] [--remesh]` times one input; "
+               "`scansurf_bench run INPUT.json PIXELS [--no-smooth] [--interpolate auto|off|N] [--snap F] [--remesh]` times one input; "
                "`tests/bench/count_instructions.sh SCANSURF INPUT [OPTIONS...]` counts the instructions one run executes "
                "(valgrind's callgrind), a cost that does not drift with the machine's load; "
                "`tests/bench/cgal_reference.sh INPUT [OPTIONS...]` puts remeshing's time beside smoothing's and beside CGAL's "
