@@ -23,11 +23,11 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 
 #include "core/parallel.h"
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
-#include "geometry/incident_triangles.h"
 
 namespace scansurf {
 namespace {
@@ -120,44 +120,85 @@ class LatticeBits {
   std::vector<std::uint64_t> words_;
 };
 
-// Per candidate point (ascending), the vertices on its lattice edges, ascending: one scan of the
-// vertices' edge corners against the candidates' bits.
-struct Stars {
-  std::vector<Key> points;
-  std::vector<double> along;            // per point, its closest vertex's fraction
-  std::vector<std::size_t> start;       // size points + 1, into vertices
-  std::vector<std::uint32_t> vertices;  // the vertices that merge into each point
-  std::span<const std::uint32_t> of(std::size_t i) const { return {&vertices[start[i]], start[i + 1] - start[i]}; }
+// Items filed under buckets: per bucket, its items ascending.
+struct Filing {
+  std::vector<std::size_t> start;    // size buckets + 1
+  std::vector<std::uint32_t> items;  // per bucket, ascending
+  std::span<const std::uint32_t> of(std::size_t b) const { return {&items[start[b]], start[b + 1] - start[b]}; }
 };
 
-Stars starsOf(const std::vector<Candidate>& candidates, const std::vector<EdgeCorners>& corners, const LatticeBits& bits,
-              int threads) {
+// Files items 0..count-1 under the buckets that bucketsOf(item, out) appends (each at most once
+// per item), in parallel and in item order: each chunk counts its items per bucket, then writes
+// them after those of the buckets before and of the chunks before (a counting sort).
+template <typename BucketsOf>
+Filing file(std::size_t count, std::size_t buckets, int threads, const BucketsOf& bucketsOf) {
+  const auto chunks = static_cast<std::size_t>(chunkCount(count, threads));
+  std::vector<std::vector<std::size_t>> at(chunks, std::vector<std::size_t>(buckets, 0));
+  parallelChunks(count, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> under;
+    for (std::size_t i = begin; i < end; ++i) {
+      under.clear();
+      bucketsOf(i, under);
+      for (std::uint32_t b : under) ++at[static_cast<std::size_t>(chunk)][b];
+    }
+  });
+  Filing out;
+  out.start.assign(buckets + 1, 0);
+  std::size_t total = 0;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    out.start[b] = total;
+    for (std::size_t c = 0; c < chunks; ++c) total += std::exchange(at[c][b], total);
+  }
+  out.start[buckets] = total;
+  out.items.resize(total);
+  parallelChunks(count, threads, [&](int chunk, std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> under;
+    for (std::size_t i = begin; i < end; ++i) {
+      under.clear();
+      bucketsOf(i, under);
+      for (std::uint32_t b : under) out.items[at[static_cast<std::size_t>(chunk)][b]++] = static_cast<std::uint32_t>(i);
+    }
+  });
+  return out;
+}
+
+// Per candidate point (ascending): its closest vertex's fraction, the vertices on its lattice
+// edges (they merge into it) and the triangles that hold any of them (its star).
+struct Stars {
+  std::vector<Key> points;
+  std::vector<double> along;
+  Filing vertices, triangles;
+};
+
+Stars starsOf(const MultiLabelMesh& mesh, const std::vector<Candidate>& candidates, const std::vector<EdgeCorners>& corners,
+              const LatticeBits& bits, int threads) {
   Stars out;
   for (const Candidate& c : candidates)  // sorted: the first of each point is its closest
     if (out.points.empty() || out.points.back() != c.point) out.points.push_back(c.point), out.along.push_back(c.along);
-  std::vector<std::vector<std::pair<Key, std::uint32_t>>> perChunk(static_cast<std::size_t>(chunkCount(corners.size(), threads)));
-  parallelChunks(corners.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
+  constexpr std::uint32_t kNone = ~0u;
+  std::vector<std::array<std::uint32_t, 2>> pointOf(corners.size(), {kNone, kNone});  // per vertex, per corner
+  parallelChunks(corners.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v)
-      for (const Key p : {corners[v].a, corners[v].b})
-        if (corners[v].b != 0 && bits.test(p))
-          perChunk[static_cast<std::size_t>(chunk)].emplace_back(p, static_cast<std::uint32_t>(v));
+      for (int k = 0; k < 2; ++k)
+        if (const Key p = k ? corners[v].b : corners[v].a; corners[v].b != 0 && bits.test(p))
+          pointOf[v][static_cast<std::size_t>(k)] =
+              static_cast<std::uint32_t>(std::lower_bound(out.points.begin(), out.points.end(), p) - out.points.begin());
   });
-  std::vector<std::pair<Key, std::uint32_t>> pairs;
-  for (const auto& c : perChunk) pairs.insert(pairs.end(), c.begin(), c.end());
-  std::sort(pairs.begin(), pairs.end());
-  out.start.assign(out.points.size() + 1, 0);
-  std::size_t i = 0;
-  for (const auto& [p, v] : pairs) {
-    while (out.points[i] != p) out.start[++i] = out.vertices.size();
-    out.vertices.push_back(v);
-  }
-  while (i < out.points.size()) out.start[++i] = out.vertices.size();
+  out.vertices = file(corners.size(), out.points.size(), threads, [&](std::size_t v, std::vector<std::uint32_t>& under) {
+    for (std::uint32_t p : pointOf[v])
+      if (p != kNone) under.push_back(p);
+  });
+  out.triangles = file(mesh.triangleCount(), out.points.size(), threads, [&](std::size_t t, std::vector<std::uint32_t>& under) {
+    for (int c = 0; c < 3; ++c)
+      for (std::uint32_t p : pointOf[mesh.triangles[3 * t + static_cast<std::size_t>(c)]])
+        if (p != kNone && std::find(under.begin(), under.end(), p) == under.end()) under.push_back(p);
+  });
   return out;
 }
 
 struct StarScratch {
-  std::span<const std::uint32_t> merging;
-  std::vector<std::uint32_t> triangles, vertices;
+  std::span<const std::uint32_t> merging, triangles;
+  std::vector<std::uint32_t> vertices;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> rim, edges;
 };
 
@@ -179,13 +220,8 @@ bool rimIsOneCycle(std::vector<std::pair<std::uint32_t, std::uint32_t>>& rim) {
 
 // The merged vertices' triangles: one label pair, lattice-edge vertices only, a disk (Euler
 // characteristic 1) whose rim is one cycle.
-bool starIsDisk(const MultiLabelMesh& mesh, const IncidentTriangles& incident, const std::vector<EdgeCorners>& corners,
-                StarScratch& s) {
-  s.triangles.clear(), s.vertices.clear(), s.rim.clear(), s.edges.clear();
-  for (std::uint32_t m : s.merging)
-    s.triangles.insert(s.triangles.end(), &incident.list[incident.start[m]], &incident.list[incident.start[m + 1]]);
-  std::sort(s.triangles.begin(), s.triangles.end());
-  s.triangles.erase(std::unique(s.triangles.begin(), s.triangles.end()), s.triangles.end());
+bool starIsDisk(const MultiLabelMesh& mesh, const std::vector<EdgeCorners>& corners, StarScratch& s) {
+  s.vertices.clear(), s.rim.clear(), s.edges.clear();
   if (s.triangles.empty()) return false;
   const std::size_t first = s.triangles.front();
   for (std::uint32_t t : s.triangles) {
@@ -211,13 +247,12 @@ bool starIsDisk(const MultiLabelMesh& mesh, const IncidentTriangles& incident, c
 // is a disk unless a neighbour was taken.
 std::vector<std::size_t> choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners,
                                       LatticeBits& taken, int threads) {
-  const IncidentTriangles incident = incidentTriangles(mesh);
   std::vector<char> disk(stars.points.size(), 0);
   parallelChunks(stars.points.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     StarScratch s;
     for (std::size_t i = begin; i < end; ++i) {
-      s.merging = stars.of(i);
-      disk[i] = starIsDisk(mesh, incident, corners, s);
+      s.merging = stars.vertices.of(i), s.triangles = stars.triangles.of(i);
+      disk[i] = starIsDisk(mesh, corners, s);
     }
   });
   std::vector<std::size_t> order;
@@ -284,8 +319,8 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const Stars& stars,
   std::vector<std::uint32_t> pointOf(count, kKept);
   std::vector<Key> points;
   for (std::size_t i : chosen) {
-    for (std::uint32_t m : stars.of(i)) pointOf[m] = static_cast<std::uint32_t>(points.size());
-    report.mergedVertices += stars.of(i).size();
+    for (std::uint32_t m : stars.vertices.of(i)) pointOf[m] = static_cast<std::uint32_t>(points.size());
+    report.mergedVertices += stars.vertices.of(i).size();
     points.push_back(stars.points[i]);
   }
   MultiLabelMesh out;
@@ -322,7 +357,7 @@ SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction
   const std::vector<Candidate> candidates = findCandidates(mesh, grid, fraction, corners, threads);
   LatticeBits bits(grid);
   for (const Candidate& c : candidates) bits.set(c.point);
-  const Stars stars = starsOf(candidates, corners, bits, threads);
+  const Stars stars = starsOf(mesh, candidates, corners, bits, threads);
   LatticeBits taken(grid);
   const std::vector<std::size_t> chosen = choosePoints(mesh, stars, corners, taken, threads);
   report.points = chosen.size();

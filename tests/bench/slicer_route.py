@@ -6,7 +6,8 @@ default closed-surface parameters (20 iterations, smoothing factor 0.5 -> pass b
 non-manifold smoothing on, coordinates normalized), plus normals as Slicer computes them.
 
 usage: slicer_route.py INPUT.json NX NY NZ ORIGIN_X ORIGIN_Y ORIGIN_Z SPACING_XY SPACING_Z WORKDIR
-Prints one JSON object: stage times, peak memory, triangle count."""
+Prints one JSON object: stage times, peak memory, triangle count; with SLICER_ROUTE_ANGLES=1 in
+the environment, also the triangles' smallest angles (measured after the timing, untimed)."""
 import json
 import os
 import resource
@@ -33,6 +34,26 @@ def write_cxt(contours, path, origin, dims, spacing):
                 for c in s["contours"]:
                     pts = "\\".join("%g\\%g\\%g" % (p[0], p[1], z) for p in c)
                     out.write("%d||%d|||%s\n" % (i, len(c), pts))
+
+
+def angle_figures(surfaces):
+    """Smallest angle of every triangle, degrees: the least, the 5th percentile, the share under 5."""
+    import numpy as np
+    from vtk.util.numpy_support import vtk_to_numpy
+    smallest = []
+    for poly in surfaces:
+        if poly.GetNumberOfPolys() == 0:
+            continue
+        points = vtk_to_numpy(poly.GetPoints().GetData()).astype(np.float64)
+        cells = vtk_to_numpy(poly.GetPolys().GetData()).reshape(-1, 4)[:, 1:]
+        a, b, c = points[cells[:, 0]], points[cells[:, 1]], points[cells[:, 2]]
+
+        def angle(p, q, r):
+            u, w = q - p, r - p
+            return np.degrees(np.arctan2(np.linalg.norm(np.cross(u, w), axis=1), (u * w).sum(1)))
+        smallest.append(np.minimum(np.minimum(angle(a, b, c), angle(b, c, a)), angle(c, a, b)))
+    m = np.concatenate(smallest)
+    return {"min_angle": float(m.min()), "p5_angle": float(np.percentile(m, 5)), "under_5": float((m < 5).mean())}
 
 
 def main():
@@ -78,9 +99,7 @@ def main():
                 index(min(ys), oy, sxy, ny, False), index(max(ys), oy, sxy, ny, True),
                 index(min(zs), oz, sz, nz, False), index(max(zs), oz, sz, nz, True))
 
-    t = time.perf_counter()
-    triangles = 0
-    for label, feature in enumerate(contours["features"], start=1):
+    def surface(label, feature):
         voi = vtk.vtkExtractVOI()
         voi.SetInputData(image)
         voi.SetVOI(*extent(feature))
@@ -102,13 +121,20 @@ def main():
         normals.ConsistencyOn()
         normals.SplittingOff()
         normals.Update()
-        triangles += normals.GetOutput().GetNumberOfPolys()
+        return normals.GetOutput()
+
+    t = time.perf_counter()
+    triangles = 0
+    for label, feature in enumerate(contours["features"], start=1):
+        triangles += surface(label, feature).GetNumberOfPolys()
     result["surfaces"] = time.perf_counter() - t
     result["total"] = result["rasterize"] + result["read_labelmap"] + result["surfaces"]
     result["triangles"] = triangles
     self_kib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     child_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     result["peak_rss_mib"] = max(self_kib, child_kib) / 1024.0
+    if os.environ.get("SLICER_ROUTE_ANGLES"):  # untimed: the surfaces made again, their angles
+        result.update(angle_figures([surface(label, f) for label, f in enumerate(contours["features"], start=1)]))
     print(json.dumps(result))
 
 
