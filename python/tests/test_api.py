@@ -104,6 +104,17 @@ def test_simplify_merges_triangles_and_reports_it(phantom):
         scansurf.build(phantom, voxel_size=2.0, simplify=True, simplify_tolerance=0.9)
 
 
+def test_snap_merges_vertices_crowding_voxel_centres(phantom):
+    snapped = scansurf.build(phantom, voxel_size=2.0)
+    plain = scansurf.build(phantom, voxel_size=2.0, snap=0)
+    assert snapped.report["parameters"]["snap"] == 0.05 and plain.report["parameters"]["snap"] == 0
+    assert snapped.report["multilabel_mesh"]["triangles"] < plain.report["multilabel_mesh"]["triangles"]
+    for name, surface in snapped.surfaces.items():
+        assert surface.closed and surface.volume == pytest.approx(plain.surfaces[name].volume, rel=0.001), name
+    with pytest.raises(scansurf.InvalidArgument, match="option snap"):
+        scansurf.build(phantom, voxel_size=2.0, snap=0.5)
+
+
 def test_a_build_with_no_options_is_the_command_line_tools(tmp_path, phantom_result, cli):
     py = tmp_path / "py"
     written = phantom_result.write(py, formats=["ply", "glb"])

@@ -37,6 +37,23 @@ endif()
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/options" --grid 96 64 -q --smooth-iterations 5
              --smooth-strength 0.5 --no-contour-fit --no-junction-smoothing)
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --smooth-strength 1.5)
+# --snap (vertices crowding a voxel centre merge into it; issue 28): off writes other surfaces with
+# more triangles, the report gives the fraction, and a fraction past 0.45 is refused.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/unsnapped" --grid 96 64 -q --snap 0
+             --report "${OUT}/unsnapped/report.json")
+file(READ "${OUT}/unsnapped/report.json" unsnapped_report)
+string(JSON unsnapped_fraction GET "${unsnapped_report}" parameters snap)
+string(JSON unsnapped_triangles GET "${unsnapped_report}" multilabel_mesh triangles)
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/snapped" --grid 96 64 -q --report "${OUT}/snapped/report.json")
+file(READ "${OUT}/snapped/report.json" snapped_report)
+string(JSON snapped_fraction GET "${snapped_report}" parameters snap)
+string(JSON snapped_triangles GET "${snapped_report}" multilabel_mesh triangles)
+if(NOT unsnapped_fraction MATCHES "^0(\\.0*)?$" OR NOT snapped_fraction MATCHES "^0\\.050*" OR NOT snapped_triangles LESS unsnapped_triangles)
+  message(FATAL_ERROR "--snap: fractions ${unsnapped_fraction} / ${snapped_fraction}, triangles ${unsnapped_triangles} / ${snapped_triangles}")
+endif()
+foreach(bad 0.5 -0.1 nan)
+  run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --snap ${bad})
+endforeach()
 # --no-keep-volume leaves the volumes as relaxation made them (other surfaces), and the report
 # says so.
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/relaxed" --grid 96 64 -q --no-keep-volume

@@ -349,6 +349,11 @@ TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
   o.smoothing.minAngle = 45;
   refused(o, "smoothing.minAngle");
   o.smoothing.minAngle = 15;
+  o.smoothing.snap = 0.5;
+  refused(o, "smoothing.snap");
+  o.smoothing.snap = -0.1;
+  refused(o, "smoothing.snap");
+  o.smoothing.snap = 0.05;
   o.simplification.enabled = true;
   o.simplification.tolerance = 0;
   refused(o, "simplification.tolerance");
