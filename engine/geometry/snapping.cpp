@@ -246,7 +246,7 @@ bool starIsDisk(const MultiLabelMesh& mesh, const std::vector<EdgeCorners>& corn
 // The points to snap (indices into stars, ascending): the closest-crowded first, each whose star
 // is a disk unless a neighbour was taken.
 std::vector<std::size_t> choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners,
-                                      LatticeBits& taken, int threads) {
+                                      LatticeBits& taken, SnapReport& report, int threads) {
   std::vector<char> disk(stars.points.size(), 0);
   parallelChunks(stars.points.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     StarScratch s;
@@ -271,6 +271,9 @@ std::vector<std::size_t> choosePoints(const MultiLabelMesh& mesh, const Stars& s
       }
     if (free) taken.set(stars.points[i]), out.push_back(i);
   }
+  report.candidates = stars.points.size();
+  report.notDisks = stars.points.size() - order.size();
+  report.besideSnapped = order.size() - out.size();
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -359,7 +362,7 @@ SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction
   for (const Candidate& c : candidates) bits.set(c.point);
   const Stars stars = starsOf(mesh, candidates, corners, bits, threads);
   LatticeBits taken(grid);
-  const std::vector<std::size_t> chosen = choosePoints(mesh, stars, corners, taken, threads);
+  const std::vector<std::size_t> chosen = choosePoints(mesh, stars, corners, taken, report, threads);
   report.points = chosen.size();
   if (!chosen.empty()) mergeIntoPoints(mesh, grid, stars, chosen, onSheet, report, threads);
   return report;

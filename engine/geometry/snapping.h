@@ -13,6 +13,9 @@
 namespace scansurf {
 
 struct SnapReport {
+  std::size_t candidates = 0;        // lattice points some vertex came within the fraction of
+  std::size_t notDisks = 0;          // of them, refused: junction, or not one disk around them
+  std::size_t besideSnapped = 0;     // of them, refused: a neighbour was snapped first
   std::size_t points = 0;            // lattice points that became vertices
   std::size_t mergedVertices = 0;    // vertices merged into them
   std::size_t removedTriangles = 0;  // triangles that collapsed to an edge

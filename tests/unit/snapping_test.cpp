@@ -104,13 +104,14 @@ Built checkSnap(const ContourSet& set, double voxel, double fewer, double fracti
   const Angles after = minAngles(b.mesh);
   EXPECT_GE(after.p5, before.p5 - 0.1) << set.source;
   EXPECT_EQ(trianglesBefore - b.mesh.triangleCount(), s.report.removedTriangles) << set.source;
+  EXPECT_EQ(s.report.points + s.report.notDisks + s.report.besideSnapped, s.report.candidates) << set.source;
   EXPECT_LE(static_cast<double>(b.mesh.triangleCount()), fewer * static_cast<double>(trianglesBefore)) << set.source;
   std::printf(
-      "[ figure   ] %-14s snap %.2f: %zu points, triangles %7zu -> %7zu (%.2fx), %zu quads flipped, min angle %4.1f -> %4.1f, "
-      "5%% %4.1f -> %4.1f; %.3f s\n",
-      set.source.c_str(), fraction, s.report.points, trianglesBefore, b.mesh.triangleCount(),
-      static_cast<double>(b.mesh.triangleCount()) / static_cast<double>(trianglesBefore), s.flips, before.min, after.min,
-      before.p5, after.p5, seconds);
+      "[ figure   ] %-14s snap %.2f: %zu points of %zu candidates (%zu not disks, %zu beside a snapped one), triangles %7zu -> "
+      "%7zu (%.2fx), %zu quads flipped, min angle %4.1f -> %4.1f, 5%% %4.1f -> %4.1f; %.3f s\n",
+      set.source.c_str(), fraction, s.report.points, s.report.candidates, s.report.notDisks, s.report.besideSnapped,
+      trianglesBefore, b.mesh.triangleCount(), static_cast<double>(b.mesh.triangleCount()) / static_cast<double>(trianglesBefore),
+      s.flips, before.min, after.min, before.p5, after.p5, seconds);
   return b;
 }
 
