@@ -7,16 +7,20 @@
 // further out are slivers. Raman and Wenger give p the isovalue instead: the surface passes
 // through p, every vertex on p's edges becomes p, the triangles with two such vertices vanish.
 //
-// Why the surfaces still never cross (the argument of smoothing.cpp, extended): p's star has two
-// labels, so every tetrahedron T around p holds at most one triangle once snapped: (3+1) with p
-// alone on its side vanishes; (3+1) with p among three becomes (p, x, y), x and y on T's edges
-// opposite p; (2+2) loses the triangle with both of p's vertices and keeps (p, x, y). Each kept
-// triangle lies in T, and moving its vertex from its edge point to p never passes through the
-// plane of x, y and T's corner of the other label, so it keeps its orientation. On a face of T
-// at p, the surface's curve is the segment from p to the vertex on the opposite edge, or p alone,
-// the same from both sides. Two snapped points are never neighbours, so no tetrahedron has two.
-// Topology: the merged vertices' triangles must form a disk whose rim is one cycle, so that the
-// disk shrinks to a fan around p with the same rim (no handle, no component, no pinch lost).
+// Why the surfaces still never cross (the argument of smoothing.cpp, extended). Every vertex maps
+// to itself or, once a corner of its lattice edge has snapped, to that corner (the first one to
+// snap keeps it); a triangle with two vertices on one point vanishes. A triangle of tetrahedron T
+// keeps its vertices in T (edge points or T's corners), so it stays in T. Its orientation stays:
+// each vertex slides along its own edge towards a corner, and a triangle through points of three
+// edges of T can only flatten if two of its points meet, which makes it vanish instead. On a
+// face F of T its curve is the image of the curve it had there, the same from both sides: a
+// vertex off F that lands on F's corner c shares its triangle with a vertex on an edge of F at c
+// (the only edges of F it can meet), which lands on c too, so that triangle vanishes; no kept
+// triangle lies in F unless all three of its corners snapped, which is refused. Topology: the
+// triangles of the vertices that merge (as the snaps before left them) must form a disk whose
+// rim is one cycle holding every other vertex of them, so that the disk shrinks to a fan around
+// p with the same rim (no handle, component or pinch lost). Points of one parity class are
+// never neighbours, so their stars are apart and they snap at once.
 #include "geometry/snapping.h"
 
 #include <algorithm>
@@ -38,19 +42,6 @@ using Coords = std::array<std::int64_t, 3>;  // in twelfths of a voxel
 Coords unpack(Key key) {
   return {static_cast<std::int64_t>(key & kKeyMask), static_cast<std::int64_t>((key >> kKeyBits) & kKeyMask),
           static_cast<std::int64_t>(key >> (2 * kKeyBits))};
-}
-
-// The key at c + sign * step * e, for direction e in 1..7 (bit a: a step along axis a); false
-// when it leaves the key range.
-bool shifted(Key key, int e, int sign, std::int64_t step, Key& out) {
-  const Coords c = unpack(key);
-  out = 0;
-  for (int a = 0; a < 3; ++a) {
-    const std::int64_t k = c[a] + sign * step * ((e >> a) & 1);
-    if (k < 0 || k > static_cast<std::int64_t>(kKeyMask)) return false;
-    out |= static_cast<Key>(k) << (a * kKeyBits);
-  }
-  return true;
 }
 
 Key pointKey(const int corner[3]) {
@@ -196,9 +187,21 @@ Stars starsOf(const MultiLabelMesh& mesh, const std::vector<Candidate>& candidat
   return out;
 }
 
+// What the snaps so far made of the mesh: per vertex, the snapped point it merged into (an index
+// into the points chosen) or kKept; per triangle, whether it collapsed.
+struct SnapState {
+  static constexpr std::uint32_t kKept = ~0u;
+  std::vector<std::uint32_t> pointOf;
+  std::vector<char> collapsed;
+  std::vector<Key> points;  // in the order chosen
+  // A vertex's image: itself, or its point (numbered after the vertices).
+  std::uint32_t image(std::uint32_t v) const {
+    return pointOf[v] == kKept ? v : static_cast<std::uint32_t>(pointOf.size()) + pointOf[v];
+  }
+};
+
 struct StarScratch {
-  std::span<const std::uint32_t> merging, triangles;
-  std::vector<std::uint32_t> vertices;
+  std::vector<std::uint32_t> merging, triangles, vertices;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> rim, edges;
 };
 
@@ -218,64 +221,123 @@ bool rimIsOneCycle(std::vector<std::pair<std::uint32_t, std::uint32_t>>& rim) {
   return false;
 }
 
-// The merged vertices' triangles: one label pair, lattice-edge vertices only, a disk (Euler
-// characteristic 1) whose rim is one cycle.
-bool starIsDisk(const MultiLabelMesh& mesh, const std::vector<EdgeCorners>& corners, StarScratch& s) {
+// Point i's star as the snaps so far left it: the vertices still on its edges (they merge) and
+// the live triangles that hold one of them.
+void currentStar(const MultiLabelMesh& mesh, const Stars& stars, std::size_t i, const SnapState& state, StarScratch& s) {
+  s.merging.clear(), s.triangles.clear();
+  for (std::uint32_t v : stars.vertices.of(i))
+    if (state.pointOf[v] == SnapState::kKept) s.merging.push_back(v);
+  for (std::uint32_t t : stars.triangles.of(i)) {
+    if (state.collapsed[t]) continue;
+    for (int c = 0; c < 3; ++c)
+      if (std::binary_search(s.merging.begin(), s.merging.end(),
+                             mesh.triangles[3 * std::size_t{t} + static_cast<std::size_t>(c)])) {
+        s.triangles.push_back(t);
+        break;
+      }
+  }
+}
+
+// The merged vertices' triangles, as the snaps so far left them: one label pair, on lattice
+// edges, a disk (Euler characteristic 1) whose rim is one cycle, and no kept triangle whose
+// other corners are both snapped points (it would lie in a lattice face, as its neighbour's may).
+bool starIsDisk(const MultiLabelMesh& mesh, const std::vector<EdgeCorners>& corners, const SnapState& state, StarScratch& s) {
   s.vertices.clear(), s.rim.clear(), s.edges.clear();
   if (s.triangles.empty()) return false;
   const std::size_t first = s.triangles.front();
+  const auto points = static_cast<std::uint32_t>(state.pointOf.size());
   for (std::uint32_t t : s.triangles) {
     if (mesh.labels[2 * t] != mesh.labels[2 * first] || mesh.labels[2 * t + 1] != mesh.labels[2 * first + 1]) return false;
     const std::uint32_t* tri = &mesh.triangles[3 * std::size_t{t}];
+    std::uint32_t image[3];
     int merged = 0, at = 0;
     for (int c = 0; c < 3; ++c) {
       if (corners[tri[c]].b == 0) return false;
       if (std::binary_search(s.merging.begin(), s.merging.end(), tri[c])) ++merged, at = c;
-      s.vertices.push_back(tri[c]);
-      s.edges.push_back(std::minmax(tri[c], tri[(c + 1) % 3]));
+      image[c] = state.image(tri[c]);
     }
-    if (merged == 1) s.rim.emplace_back(tri[(at + 1) % 3], tri[(at + 2) % 3]);
+    for (int c = 0; c < 3; ++c) s.vertices.push_back(image[c]), s.edges.push_back(std::minmax(image[c], image[(c + 1) % 3]));
+    if (merged != 1) continue;
+    const std::uint32_t u = image[(at + 1) % 3], w = image[(at + 2) % 3];
+    if (u >= points && w >= points) return false;
+    s.rim.emplace_back(u, w);
   }
   std::sort(s.vertices.begin(), s.vertices.end());
   std::sort(s.edges.begin(), s.edges.end());
   const auto vertices = std::unique(s.vertices.begin(), s.vertices.end()) - s.vertices.begin();
   const auto edges = std::unique(s.edges.begin(), s.edges.end()) - s.edges.begin();
-  return vertices - edges + static_cast<std::ptrdiff_t>(s.triangles.size()) == 1 && rimIsOneCycle(s.rim);
+  // Every vertex that does not merge lies on the rim, or its whole fan would collapse.
+  const auto inside = static_cast<std::ptrdiff_t>(s.merging.size());
+  return vertices - edges + static_cast<std::ptrdiff_t>(s.triangles.size()) == 1 &&
+         vertices - inside == static_cast<std::ptrdiff_t>(s.rim.size()) && rimIsOneCycle(s.rim);
 }
 
-// The points to snap (indices into stars, ascending): the closest-crowded first, each whose star
-// is a disk unless a neighbour was taken.
-std::vector<std::size_t> choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners,
-                                      LatticeBits& taken, SnapReport& report, int threads) {
-  std::vector<char> disk(stars.points.size(), 0);
-  parallelChunks(stars.points.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+// Merges the star's vertices into point `index` and marks the triangles that collapse.
+void snapPoint(const MultiLabelMesh& mesh, std::uint32_t index, const StarScratch& s, SnapState& state) {
+  for (std::uint32_t v : s.merging) state.pointOf[v] = index;
+  for (std::uint32_t t : s.triangles) {
+    int merged = 0;
+    for (int c = 0; c < 3; ++c)
+      merged += state.pointOf[mesh.triangles[3 * std::size_t{t} + static_cast<std::size_t>(c)]] == index;
+    if (merged > 1) state.collapsed[t] = 1;
+  }
+}
+
+// A lattice point's parity class (x, y and z index each odd or even): a lattice edge steps by 0
+// or 1 along each axis, so two points of one class are never neighbours, and their stars share
+// no vertex and no triangle.
+int parityOf(Key p) {
+  const Coords c = unpack(p);
+  return static_cast<int>((c[0] / 12) & 1) | static_cast<int>((c[1] / 12) & 1) << 1 | static_cast<int>((c[2] / 12) & 1) << 2;
+}
+
+// Snaps the candidates of one parity class whose stars, as the snaps before left them, are disks:
+// all at once, since their stars are apart. Indices in the order of `members`.
+void snapClass(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners,
+               const std::vector<std::size_t>& members, SnapState& state, SnapReport& report, int threads) {
+  std::vector<std::uint32_t> index(members.size(), SnapState::kKept);
+  parallelChunks(members.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     StarScratch s;
-    for (std::size_t i = begin; i < end; ++i) {
-      s.merging = stars.vertices.of(i), s.triangles = stars.triangles.of(i);
-      disk[i] = starIsDisk(mesh, corners, s);
+    for (std::size_t k = begin; k < end; ++k) {
+      currentStar(mesh, stars, members[k], state, s);
+      index[k] = starIsDisk(mesh, corners, state, s) ? 0 : SnapState::kKept;
     }
   });
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < stars.points.size(); ++i)
-    if (disk[i]) order.push_back(i);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return stars.along[a] != stars.along[b] ? stars.along[a] < stars.along[b] : stars.points[a] < stars.points[b];
-  });
-  std::vector<std::size_t> out;
-  for (std::size_t i : order) {
-    bool free = true;
-    for (int e = 1; e < 8 && free; ++e)
-      for (int sign : {-1, 1}) {
-        Key n;
-        if (shifted(stars.points[i], e, sign, 12, n) && taken.test(n)) free = false;
+  for (std::size_t k = 0; k < members.size(); ++k)
+    if (index[k] == SnapState::kKept) {
+      ++report.notDisks;
+    } else {
+      index[k] = static_cast<std::uint32_t>(state.points.size());
+      state.points.push_back(stars.points[members[k]]);
+    }
+  parallelChunks(members.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    StarScratch s;
+    for (std::size_t k = begin; k < end; ++k)
+      if (index[k] != SnapState::kKept) {
+        currentStar(mesh, stars, members[k], state, s);
+        snapPoint(mesh, index[k], s, state);
       }
-    if (free) taken.set(stars.points[i]), out.push_back(i);
+  });
+}
+
+// Snaps every candidate whose star, as the snaps before it left it, is a disk, so that
+// neighbours can both snap: the most crowded first (four bands of the fraction, halving), each
+// band one parity class after another. The result does not depend on the thread count.
+SnapState choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners, double fraction,
+                       SnapReport& report, int threads) {
+  SnapState state;
+  state.pointOf.assign(mesh.vertexCount(), SnapState::kKept);
+  state.collapsed.assign(mesh.triangleCount(), 0);
+  double below = -1;  // the first band takes every fraction up to its bound
+  for (const double band : {fraction / 8, fraction / 4, fraction / 2, fraction}) {
+    std::vector<std::size_t> classes[8];
+    for (std::size_t i = 0; i < stars.points.size(); ++i)
+      if (stars.along[i] > below && stars.along[i] <= band) classes[parityOf(stars.points[i])].push_back(i);
+    for (const std::vector<std::size_t>& members : classes) snapClass(mesh, stars, corners, members, state, report, threads);
+    below = band;
   }
   report.candidates = stars.points.size();
-  report.notDisks = stars.points.size() - order.size();
-  report.besideSnapped = order.size() - out.size();
-  std::sort(out.begin(), out.end());
-  return out;
+  return state;
 }
 
 // The triangles with each vertex renumbered (merged ones to their point's vertex), those that
@@ -313,40 +375,38 @@ void remapTriangles(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>
   report.removedTriangles = count - kept.back();
 }
 
-// Rebuilds the mesh with each chosen point's merged vertices replaced by one vertex at it,
+// Rebuilds the mesh with each snapped point's merged vertices replaced by one vertex at it,
 // vertices in key order, the triangles that collapsed dropped.
-void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const Stars& stars, const std::vector<std::size_t>& chosen,
-                     std::vector<bool>& onSheet, SnapReport& report, int threads) {
-  constexpr std::uint32_t kKept = ~0u;
+void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& state, std::vector<bool>& onSheet,
+                     SnapReport& report, int threads) {
   const std::size_t count = mesh.vertexCount();
-  std::vector<std::uint32_t> pointOf(count, kKept);
-  std::vector<Key> points;
-  for (std::size_t i : chosen) {
-    for (std::uint32_t m : stars.vertices.of(i)) pointOf[m] = static_cast<std::uint32_t>(points.size());
-    report.mergedVertices += stars.vertices.of(i).size();
-    points.push_back(stars.points[i]);
-  }
+  std::vector<std::uint32_t> byKey(state.points.size());  // the points in key order
+  for (std::uint32_t i = 0; i < byKey.size(); ++i) byKey[i] = i;
+  std::sort(byKey.begin(), byKey.end(), [&](std::uint32_t a, std::uint32_t b) { return state.points[a] < state.points[b]; });
   MultiLabelMesh out;
   std::vector<bool> sheet;
-  std::vector<std::uint32_t> newIndex(count), newPoint(points.size());
+  std::vector<std::uint32_t> newIndex(count), newPoint(state.points.size());
   std::size_t p = 0;
   const auto emitPoint = [&] {
-    const Coords c = unpack(points[p]);
+    const Coords c = unpack(state.points[byKey[p]]);
     const int corner[3] = {static_cast<int>(c[0] / 12), static_cast<int>(c[1] / 12), static_cast<int>(c[2] / 12)};
     const Vec3 x = cornerPosition(grid, corner);
-    newPoint[p++] = static_cast<std::uint32_t>(out.keys.size());
+    newPoint[byKey[p++]] = static_cast<std::uint32_t>(out.keys.size());
     out.keys.push_back(pointKey(corner)), sheet.push_back(false);
     for (int a = 0; a < 3; ++a) out.positions.push_back(static_cast<float>(x[a]));
   };
   for (std::size_t v = 0; v < count; ++v) {
-    if (pointOf[v] != kKept) continue;
-    while (p < points.size() && points[p] < mesh.keys[v]) emitPoint();
+    if (state.pointOf[v] != SnapState::kKept) {
+      ++report.mergedVertices;
+      continue;
+    }
+    while (p < byKey.size() && state.points[byKey[p]] < mesh.keys[v]) emitPoint();
     newIndex[v] = static_cast<std::uint32_t>(out.keys.size());
     out.keys.push_back(mesh.keys[v]), sheet.push_back(v < onSheet.size() && onSheet[v]);
     out.positions.insert(out.positions.end(), &mesh.positions[3 * v], &mesh.positions[3 * v] + 3);
   }
-  while (p < points.size()) emitPoint();
-  remapTriangles(mesh, pointOf, newIndex, newPoint, out, report, threads);
+  while (p < byKey.size()) emitPoint();
+  remapTriangles(mesh, state.pointOf, newIndex, newPoint, out, report, threads);
   mesh = std::move(out);
   onSheet = std::move(sheet);
 }
@@ -361,10 +421,9 @@ SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction
   LatticeBits bits(grid);
   for (const Candidate& c : candidates) bits.set(c.point);
   const Stars stars = starsOf(mesh, candidates, corners, bits, threads);
-  LatticeBits taken(grid);
-  const std::vector<std::size_t> chosen = choosePoints(mesh, stars, corners, taken, report, threads);
-  report.points = chosen.size();
-  if (!chosen.empty()) mergeIntoPoints(mesh, grid, stars, chosen, onSheet, report, threads);
+  const SnapState state = choosePoints(mesh, stars, corners, fraction, report, threads);
+  report.points = state.points.size();
+  if (!state.points.empty()) mergeIntoPoints(mesh, grid, state, onSheet, report, threads);
   return report;
 }
 

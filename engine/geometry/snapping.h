@@ -14,18 +14,18 @@ namespace scansurf {
 
 struct SnapReport {
   std::size_t candidates = 0;        // lattice points some vertex came within the fraction of
-  std::size_t notDisks = 0;          // of them, refused: junction, or not one disk around them
-  std::size_t besideSnapped = 0;     // of them, refused: a neighbour was snapped first
+  std::size_t notDisks = 0;          // of them, refused: a junction, or not one disk around them
   std::size_t points = 0;            // lattice points that became vertices
   std::size_t mergedVertices = 0;    // vertices merged into them
   std::size_t removedTriangles = 0;  // triangles that collapsed to an edge
 };
 
 // Every voxel centre p that a vertex on one of p's 14 lattice edges lies within `fraction` of
-// that edge's length from, whose star carries one label pair (no junction near p), whose
-// surface there is one disk, and that no snapped neighbour already took: all vertices on p's
-// edges merge into one vertex at p. Triangles with two of them vanish; the others keep their
-// tetrahedron, orientation and face curves, so the surfaces still never cross (snapping.cpp).
+// that edge's length from, whose star carries one label pair (no junction near p) and whose
+// surface there is one disk (after the snaps of its neighbours, the more crowded first): the
+// vertices on p's edges that no neighbour took merge into one vertex at p. Triangles with two
+// of them vanish; the others keep their tetrahedron, orientation and face curves, so the
+// surfaces still never cross (snapping.cpp).
 // mesh.keys stays sorted (p's key is 12 p); onSheet (SmoothingReport) follows the vertices,
 // false at snapped points. Deterministic for any thread count (0 = all). fraction 0: nothing.
 SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads = 0);

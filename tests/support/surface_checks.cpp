@@ -142,10 +142,10 @@ InterfaceUse interfaceUse(const MultiLabelMesh& mesh, const FeatureSurface& a, c
   return use;
 }
 
-void smoothWithDefaults(Built& b, int threads) {
+SmoothingReport smoothWithDefaults(Built& b, int threads) {
   SmoothingOptions o;
   o.enabled = true;
-  smoothMesh(b.mesh, b.grid, &b.set, o, threads);
+  return smoothMesh(b.mesh, b.grid, &b.set, o, threads);
 }
 
 std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention) {

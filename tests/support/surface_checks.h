@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/smoothing.h"
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
 #include "scansurf/nesting.h"
@@ -25,8 +26,8 @@ struct Built {
 Built buildCpu(const ContourSet& set, double voxelSize);
 // Recomputes b.features (Enclosing) after the mesh changed.
 void refreshFeatures(Built& b);
-// Smooths b.mesh with SmoothingOptions' defaults, smoothing on.
-void smoothWithDefaults(Built& b, int threads = 0);
+// Smooths b.mesh with SmoothingOptions' defaults, smoothing on (relaxation alone: no snapping).
+SmoothingReport smoothWithDefaults(Built& b, int threads = 0);
 
 // Per feature surface of one convention, its statistics.
 std::vector<MeshStats> surfaceStats(const Built& b, SurfaceConvention convention);
