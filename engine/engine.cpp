@@ -140,6 +140,20 @@ SurfaceTargets slabTargets(const ContourSet* contours, const Grid& grid) {
   return targets;
 }
 
+// After relaxation: the crowded voxel centres snapped, then the quads' diagonals chosen, timed.
+SnappingReport snapAndChooseDiagonals(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
+                                      int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  const SnapReport snapped = snapToLattice(mesh, grid, fraction, onSheet, threads);
+  SnappingReport out;
+  out.ran = true;
+  out.candidates = snapped.candidates, out.points = snapped.points;
+  out.mergedVertices = snapped.mergedVertices, out.removedTriangles = snapped.removedTriangles;
+  out.quadsFlipped = chooseQuadDiagonals(mesh, threads);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
 // Classification records to feature surfaces: assembly, smoothing, feature extraction.
 Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
                            const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {},
@@ -155,8 +169,7 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.begin("smoothing");
     SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
-    snapToLattice(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet, options.threads);
-    chooseQuadDiagonals(surfaces.mesh, options.threads);
+    surfaces.snapping = snapAndChooseDiagonals(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet, options.threads);
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,
                      options.threads);

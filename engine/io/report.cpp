@@ -127,6 +127,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   r.remeshing = built.surfaces.remeshing;
   r.simplification = built.surfaces.simplification;
+  r.snapping = built.surfaces.snapping;
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
   return r;
@@ -161,6 +162,13 @@ nlohmann::ordered_json simplificationJson(const SimplificationReport& r) {
           {"patches", r.patches},
           {"refused", r.refused},
           {"crossing", r.crossing}};
+}
+
+// Snapping's figures: the voxel centres that became vertices, what vanished, the quads flipped.
+nlohmann::ordered_json snappingJson(const SnappingReport& r) {
+  return {{"candidates", r.candidates},          {"points", r.points},
+          {"merged_vertices", r.mergedVertices}, {"removed_triangles", r.removedTriangles},
+          {"quads_flipped", r.quadsFlipped},     {"seconds", r.seconds}};
 }
 
 nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, double>>& overlaps) {
@@ -302,6 +310,7 @@ std::string reportJson(const RunReport& report) {
   j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
   j["features"] = featuresJson(report);
   j["overlaps"] = overlapsSectionJson(report);
+  if (report.snapping.ran) j["snapping"] = snappingJson(report.snapping);
   if (report.simplification.ran) j["simplification"] = simplificationJson(report.simplification);
   if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
   double total = 0;

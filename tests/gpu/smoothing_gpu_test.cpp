@@ -45,6 +45,10 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   SmoothingReport relaxed = smoothMesh(expected, grid, &set, options.smoothing);
   const SnapReport snapped = snapToLattice(expected, grid, options.smoothing.snap, relaxed.onSheet);
   EXPECT_GT(snapped.points, 0u);
+  EXPECT_FALSE(raw->surfaces.snapping.ran);
+  EXPECT_TRUE(smooth->surfaces.snapping.ran);
+  EXPECT_EQ(smooth->surfaces.snapping.points, snapped.points);
+  EXPECT_EQ(smooth->surfaces.snapping.removedTriangles, snapped.removedTriangles);
   EXPECT_EQ(a.triangleCount() - snapped.removedTriangles, b.triangleCount());
   EXPECT_GT(chooseQuadDiagonals(expected), 0u);
   std::vector<double> targets;

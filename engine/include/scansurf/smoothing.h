@@ -2,6 +2,8 @@
 // "future work": smoothing that conforms to the original contours).
 #pragma once
 
+#include <cstddef>
+
 namespace scansurf {
 
 // Defaults suit typical CT contours (about 1 mm pixels, 1-3 mm slices); they never need
@@ -36,6 +38,18 @@ struct SmoothingOptions {
   // where one label pair meets around it. Removes the slivers that sliding vertices make near
   // voxel centres, and their triangles. In [0, 0.45]; 0: off.
   double snap = 0.05;
+};
+
+// What snapping and the quads' diagonals did (docs/method.md, "Triangle shape"); ran = false
+// when smoothing did not run. With several layers, the layers' sums.
+struct SnappingReport {
+  bool ran = false;
+  std::size_t candidates = 0;        // voxel centres some vertex came within the fraction of
+  std::size_t points = 0;            // of them, snapped: now vertices
+  std::size_t mergedVertices = 0;    // vertices merged into them
+  std::size_t removedTriangles = 0;  // triangles that vanished
+  std::size_t quadsFlipped = 0;      // quads split along their other diagonal
+  double seconds = 0;                // both steps, inside the smoothing stage
 };
 
 }  // namespace scansurf

@@ -11,6 +11,7 @@
 #include "scansurf/label_volume.h"
 #include "scansurf/remesh.h"
 #include "scansurf/simplification.h"
+#include "scansurf/smoothing.h"
 
 namespace scansurf {
 
@@ -56,6 +57,8 @@ struct Surfaces {
   // What simplification did (ran = false when it did not run); with several layers, summed
   // and the largest error.
   SimplificationReport simplification;
+  // What snapping did (ran = false when smoothing did not run).
+  SnappingReport snapping;
 };
 
 // Topological and metric properties of a triangle mesh.
