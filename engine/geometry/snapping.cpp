@@ -86,7 +86,7 @@ std::vector<Candidate> findCandidates(const MultiLabelMesh& mesh, const Grid& gr
   return out;
 }
 
-// One bit per voxel centre of the grid: the candidates, then the points taken.
+// One bit per voxel centre of the grid: is it a candidate?
 class LatticeBits {
  public:
   explicit LatticeBits(const Grid& grid)
@@ -115,7 +115,7 @@ class LatticeBits {
 struct Filing {
   std::vector<std::size_t> start;    // size buckets + 1
   std::vector<std::uint32_t> items;  // per bucket, ascending
-  std::span<const std::uint32_t> of(std::size_t b) const { return {&items[start[b]], start[b + 1] - start[b]}; }
+  std::span<const std::uint32_t> of(std::size_t b) const { return {items.data() + start[b], start[b + 1] - start[b]}; }
 };
 
 // Files items 0..count-1 under the buckets that bucketsOf(item, out) appends (each at most once
