@@ -144,11 +144,7 @@ SurfaceTargets slabTargets(const ContourSet* contours, const Grid& grid) {
 SnappingReport snapAndChooseDiagonals(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
                                       int threads) {
   const auto start = std::chrono::steady_clock::now();
-  const SnapReport snapped = snapToLattice(mesh, grid, fraction, onSheet, threads);
-  SnappingReport out;
-  out.ran = true;
-  out.candidates = snapped.candidates, out.points = snapped.points;
-  out.mergedVertices = snapped.mergedVertices, out.removedTriangles = snapped.removedTriangles;
+  SnappingReport out = snapToLattice(mesh, grid, fraction, onSheet, threads);
   out.quadsFlipped = chooseQuadDiagonals(mesh, threads);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

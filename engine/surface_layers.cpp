@@ -6,6 +6,7 @@
 
 #include "geometry/remesh.h"
 #include "geometry/simplification.h"
+#include "geometry/snapping.h"
 
 namespace scansurf {
 
@@ -36,11 +37,7 @@ void appendLayer(Surfaces& into, Surfaces&& layer, const OverlapReport& report, 
   into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
   accumulate(into.remeshing, layer.remeshing);
   accumulate(into.simplification, layer.simplification);
-  into.snapping.ran = into.snapping.ran || layer.snapping.ran;
-  into.snapping.candidates += layer.snapping.candidates, into.snapping.points += layer.snapping.points;
-  into.snapping.mergedVertices += layer.snapping.mergedVertices;
-  into.snapping.removedTriangles += layer.snapping.removedTriangles;
-  into.snapping.quadsFlipped += layer.snapping.quadsFlipped, into.snapping.seconds += layer.snapping.seconds;
+  accumulate(into.snapping, layer.snapping);
   for (std::size_t f = 0; f < layer.features.size(); ++f) {
     if (report.features[f].layer != index) continue;
     std::vector<std::uint32_t>& to = into.features[f].triangles;

@@ -8,46 +8,25 @@
 #include "geometry/quad_diagonals.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "core/parallel.h"
-#include "geometry/assembly.h"
-#include "geometry/contour_fit.h"
+#include "geometry/edge_corners.h"
 #include "geometry/vec3.h"
 
 namespace scansurf {
 namespace {
 
-// Per vertex: the two corners of its lattice edge as packed keys (12 p), both 0 off lattice edges.
-struct EdgeCarrier {
-  std::uint64_t a = 0, b = 0;
-};
-
-std::uint64_t cornerKey(const int c[3]) {
-  return packVertexKey(12 * static_cast<std::uint64_t>(c[0]), 12 * static_cast<std::uint64_t>(c[1]),
-                       12 * static_cast<std::uint64_t>(c[2]));
-}
-
-std::vector<EdgeCarrier> edgeCarriers(const MultiLabelMesh& mesh, int threads) {
-  std::vector<EdgeCarrier> out(mesh.vertexCount());
-  parallelChunks(out.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v)
-      if (const Carrier c = carrierOfKey(mesh.keys[v]); c.count == 2) out[v] = {cornerKey(c.corners[0]), cornerKey(c.corners[1])};
-  });
-  return out;
-}
-
 // Two lattice edges with no corner in common: in one tetrahedron, its opposite edges.
-bool opposite(const EdgeCarrier& e, const EdgeCarrier& f) {
+bool opposite(const EdgeCorners& e, const EdgeCorners& f) {
   return e.b != 0 && f.b != 0 && e.a != f.a && e.a != f.b && e.b != f.a && e.b != f.b;
 }
 
 // The edge of triangle t that is a quad's diagonal: its two vertices as (from, to) in t's
 // winding; false if t has none (a 3+1 triangle, or one with a vertex off the lattice edges).
-bool diagonalOf(const MultiLabelMesh& mesh, const std::vector<EdgeCarrier>& carriers, std::size_t t, std::uint32_t edge[2]) {
+bool diagonalOf(const MultiLabelMesh& mesh, const std::vector<EdgeCorners>& carriers, std::size_t t, std::uint32_t edge[2]) {
   for (int c = 0; c < 3; ++c) {
     const std::uint32_t u = mesh.triangles[3 * t + c], w = mesh.triangles[3 * t + (c + 1) % 3];
     if (opposite(carriers[u], carriers[w])) {
@@ -84,10 +63,9 @@ bool flipIfBetter(MultiLabelMesh& mesh, std::uint32_t t1, std::uint32_t t2) {
   std::uint32_t* first = &mesh.triangles[3 * std::size_t{t1}];
   std::uint32_t* second = &mesh.triangles[3 * std::size_t{t2}];
   std::uint32_t r1[3], r2[3];
-  bool found = false;
-  for (int c = 0; c < 3 && !found; ++c) {
+  bool found = false;  // r1: the first triangle from the edge the second one shares, reversed
+  for (int c = 0; c < 3 && !found; ++c)
     found = rotateTo(first, first[c], first[(c + 1) % 3], r1) && rotateTo(second, r1[1], r1[0], r2);
-  }
   if (!found) return false;
   const std::uint32_t ia = r1[0], ic = r1[1], ib = r1[2], id = r2[2];
   const Vec3 a = at(mesh, ia), b = at(mesh, ib), c = at(mesh, ic), d = at(mesh, id);
@@ -108,7 +86,7 @@ bool flipIfBetter(MultiLabelMesh& mesh, std::uint32_t t1, std::uint32_t t2) {
 // a quad is a triangle and the next one sharing its diagonal.
 std::size_t chooseQuadDiagonals(MultiLabelMesh& mesh, int threads) {
   if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() < 2) return 0;
-  const std::vector<EdgeCarrier> carriers = edgeCarriers(mesh, threads);
+  const std::vector<EdgeCorners> carriers = edgeCornersOf(mesh, threads);
   const std::size_t pairs = mesh.triangleCount() - 1;
   std::vector<char> quadAt(pairs, 0);  // triangles t and t + 1 are one quad: read first, then flipped
   parallelChunks(pairs, threads, [&](int, std::size_t begin, std::size_t end) {

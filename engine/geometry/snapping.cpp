@@ -30,25 +30,13 @@
 #include <utility>
 
 #include "core/parallel.h"
-#include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
+#include "geometry/edge_corners.h"
 
 namespace scansurf {
 namespace {
 
 using Key = std::uint64_t;
-using Coords = std::array<std::int64_t, 3>;  // in twelfths of a voxel
-
-Coords unpack(Key key) {
-  return {static_cast<std::int64_t>(key & kKeyMask), static_cast<std::int64_t>((key >> kKeyBits) & kKeyMask),
-          static_cast<std::int64_t>(key >> (2 * kKeyBits))};
-}
-
-Key pointKey(const int corner[3]) {
-  Key out = 0;
-  for (int a = 0; a < 3; ++a) out |= static_cast<Key>(12 * corner[a]) << (a * kKeyBits);
-  return out;
-}
 
 // A lattice point that a vertex crowds, and how closely (fraction of the edge).
 struct Candidate {
@@ -57,23 +45,16 @@ struct Candidate {
   bool operator<(const Candidate& o) const { return point != o.point ? point < o.point : along < o.along; }
 };
 
-// Per vertex on a lattice edge, its two corners as point keys (b = 0: not on an edge).
-struct EdgeCorners {
-  Key a = 0, b = 0;
-};
-
-// Per vertex: its edge's corners, and the candidates its position makes.
+// The lattice points the vertices crowd (edgeCornersOf's corners), sorted by point, then by
+// how closely.
 std::vector<Candidate> findCandidates(const MultiLabelMesh& mesh, const Grid& grid, double fraction,
-                                      std::vector<EdgeCorners>& corners, int threads) {
+                                      const std::vector<EdgeCorners>& corners, int threads) {
   const std::size_t count = mesh.vertexCount();
-  corners.assign(count, {});
   std::vector<std::vector<Candidate>> perChunk(static_cast<std::size_t>(chunkCount(count, threads)));
   parallelChunks(count, threads, [&](int chunk, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      const Carrier carrier = carrierOfKey(mesh.keys[v]);
-      if (carrier.count != 2) continue;
-      corners[v] = {pointKey(carrier.corners[0]), pointKey(carrier.corners[1])};
-      const Vec3 a = cornerPosition(grid, carrier.corners[0]), b = cornerPosition(grid, carrier.corners[1]);
+      if (corners[v].b == 0) continue;
+      const Vec3 a = cornerPosition(grid, cornerOf(corners[v].a).data()), b = cornerPosition(grid, cornerOf(corners[v].b).data());
       const Vec3 x{mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]};
       const double t = glm::dot(x - a, b - a) / glm::dot(b - a, b - a);
       if (t <= fraction) perChunk[static_cast<std::size_t>(chunk)].push_back({corners[v].a, t});
@@ -94,18 +75,16 @@ class LatticeBits {
         ny_(static_cast<std::uint64_t>(grid.ny)),
         words_((nx_ * ny_ * static_cast<std::uint64_t>(grid.nz) + 63) / 64, 0) {}
   bool inside(Key p) const {
-    const Coords c = unpack(p);
-    return static_cast<std::uint64_t>(c[0] / 12) < nx_ && static_cast<std::uint64_t>(c[1] / 12) < ny_ &&
-           indexOf(p) / 64 < words_.size();
+    const auto c = cornerOf(p);
+    return static_cast<std::uint64_t>(c[0]) < nx_ && static_cast<std::uint64_t>(c[1]) < ny_ && indexOf(p) / 64 < words_.size();
   }
   bool test(Key p) const { return inside(p) && (words_[indexOf(p) / 64] >> (indexOf(p) % 64) & 1); }
   void set(Key p) { words_[indexOf(p) / 64] |= std::uint64_t{1} << (indexOf(p) % 64); }
 
  private:
   std::uint64_t indexOf(Key p) const {
-    const Coords c = unpack(p);
-    return static_cast<std::uint64_t>(c[0] / 12) +
-           nx_ * (static_cast<std::uint64_t>(c[1] / 12) + ny_ * static_cast<std::uint64_t>(c[2] / 12));
+    const auto c = cornerOf(p);
+    return static_cast<std::uint64_t>(c[0]) + nx_ * (static_cast<std::uint64_t>(c[1]) + ny_ * static_cast<std::uint64_t>(c[2]));
   }
   std::uint64_t nx_, ny_;
   std::vector<std::uint64_t> words_;
@@ -287,14 +266,14 @@ void snapPoint(const MultiLabelMesh& mesh, std::uint32_t index, const StarScratc
 // or 1 along each axis, so two points of one class are never neighbours, and their stars share
 // no vertex and no triangle.
 int parityOf(Key p) {
-  const Coords c = unpack(p);
-  return static_cast<int>((c[0] / 12) & 1) | static_cast<int>((c[1] / 12) & 1) << 1 | static_cast<int>((c[2] / 12) & 1) << 2;
+  const auto c = cornerOf(p);
+  return (c[0] & 1) | (c[1] & 1) << 1 | (c[2] & 1) << 2;
 }
 
 // Snaps the candidates of one parity class whose stars, as the snaps before left them, are disks:
 // all at once, since their stars are apart. Indices in the order of `members`.
 void snapClass(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners,
-               const std::vector<std::size_t>& members, SnapState& state, SnapReport& report, int threads) {
+               const std::vector<std::size_t>& members, SnapState& state, int threads) {
   std::vector<std::uint32_t> index(members.size(), SnapState::kKept);
   parallelChunks(members.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     StarScratch s;
@@ -304,9 +283,7 @@ void snapClass(const MultiLabelMesh& mesh, const Stars& stars, const std::vector
     }
   });
   for (std::size_t k = 0; k < members.size(); ++k)
-    if (index[k] == SnapState::kKept) {
-      ++report.notDisks;
-    } else {
+    if (index[k] != SnapState::kKept) {
       index[k] = static_cast<std::uint32_t>(state.points.size());
       state.points.push_back(stars.points[members[k]]);
     }
@@ -324,7 +301,7 @@ void snapClass(const MultiLabelMesh& mesh, const Stars& stars, const std::vector
 // neighbours can both snap: the most crowded first (four bands of the fraction, halving), each
 // band one parity class after another. The result does not depend on the thread count.
 SnapState choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners, double fraction,
-                       SnapReport& report, int threads) {
+                       SnappingReport& report, int threads) {
   SnapState state;
   state.pointOf.assign(mesh.vertexCount(), SnapState::kKept);
   state.collapsed.assign(mesh.triangleCount(), 0);
@@ -333,7 +310,7 @@ SnapState choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std
     std::vector<std::size_t> classes[8];
     for (std::size_t i = 0; i < stars.points.size(); ++i)
       if (stars.along[i] > below && stars.along[i] <= band) classes[parityOf(stars.points[i])].push_back(i);
-    for (const std::vector<std::size_t>& members : classes) snapClass(mesh, stars, corners, members, state, report, threads);
+    for (const std::vector<std::size_t>& members : classes) snapClass(mesh, stars, corners, members, state, threads);
     below = band;
   }
   report.candidates = stars.points.size();
@@ -344,12 +321,11 @@ SnapState choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std
 // collapsed dropped, in order; in parallel chunks, each writing after the ones before it.
 void remapTriangles(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& pointOf,
                     const std::vector<std::uint32_t>& newIndex, const std::vector<std::uint32_t>& newPoint, MultiLabelMesh& out,
-                    SnapReport& report, int threads) {
-  constexpr std::uint32_t kKept = ~0u;
+                    SnappingReport& report, int threads) {
   const std::size_t count = mesh.triangleCount();
   const auto mapped = [&](std::size_t t, int c) {
     const std::uint32_t v = mesh.triangles[3 * t + c];
-    return pointOf[v] == kKept ? newIndex[v] : newPoint[pointOf[v]];
+    return pointOf[v] == SnapState::kKept ? newIndex[v] : newPoint[pointOf[v]];
   };
   const auto collapsed = [&](std::size_t t) {
     const std::uint32_t a = mapped(t, 0), b = mapped(t, 1), c = mapped(t, 2);
@@ -378,7 +354,7 @@ void remapTriangles(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>
 // Rebuilds the mesh with each snapped point's merged vertices replaced by one vertex at it,
 // vertices in key order, the triangles that collapsed dropped.
 void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& state, std::vector<bool>& onSheet,
-                     SnapReport& report, int threads) {
+                     SnappingReport& report, int threads) {
   const std::size_t count = mesh.vertexCount();
   std::vector<std::uint32_t> byKey(state.points.size());  // the points in key order
   for (std::uint32_t i = 0; i < byKey.size(); ++i) byKey[i] = i;
@@ -388,11 +364,10 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& st
   std::vector<std::uint32_t> newIndex(count), newPoint(state.points.size());
   std::size_t p = 0;
   const auto emitPoint = [&] {
-    const Coords c = unpack(state.points[byKey[p]]);
-    const int corner[3] = {static_cast<int>(c[0] / 12), static_cast<int>(c[1] / 12), static_cast<int>(c[2] / 12)};
-    const Vec3 x = cornerPosition(grid, corner);
+    const Key key = state.points[byKey[p]];
+    const Vec3 x = cornerPosition(grid, cornerOf(key).data());
     newPoint[byKey[p++]] = static_cast<std::uint32_t>(out.keys.size());
-    out.keys.push_back(pointKey(corner)), sheet.push_back(false);
+    out.keys.push_back(key), sheet.push_back(false);
     for (int a = 0; a < 3; ++a) out.positions.push_back(static_cast<float>(x[a]));
   };
   for (std::size_t v = 0; v < count; ++v) {
@@ -413,10 +388,11 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& st
 
 }  // namespace
 
-SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads) {
-  SnapReport report;
+SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads) {
+  SnappingReport report;
+  report.ran = true;
   if (!(fraction > 0) || mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
-  std::vector<EdgeCorners> corners;
+  const std::vector<EdgeCorners> corners = edgeCornersOf(mesh, threads);
   const std::vector<Candidate> candidates = findCandidates(mesh, grid, fraction, corners, threads);
   LatticeBits bits(grid);
   for (const Candidate& c : candidates) bits.set(c.point);
@@ -425,6 +401,12 @@ SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction
   report.points = state.points.size();
   if (!state.points.empty()) mergeIntoPoints(mesh, grid, state, onSheet, report, threads);
   return report;
+}
+
+void accumulate(SnappingReport& into, const SnappingReport& layer) {
+  into.ran = into.ran || layer.ran;
+  into.candidates += layer.candidates, into.points += layer.points, into.mergedVertices += layer.mergedVertices;
+  into.removedTriangles += layer.removedTriangles, into.quadsFlipped += layer.quadsFlipped, into.seconds += layer.seconds;
 }
 
 }  // namespace scansurf

@@ -4,21 +4,13 @@
 // vertices close to one voxel centre, and moving those vertices onto the centre removes them.
 #pragma once
 
-#include <cstddef>
 #include <vector>
 
 #include "scansurf/grid.h"
+#include "scansurf/smoothing.h"
 #include "scansurf/surfaces.h"
 
 namespace scansurf {
-
-struct SnapReport {
-  std::size_t candidates = 0;        // lattice points some vertex came within the fraction of
-  std::size_t notDisks = 0;          // of them, refused: a junction, or not one disk around them
-  std::size_t points = 0;            // lattice points that became vertices
-  std::size_t mergedVertices = 0;    // vertices merged into them
-  std::size_t removedTriangles = 0;  // triangles that collapsed to an edge
-};
 
 // Every voxel centre p that a vertex on one of p's 14 lattice edges lies within `fraction` of
 // that edge's length from, whose star carries one label pair (no junction near p) and whose
@@ -28,6 +20,11 @@ struct SnapReport {
 // surfaces still never cross (snapping.cpp).
 // mesh.keys stays sorted (p's key is 12 p); onSheet (SmoothingReport) follows the vertices,
 // false at snapped points. Deterministic for any thread count (0 = all). fraction 0: nothing.
-SnapReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads = 0);
+// The report's quadsFlipped and seconds are chooseQuadDiagonals' and the caller's to fill.
+SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
+                             int threads = 0);
+
+// Another layer's report added in (surface_layers.cpp).
+void accumulate(SnappingReport& into, const SnappingReport& layer);
 
 }  // namespace scansurf

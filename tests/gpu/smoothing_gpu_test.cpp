@@ -43,7 +43,7 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   MultiLabelMesh expected = a;
   const Grid& grid = raw->volume.grid;
   SmoothingReport relaxed = smoothMesh(expected, grid, &set, options.smoothing);
-  const SnapReport snapped = snapToLattice(expected, grid, options.smoothing.snap, relaxed.onSheet);
+  const SnappingReport snapped = snapToLattice(expected, grid, options.smoothing.snap, relaxed.onSheet);
   EXPECT_GT(snapped.points, 0u);
   EXPECT_FALSE(raw->surfaces.snapping.ran);
   EXPECT_TRUE(smooth->surfaces.snapping.ran);
