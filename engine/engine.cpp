@@ -20,11 +20,10 @@
 #include "geometry/overlap_split.h"
 #include "geometry/overlaps.h"
 #include "geometry/own_slabs.h"
-#include "geometry/quad_diagonals.h"
 #include "geometry/remesh.h"
 #include "geometry/simplification.h"
 #include "geometry/smoothing.h"
-#include "geometry/snapping.h"
+#include "geometry/triangle_shape.h"
 #include "geometry/validate.h"
 #include "geometry/volume_restoration.h"
 #include "gpu/commands.h"
@@ -140,16 +139,6 @@ SurfaceTargets slabTargets(const ContourSet* contours, const Grid& grid) {
   return targets;
 }
 
-// After relaxation: the crowded voxel centres snapped, then the quads' diagonals chosen, timed.
-SnappingReport snapAndChooseDiagonals(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
-                                      int threads) {
-  const auto start = std::chrono::steady_clock::now();
-  SnappingReport out = snapToLattice(mesh, grid, fraction, onSheet, threads);
-  out.quadsFlipped = chooseQuadDiagonals(mesh, threads);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return out;
-}
-
 // Classification records to feature surfaces: assembly, smoothing, feature extraction.
 Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
                            const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {},
@@ -165,10 +154,11 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.begin("smoothing");
     SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
-    surfaces.snapping = snapAndChooseDiagonals(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet, options.threads);
+    const ShapedTriangles shaped = shapeTriangles(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet, options.threads);
+    surfaces.snapping = shaped.report;
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,
-                     options.threads);
+                     options.threads, &shaped.disks);
     clock.lap("smoothing");
   }
   if (options.simplification.enabled) {

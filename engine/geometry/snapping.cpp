@@ -406,7 +406,8 @@ SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double frac
 void accumulate(SnappingReport& into, const SnappingReport& layer) {
   into.ran = into.ran || layer.ran;
   into.candidates += layer.candidates, into.points += layer.points, into.mergedVertices += layer.mergedVertices;
-  into.removedTriangles += layer.removedTriangles, into.quadsFlipped += layer.quadsFlipped, into.seconds += layer.seconds;
+  into.removedTriangles += layer.removedTriangles, into.quadsFlipped += layer.quadsFlipped, into.cubeFans += layer.cubeFans;
+  into.seconds += layer.seconds;
 }
 
 }  // namespace scansurf

@@ -15,6 +15,7 @@
 #include "geometry/angle_guard.h"
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
+#include "geometry/cube_fans.h"
 #include "geometry/incident_triangles.h"
 #include "geometry/vertex_roles.h"
 
@@ -225,7 +226,8 @@ double worstError(const std::vector<double>& volumes, std::span<const double> ta
 
 VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting,
                                        std::span<const double> targets, const std::vector<bool>& onSheet,
-                                       const std::vector<bool>& contourLayers, double minAngle, int threads) {
+                                       const std::vector<bool>& contourLayers, double minAngle, int threads,
+                                       const CubeDisks* disks) {
   VolumeRestorationReport report;
   if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
   Restorer restorer(mesh, grid, nesting, onSheet, contourLayers);
@@ -243,9 +245,10 @@ VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, c
     std::vector<double> deficit(restored.size(), 0.0);
     for (std::size_t f = 0; f < restored.size(); ++f)
       if (restored[f] && std::abs(volumes[f] - targets[f]) > kClose * targets[f]) deficit[f] = targets[f] - volumes[f];
-    if (guard.enabled()) before = mesh.positions;
+    if (guard.enabled() || disks) before = mesh.positions;
     restorer.round(deficit, threads);
     guard.apply(before.data(), mesh.positions.data(), 3);
+    if (disks) report.heldBack += keepDisksEmbedded(*disks, mesh, before, threads);
     volumes = restorer.volumes(threads);
   }
   report.worstAfter = worstError(volumes, targets, restored);

@@ -22,7 +22,10 @@ struct VolumeRestorationReport {
   double worstBefore = 0;  // largest |volume - target| / target before, and after
   double worstAfter = 0;
   std::size_t movedVertices = 0;
+  std::size_t heldBack = 0;  // vertex moves undone to keep a cube's disk unfolded (cube_fans.h)
 };
+
+struct CubeDisks;
 
 // mesh: the smoothed multi-label mesh (keys intact) on `grid`; targets[f]: feature f's enclosing
 // volume to restore (input units cubed; <= 0 or missing: leave it); onSheet[v]: vertex v is on
@@ -31,9 +34,11 @@ struct VolumeRestorationReport {
 // planes and on exactly one feature's surface move (an interface between siblings, a junction
 // or a contour stays). A feature's region is its label's and its descendants'
 // (Nesting::parent), among the labels in the mesh. Moves that would leave a triangle sharper
-// than minAngle degrees (and than it was) are shortened (geometry/angle_guard.h; 0: off).
+// than minAngle degrees (and than it was) are shortened (geometry/angle_guard.h; 0: off); moves
+// that would fold one of `disks` (retriangulateCubeFans's; null: none) are undone.
 VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting,
                                        std::span<const double> targets, const std::vector<bool>& onSheet,
-                                       const std::vector<bool>& contourLayers, double minAngle, int threads);
+                                       const std::vector<bool>& contourLayers, double minAngle, int threads,
+                                       const CubeDisks* disks = nullptr);
 
 }  // namespace scansurf

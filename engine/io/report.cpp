@@ -166,9 +166,13 @@ nlohmann::ordered_json simplificationJson(const SimplificationReport& r) {
 
 // Snapping's figures: the voxel centres that became vertices, what vanished, the quads flipped.
 nlohmann::ordered_json snappingJson(const SnappingReport& r) {
-  return {{"candidates", r.candidates},          {"points", r.points},
-          {"merged_vertices", r.mergedVertices}, {"removed_triangles", r.removedTriangles},
-          {"quads_flipped", r.quadsFlipped},     {"seconds", r.seconds}};
+  return {{"candidates", r.candidates},
+          {"points", r.points},
+          {"merged_vertices", r.mergedVertices},
+          {"removed_triangles", r.removedTriangles},
+          {"quads_flipped", r.quadsFlipped},
+          {"cube_fans", r.cubeFans},
+          {"seconds", r.seconds}};
 }
 
 nlohmann::ordered_json overlapsJson(const std::vector<std::pair<std::string, double>>& overlaps) {

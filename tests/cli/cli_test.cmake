@@ -53,6 +53,12 @@ string(JSON unsnapped_points GET "${unsnapped_report}" snapping points)
 if(NOT snapped_points GREATER 0 OR NOT unsnapped_points EQUAL 0)
   message(FATAL_ERROR "--snap: the report's snapped points ${snapped_points} (default) / ${unsnapped_points} (--snap 0)")
 endif()
+# The cubes' fans are re-triangulated with or without snapping.
+string(JSON snapped_fans GET "${snapped_report}" snapping cube_fans)
+string(JSON unsnapped_fans GET "${unsnapped_report}" snapping cube_fans)
+if(NOT snapped_fans GREATER 0 OR NOT unsnapped_fans GREATER 0)
+  message(FATAL_ERROR "the report's cube fans: ${snapped_fans} (default) / ${unsnapped_fans} (--snap 0)")
+endif()
 if(NOT unsnapped_fraction MATCHES "^0(\\.0*)?$" OR NOT snapped_fraction MATCHES "^0\\.050*" OR NOT snapped_triangles LESS unsnapped_triangles)
   message(FATAL_ERROR "--snap: fractions ${unsnapped_fraction} / ${snapped_fraction}, triangles ${unsnapped_triangles} / ${snapped_triangles}")
 endif()
@@ -80,16 +86,16 @@ file(SHA256 "${OUT}/unremeshed/BODY.ply" unremeshed_hash)
 if(remeshed_hash STREQUAL unremeshed_hash OR NOT smoothed_hash STREQUAL unremeshed_hash)
   message(FATAL_ERROR "--remesh wrote the same surface as --no-remesh, or the default remeshed")
 endif()
-# --no-curvature-sizing keeps one target length where the surface curves (the vessel's and the
-# vertebra's tight bends get shorter edges by default), and the report says which ran.
+# --no-curvature-sizing keeps one target length where the surface curves (the vertebra's tight
+# bends get shorter edges by default), and the report says which ran.
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/uniform" --grid 96 64 --remesh --no-curvature-sizing -q
              --report "${OUT}/uniform/report.json")
-file(SHA256 "${OUT}/uniform/vessel.ply" uniform_hash)
-file(SHA256 "${OUT}/remeshed/vessel.ply" sized_hash)
+file(SHA256 "${OUT}/uniform/vertebra.ply" uniform_hash)
+file(SHA256 "${OUT}/remeshed/vertebra.ply" sized_hash)
 file(READ "${OUT}/uniform/report.json" uniform_report)
 string(JSON uniform_sizing GET "${uniform_report}" parameters curvature_sizing)
 if(uniform_hash STREQUAL sized_hash OR uniform_sizing)
-  message(FATAL_ERROR "--no-curvature-sizing wrote the same vessel as the default, or its report says curvature_sizing ${uniform_sizing}")
+  message(FATAL_ERROR "--no-curvature-sizing wrote the same vertebra as the default, or its report says curvature_sizing ${uniform_sizing}")
 endif()
 # The report says what it is about: the command line, when the run started, and its units.
 string(JSON arg1 GET "${uniform_report}" command_line 1)

@@ -3,9 +3,8 @@
 // with smoothing the unsmoothed build's mesh on the CPU.
 #include <algorithm>
 
-#include "geometry/quad_diagonals.h"
 #include "geometry/smoothing.h"
-#include "geometry/snapping.h"
+#include "geometry/triangle_shape.h"
 #include "geometry/volume_restoration.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
@@ -39,24 +38,28 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   EXPECT_NE(a.positions, b.positions);
 
   // The engine smooths exactly as the CPU functions do on the raw mesh: relaxation, snapping,
-  // the quads' diagonals, then each feature's volume restored to its slab volume.
+  // the quads' diagonals, the cubes' fans, then each feature's volume restored to its slab volume.
   MultiLabelMesh expected = a;
   const Grid& grid = raw->volume.grid;
   SmoothingReport relaxed = smoothMesh(expected, grid, &set, options.smoothing);
-  const SnappingReport snapped = snapToLattice(expected, grid, options.smoothing.snap, relaxed.onSheet);
+  const ShapedTriangles shaped = shapeTriangles(expected, grid, options.smoothing.snap, relaxed.onSheet);
+  const SnappingReport& snapped = shaped.report;
   EXPECT_GT(snapped.points, 0u);
+  EXPECT_GT(snapped.quadsFlipped, 0u);
+  EXPECT_GT(snapped.cubeFans, 0u);
   EXPECT_FALSE(raw->surfaces.snapping.ran);
   EXPECT_TRUE(smooth->surfaces.snapping.ran);
   EXPECT_EQ(smooth->surfaces.snapping.points, snapped.points);
   EXPECT_EQ(smooth->surfaces.snapping.removedTriangles, snapped.removedTriangles);
-  EXPECT_EQ(a.triangleCount() - snapped.removedTriangles, b.triangleCount());
-  EXPECT_GT(chooseQuadDiagonals(expected), 0u);
+  EXPECT_EQ(smooth->surfaces.snapping.cubeFans, snapped.cubeFans);
+  EXPECT_EQ(a.triangleCount() - snapped.removedTriangles - 2 * snapped.cubeFans, b.triangleCount());
   std::vector<double> targets;
   for (const FeatureVolumes& f : raw->overlaps.features) targets.push_back(f.contour);
   std::vector<bool> contourLayers(static_cast<std::size_t>(grid.nz), false);
   for (const Feature& f : set.features)
     for (const FeatureSlice& s : f.slices) contourLayers[static_cast<std::size_t>(grid.layerOfPlane(s.z))] = true;
-  restoreVolumes(expected, grid, raw->nesting, targets, relaxed.onSheet, contourLayers, options.smoothing.minAngle, 0);
+  restoreVolumes(expected, grid, raw->nesting, targets, relaxed.onSheet, contourLayers, options.smoothing.minAngle, 0,
+                 &shaped.disks);
   EXPECT_EQ(expected.positions, b.positions);
   EXPECT_EQ(expected.triangles, b.triangles);
   EXPECT_EQ(expected.labels, b.labels);

@@ -17,9 +17,11 @@
 #include "geometry/assembly.h"
 #include "geometry/carrier_projection.h"
 #include "geometry/contour_layers.h"
+#include "geometry/cube_fans.h"
 #include "geometry/feature_surfaces.h"
 #include "geometry/quad_diagonals.h"
 #include "geometry/smoothing.h"
+#include "geometry/triangle_shape.h"
 #include "geometry/volume_restoration.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -33,18 +35,23 @@ constexpr double kDefaultSnap = SmoothingOptions{}.snap;
 struct Snapped {
   SnappingReport report;
   std::size_t flips = 0;
+  std::size_t heldBack = 0;  // restoration moves undone to keep a cube's disk unfolded
 };
 
-// What the engine runs after relaxation: snapping, the quads' diagonals, then each feature's
-// volume restored (here to what it enclosed before snapping).
+// What the engine runs after relaxation: snapping, the quads' diagonals, the cubes' fans, then
+// each feature's volume restored (here to what it enclosed before snapping), its disks unfolded.
 Snapped snapAndFlip(Built& b, std::vector<bool> onSheet, double fraction = kDefaultSnap, int threads = 0) {
   std::vector<double> volumes;
   for (const MeshStats& s : surfaceStats(b, SurfaceConvention::Enclosing)) volumes.push_back(s.volume);
   Snapped out;
-  out.report = snapToLattice(b.mesh, b.grid, fraction, onSheet, threads);
+  const ShapedTriangles shaped = shapeTriangles(b.mesh, b.grid, fraction, onSheet, threads);
   EXPECT_EQ(onSheet.size(), b.mesh.vertexCount());
-  out.flips = chooseQuadDiagonals(b.mesh, threads);
-  restoreVolumes(b.mesh, b.grid, b.nesting, volumes, onSheet, contourLayers(b.grid, &b.set), 0, threads);
+  EXPECT_TRUE(disksEmbedded(shaped.disks, b.mesh)) << b.set.source;
+  out.report = shaped.report, out.flips = shaped.report.quadsFlipped;
+  out.heldBack =
+      restoreVolumes(b.mesh, b.grid, b.nesting, volumes, onSheet, contourLayers(b.grid, &b.set), 0, threads, &shaped.disks)
+          .heldBack;
+  EXPECT_TRUE(disksEmbedded(shaped.disks, b.mesh)) << b.set.source << ": a disk folded in the volume restoration";
   refreshFeatures(b);
   return out;
 }
@@ -109,15 +116,16 @@ Built checkSnap(const ContourSet& set, double voxel, double fewer, double fracti
   expectOneLabelPairAtSnappedPoints(b.mesh);
   const Angles after = minAngles(b.mesh);
   EXPECT_GE(after.p5, before.p5 - 0.1) << set.source;
-  EXPECT_EQ(trianglesBefore - b.mesh.triangleCount(), s.report.removedTriangles) << set.source;
+  EXPECT_EQ(trianglesBefore - b.mesh.triangleCount(), s.report.removedTriangles + 2 * s.report.cubeFans) << set.source;
   EXPECT_LE(s.report.points, s.report.candidates) << set.source;
   EXPECT_LE(static_cast<double>(b.mesh.triangleCount()), fewer * static_cast<double>(trianglesBefore)) << set.source;
   std::printf(
       "[ figure   ] %-14s snap %.2f: %zu points of %zu candidates (%zu not disks), triangles %7zu -> "
-      "%7zu (%.2fx), %zu quads flipped, min angle %4.1f -> %4.1f, 5%% %4.1f -> %4.1f; %.3f s\n",
+      "%7zu (%.2fx), %zu quads flipped, %zu cube fans (%zu restoration moves undone), min angle %4.1f -> %4.1f, "
+      "5%% %4.1f -> %4.1f; %.3f s\n",
       set.source.c_str(), fraction, s.report.points, s.report.candidates, s.report.candidates - s.report.points, trianglesBefore,
       b.mesh.triangleCount(), static_cast<double>(b.mesh.triangleCount()) / static_cast<double>(trianglesBefore), s.flips,
-      before.min, after.min, before.p5, after.p5, seconds);
+      s.report.cubeFans, s.heldBack, before.min, after.min, before.p5, after.p5, seconds);
   return b;
 }
 
@@ -196,6 +204,54 @@ TEST(Snapping, ZeroChangesNothing) {
   EXPECT_EQ(r.points, 0u);
   EXPECT_EQ(b.mesh.positions, before.positions);
   EXPECT_EQ(b.mesh.triangles, before.triangles);
+}
+
+// ---------------------------------------------------------------- cubes' fans
+
+// A mesh whose triangles are not in cell order could hold one cube's triangles in two places:
+// no cube is touched then.
+TEST(CubeFans, TrianglesOutOfCellOrderAreLeftAlone) {
+  Built b = buildCpu(sphereContours(10, 2.0), 1.0);
+  std::vector<bool> onSheet = smoothWithDefaults(b).onSheet;
+  std::swap_ranges(b.mesh.triangles.begin(), b.mesh.triangles.begin() + 3, b.mesh.triangles.end() - 3);
+  std::swap_ranges(b.mesh.labels.begin(), b.mesh.labels.begin() + 2, b.mesh.labels.end() - 2);
+  const MultiLabelMesh before = b.mesh;
+  EXPECT_EQ(retriangulateCubeFans(b.mesh, b.grid, onSheet).count(), 0u);
+  EXPECT_EQ(b.mesh.triangles, before.triangles);
+  EXPECT_EQ(b.mesh.positions, before.positions);
+}
+
+// Each disk loses a vertex and two triangles; the rims stay as they were (every rim edge was an
+// edge before), and a vertex moved so that its disk folds is put back.
+TEST(CubeFans, RimsStayAndAFoldIsPutBack) {
+  Built b = buildCpu(sphereContours(10, 2.0), 1.0);
+  std::vector<bool> onSheet = smoothWithDefaults(b).onSheet;
+  const MultiLabelMesh relaxed = b.mesh;
+  std::vector<bool> sheet = onSheet;
+  snapToLattice(b.mesh, b.grid, kDefaultSnap, sheet);
+  chooseQuadDiagonals(b.mesh);
+  const MultiLabelMesh fans = b.mesh;
+  const CubeDisks disks = retriangulateCubeFans(b.mesh, b.grid, sheet);
+  ASSERT_GT(disks.count(), 100u);
+  EXPECT_EQ(fans.vertexCount() - b.mesh.vertexCount(), disks.count());
+  EXPECT_EQ(fans.triangleCount() - b.mesh.triangleCount(), 2 * disks.count());
+  std::set<std::pair<std::uint64_t, std::uint64_t>> edgesBefore;
+  for (std::size_t t = 0; t < fans.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c)
+      edgesBefore.insert({fans.keys[fans.triangles[3 * t + c]], fans.keys[fans.triangles[3 * t + (c + 1) % 3]]});
+  for (std::size_t d = 0; d < disks.count(); ++d)
+    for (std::uint32_t i = disks.rimStart[d]; i < disks.rimStart[d + 1]; ++i) {
+      const std::uint32_t next = i + 1 < disks.rimStart[d + 1] ? i + 1 : disks.rimStart[d];
+      EXPECT_TRUE(edgesBefore.count({b.mesh.keys[disks.rims[i]], b.mesh.keys[disks.rims[next]]})) << "disk " << d;
+    }
+  ASSERT_TRUE(disksEmbedded(disks, b.mesh));
+  const std::vector<float> before = b.mesh.positions;
+  const std::uint32_t moved = disks.rims[disks.rimStart[0]], other = disks.rims[disks.rimStart[0] + 2];
+  std::copy(&before[3 * std::size_t{other}], &before[3 * std::size_t{other}] + 3, &b.mesh.positions[3 * std::size_t{moved}]);
+  EXPECT_FALSE(disksEmbedded(disks, b.mesh));
+  EXPECT_GE(keepDisksEmbedded(disks, b.mesh, before), 1u);
+  EXPECT_TRUE(disksEmbedded(disks, b.mesh));
+  EXPECT_EQ(b.mesh.positions, before);
 }
 
 // ---------------------------------------------------------------- accuracy

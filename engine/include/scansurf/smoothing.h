@@ -40,7 +40,8 @@ struct SmoothingOptions {
   double snap = 0.05;
 };
 
-// What snapping and the quads' diagonals did (docs/method.md, "Triangle shape"); ran = false
+// What snapping, the quads' diagonals and the cubes' fans did (docs/method.md, "Triangle
+// shape"); ran = false
 // when smoothing did not run. With several layers, the layers' sums.
 struct SnappingReport {
   bool ran = false;
@@ -49,7 +50,8 @@ struct SnappingReport {
   std::size_t mergedVertices = 0;    // vertices merged into them
   std::size_t removedTriangles = 0;  // triangles that vanished
   std::size_t quadsFlipped = 0;      // quads split along their other diagonal
-  double seconds = 0;                // both steps, inside the smoothing stage
+  std::size_t cubeFans = 0;          // cubes whose fan became its rim's triangles (a vertex, two triangles fewer each)
+  double seconds = 0;                // the three steps, inside the smoothing stage
 };
 
 }  // namespace scansurf

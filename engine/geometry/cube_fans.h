@@ -1,0 +1,47 @@
+// scansurf: fewer triangles where a separating surface crosses a voxel cube as one fan (issue
+// 28). The Freudenthal cut gives a flat wall about eight triangles per cube, around a vertex on
+// the cube's body diagonal; marching cubes gives two. Where a cube's surface is one label pair's
+// disk around its one vertex inside the cube, that vertex goes and the disk's rim is
+// triangulated again: a vertex and two triangles fewer per cube, nothing else moved.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "scansurf/grid.h"
+#include "scansurf/surfaces.h"
+
+namespace scansurf {
+
+// The re-triangulated cubes: each one's rim and new triangles, and the axis along which its new
+// disk is seen one-to-one (what keeps it from folding onto itself when its rim moves).
+struct CubeDisks {
+  std::vector<std::uint32_t> rimStart{0};    // per disk, where its rim starts in `rims` (+ the end)
+  std::vector<std::uint32_t> rims;           // rim vertices in the triangles' orientation
+  std::vector<std::uint32_t> firstTriangle;  // per disk: its (rim size - 2) triangles start here
+  std::vector<std::uint8_t> view;            // per disk: the axis it is seen along, + 3 from below
+
+  std::size_t count() const { return firstTriangle.size(); }
+};
+
+// Every voxel cube whose triangles carry one label pair and form a disk around the one vertex
+// strictly inside the cube (its rim on the cube's faces) gets the rim's triangulation with the
+// largest smallest angle that adds no edge inside one cube face, if that triangulation projects
+// one-to-one along an axis, faces the way the fan did and passes within 0.05 in-plane voxels of
+// the removed vertex. The new triangles lie in the open cube, so they meet no other cube's; the
+// rim (the curve on the cube's faces, contour planes included) and the shared interfaces stay
+// (cube_fans.cpp). Needs mesh.keys and triangles in cell order (assemblyMesh's; snapping and
+// the quad diagonals keep it); a mesh out of that order is left as it is. Vertices stay in key
+// order; onSheet follows them. Deterministic for any thread count (0 = all).
+CubeDisks retriangulateCubeFans(MultiLabelMesh& mesh, const Grid& grid, std::vector<bool>& onSheet, int threads = 0);
+
+// Whether every disk's new triangles and rim still project one-to-one along its axis (exact).
+bool disksEmbedded(const CubeDisks& disks, const MultiLabelMesh& mesh, int threads = 0);
+
+// After vertices moved from `before` (xyz per vertex): every disk that no longer projects
+// one-to-one gets its rim's vertices back where they were, until every disk does (all back is
+// where they all did). Returns the vertices put back. Deterministic for any thread count.
+std::size_t keepDisksEmbedded(const CubeDisks& disks, MultiLabelMesh& mesh, const std::vector<float>& before, int threads = 0);
+
+}  // namespace scansurf
