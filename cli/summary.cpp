@@ -154,8 +154,10 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   if (const SnappingReport& r = built.surfaces.snapping; r.ran)
     std::printf(
         "triangle shape: %zu of %zu crowded voxel centres snapped, %zu vertices merged into them, %zu triangles gone; "
-        "%zu quads re-split; %zu cube fans re-triangulated, a vertex and two triangles fewer each (%.3f s)\n",
-        r.points, r.candidates, r.mergedVertices, r.removedTriangles, r.quadsFlipped, r.cubeFans, r.seconds);
+        "%zu quads re-split; %zu cubes and blocks re-triangulated from their rims, %zu vertices and %zu triangles fewer "
+        "(%.3f s)\n",
+        r.points, r.candidates, r.mergedVertices, r.removedTriangles, r.quadsFlipped, r.cubeFans, r.fanVerticesRemoved,
+        2 * r.fanVerticesRemoved, r.seconds);
   if (const SimplificationReport& r = built.surfaces.simplification; r.ran)
     std::printf(
         "simplification: %zu -> %zu triangles; smallest angle %.1f -> %.1f deg, 5th percentile %.1f -> %.1f, mean %.1f -> "

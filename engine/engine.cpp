@@ -154,7 +154,9 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.begin("smoothing");
     SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
-    const ShapedTriangles shaped = shapeTriangles(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet, options.threads);
+    // Simplification merges further from the mesh before the cubes' fans (docs/method.md).
+    const ShapedTriangles shaped = shapeTriangles(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet,
+                                                  !options.simplification.enabled, options.threads);
     surfaces.snapping = shaped.report;
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,

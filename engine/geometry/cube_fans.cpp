@@ -1,23 +1,26 @@
 // Re-triangulating the cubes' fans (issue 28). In a cube whose separating surface carries two
 // labels, the Freudenthal cut puts a vertex on each cut cube edge and face diagonal and one on
 // the body diagonal, and fans the surface around that last one; marching cubes (Lorensen &
-// Cline 1987) triangulates the same rim with no inner vertex.
+// Cline 1987) triangulates the same rim with no inner vertex. Where the surface is flat over a
+// block of 2 x 2 cubes, the vertices on the block's inner faces and edges go too.
 //
-// Why the surfaces still never cross. The rim's vertices lie on the cube's faces (on cube edges,
-// face diagonals or corners) and no new edge joins two vertices of one face, so every new
-// triangle but its rim edges lies in the open cube, where no other cube's triangle is (each lies
-// in its own closed tetrahedron); the rim edges are the ones the fan had, shared with the
-// neighbouring cubes. Inside the cube the new triangles are the only ones (the cube carried one
-// disk), and they cannot meet each other: each projects along the disk's axis with the same
-// orientation (exact), and so does the rim, one-to-one, so the projection maps the disk onto the
-// rim's inside one-to-one (a locally one-to-one map of a disk with a simple boundary curve is).
-// The disk has the fan's rim, so it splits the cube's corners as the fan did: the labels on
-// either side stay; the vertex removed was inside the cube, on no other cube's triangle.
+// Why the surfaces still never cross. A region is a box: a cube, or a block of 2 x 2 cubes one
+// layer thick. Its disk's rim lies on the box's faces (on cube edges, face diagonals or voxel
+// centres) and no new edge joins two vertices of one face, so every new triangle but its rim
+// edges lies in the open box, where no other region's triangle is (each lies in its own closed
+// tetrahedron or box); the rim edges are the ones the surface had, shared with the neighbouring
+// regions. Inside the box the new triangles are the only ones (the box carried one disk), and
+// they cannot meet each other: each projects along the disk's axis with the same orientation
+// (exact), and so does the rim, one-to-one, so the projection maps the disk onto the rim's
+// inside one-to-one (a locally one-to-one map of a disk with a simple boundary curve is). The
+// disk has the old rim, so it splits the box's voxel centres as the old surface did: the labels
+// on either side stay; the vertices removed were inside the box, on no other region's triangle.
 #include "geometry/cube_fans.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 
 #include "core/parallel.h"
 #include "geometry/assembly.h"
@@ -27,8 +30,14 @@
 namespace scansurf {
 namespace {
 
-constexpr double kTolerance = 0.05;      // in-plane voxels: how far the removed vertex may lie from the disk
-constexpr std::size_t kLongestRim = 16;  // longer rims (rare) keep their fan
+constexpr double kTolerance = 0.05;                        // in-plane voxels: how far a removed vertex may lie from the new disk
+constexpr std::size_t kLongestRim = 24;                    // a longer rim keeps its triangles
+constexpr std::size_t kMostTriangles = 48;                 // so does a region with more triangles
+constexpr std::size_t kMostVertices = kMostTriangles + 1;  // a disk has at most F + 1 vertices
+constexpr std::uint32_t kDead = UINT32_MAX;                // a triangle slot left empty
+// A new triangle may be sharper than the sharpest it replaces only if its smallest angle is at
+// least 15 degrees (issue 28's smallest angle): sharpness(), its squared cosine, at most this.
+constexpr double kFair = 0.9330127018922194;
 
 using Key = std::uint64_t;
 
@@ -48,20 +57,30 @@ Key cubeOf(const MultiLabelMesh& mesh, std::size_t t) {
   return packVertexKey(sum[0] / 36, sum[1] / 36, sum[2] / 36);
 }
 
-// Bit 2a (2a + 1): the key lies on the cube's low (high) face across axis a; 0: inside.
-int facesOf(Key key, Key cube) {
-  const auto k = unpack(key), c = unpack(cube);
+// A box of `size` x `size` x 1 cubes whose lowest voxel centre is `low` (voxel indices).
+struct Box {
+  std::array<std::uint64_t, 3> low{};
+  std::uint64_t size = 1;
+};
+
+// Bit 2a (2a + 1): the key lies on the box's low (high) face across axis a; 0: inside.
+int facesOf(Key key, const Box& box) {
+  const auto k = unpack(key);
   int mask = 0;
-  for (int a = 0; a < 3; ++a) mask |= (k[a] == 12 * c[a] ? 1 : 0) << (2 * a) | (k[a] == 12 * c[a] + 12 ? 2 : 0) << (2 * a);
+  for (int a = 0; a < 3; ++a) {
+    const std::uint64_t low = 12 * box.low[a], high = low + 12 * (a < 2 ? box.size : 1);
+    mask |= (k[a] == low ? 1 : 0) << (2 * a) | (k[a] == high ? 2 : 0) << (2 * a);
+  }
   return mask;
 }
 
-// The cosine of a triangle's smallest angle (opposite its shortest side) from its sides'
-// squares: the smaller, the better shaped.
+// The squared cosine of a triangle's smallest angle (opposite its shortest side; at most 60
+// degrees, so its cosine is positive) from its sides' squares: the smaller, the better shaped.
 double sharpness(double ab, double bc, double ca) {
   const double shortest = std::min({ab, bc, ca});
   if (!(shortest > 0)) return 1;
-  return (ab + bc + ca - 2 * shortest) / (2 * std::sqrt(ab * bc * ca / shortest));
+  const double twiceProduct = ab + bc + ca - 2 * shortest;  // b^2 + c^2 - a^2 = 2 b c cos
+  return twiceProduct * twiceProduct * shortest / (4 * ab * bc * ca);
 }
 
 double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -86,6 +105,7 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
 // axis: every triangle turns the view's way (exact), and no two rim edges meet but neighbours at
 // their shared vertex (exact; collinear touches count as meeting).
 bool projectsOneToOne(const float* positions, const std::uint32_t* rim, std::size_t n, const std::uint32_t* triangles, int view) {
+  // n - 2 triangles: a disk with no vertex left inside
   const int axis = view % 3, u = (axis + 1) % 3, v = (axis + 2) % 3, sign = view < 3 ? 1 : -1;
   for (std::size_t t = 0; t + 2 < n; ++t)
     if (orient2d(at(positions, triangles[3 * t]), at(positions, triangles[3 * t + 1]), at(positions, triangles[3 * t + 2]), u,
@@ -108,85 +128,125 @@ bool projectsOneToOne(const float* positions, const std::uint32_t* rim, std::siz
   return true;
 }
 
-// One cube's triangles [begin, end): its rim in their orientation and the vertex inside, if they
-// carry one label pair and form a disk whose one inner vertex is the only vertex inside the cube.
-struct Fan {
-  std::vector<std::uint32_t> rim;
-  std::uint32_t inner = 0;
+// A region's triangles as one disk: its rim in their orientation and the vertices inside.
+struct Disk {
+  std::vector<std::uint32_t> rim, inner;
 };
 
-bool fanOf(const MultiLabelMesh& mesh, std::size_t begin, std::size_t end, Key cube, Fan& fan) {
-  const std::size_t count = end - begin;
-  if (count < 3 || count > kLongestRim) return false;
-  for (std::size_t t = begin + 1; t < end; ++t)
-    if (mesh.labels[2 * t] != mesh.labels[2 * begin] || mesh.labels[2 * t + 1] != mesh.labels[2 * begin + 1]) return false;
-  constexpr std::size_t kMost = kLongestRim + 1;              // a disk of F triangles around one vertex has F + 1
-  std::array<std::uint32_t, kMost> ids;                       // the cube's vertices, local index -> mesh index
-  std::array<std::array<std::uint8_t, kMost>, kMost> uses{};  // directed edge uses, local indices
-  std::size_t distinct = 0;
-  const auto local = [&](std::uint32_t v) -> std::size_t {
-    for (std::size_t i = 0; i < distinct; ++i)
+// Local indices of a region's vertices (at most kMostVertices), and its directed edges: for edge
+// a -> b, the third corner of its triangle (that is, a's link steps from b to it).
+struct LocalMesh {
+  std::array<std::uint32_t, kMostVertices> ids;
+  std::array<std::uint8_t, kMostVertices * kMostVertices> thirds;   // third corner + 1; 0: no edge a -> b
+  std::array<std::uint8_t, kMostVertices> incident, anyOut;         // per vertex: triangles, one edge out
+  std::array<std::array<std::uint8_t, 3>, kMostTriangles> corners;  // per triangle, local indices
+  std::size_t vertices = 0;
+
+  std::uint8_t& third(std::size_t a, std::size_t b) { return thirds[a * kMostVertices + b]; }
+  // The local index of v, added (its row and column of `thirds` cleared) if new; kMostVertices if full.
+  std::size_t local(std::uint32_t v) {
+    for (std::size_t i = 0; i < vertices; ++i)
       if (ids[i] == v) return i;
-    if (distinct == kMost) return kMost;
-    ids[distinct] = v;
-    return distinct++;
-  };
-  for (std::size_t t = begin; t < end; ++t) {
-    std::size_t c[3];
-    for (int k = 0; k < 3; ++k)
-      if ((c[k] = local(mesh.triangles[3 * t + static_cast<std::size_t>(k)])) == kMost) return false;
-    for (int k = 0; k < 3; ++k)
-      if (++uses[c[k]][c[(k + 1) % 3]] > 1) return false;  // an edge used twice one way: no manifold
+    if (vertices == kMostVertices) return kMostVertices;
+    for (std::size_t i = 0; i <= vertices; ++i) third(vertices, i) = 0, third(i, vertices) = 0;
+    ids[vertices] = v, incident[vertices] = 0;
+    return vertices++;
   }
-  if (distinct != count + 1) return false;  // a disk around one inner vertex: F + 1 vertices, F rim edges
-  std::array<std::uint8_t, kMost> next;
-  next.fill(0xff);
-  std::size_t rimEdges = 0;
-  for (std::size_t a = 0; a < distinct; ++a)
-    for (std::size_t b = 0; b < distinct; ++b)
-      if (uses[a][b] && !uses[b][a]) {
-        if (next[a] != 0xff) return false;  // a pinch
-        next[a] = static_cast<std::uint8_t>(b), ++rimEdges;
+  // Reads the region's triangles; false if one label pair does not hold them all, a directed
+  // edge is used twice (no manifold) or there are too many vertices.
+  bool read(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& triangles) {
+    const std::size_t first = triangles.front();
+    vertices = 0;
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      const std::size_t t = triangles[i];
+      if (mesh.labels[2 * t] != mesh.labels[2 * first] || mesh.labels[2 * t + 1] != mesh.labels[2 * first + 1]) return false;
+      std::array<std::uint8_t, 3>& c = corners[i];
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t a = local(mesh.triangles[3 * t + k]);
+        if (a == kMostVertices) return false;
+        c[k] = static_cast<std::uint8_t>(a);
       }
-  if (rimEdges != count) return false;
-  std::size_t inner = kMost;
-  for (std::size_t a = 0; a < distinct; ++a)
-    if (next[a] == 0xff) {
-      if (inner != kMost) return false;
-      inner = a;
+      for (std::size_t k = 0; k < 3; ++k) {
+        std::uint8_t& t3 = third(c[k], c[(k + 1) % 3]);
+        if (t3 != 0) return false;
+        t3 = static_cast<std::uint8_t>(c[(k + 2) % 3] + 1);
+        ++incident[c[k]], anyOut[c[k]] = c[(k + 1) % 3];
+      }
     }
-  if (inner == kMost) return false;
-  // One cycle through every rim vertex: each once, back at the start after `count` steps.
-  const std::size_t first = inner == 0 ? 1 : 0;
-  std::array<bool, kMost> seen{};
-  fan.rim.clear();
-  for (std::size_t a = first, k = 0; k < count; ++k) {
-    if (a == inner || seen[a]) return false;
-    seen[a] = true;
-    fan.rim.push_back(ids[a]);
-    a = next[a];
-    if (k + 1 == count && a != first) return false;
+    return true;
   }
-  for (std::uint32_t v : fan.rim)
-    if (facesOf(mesh.keys[v], cube) == 0) return false;
-  fan.inner = ids[inner];
-  return facesOf(mesh.keys[fan.inner], cube) == 0;
+};
+
+// Whether vertex a's link (the far edge of each of its triangles) is one path (from the end of
+// its rim edge out, `start`) or one cycle, so that its triangles form one fan.
+bool oneFan(LocalMesh& m, std::size_t a, std::size_t start) {
+  std::size_t walked = 0;
+  for (std::size_t b = start; m.third(a, b) != 0 && walked <= m.incident[a];) {
+    ++walked;
+    if ((b = m.third(a, b) - 1u) == start) break;
+  }
+  return walked == m.incident[a];
+}
+
+// The region's triangles as one disk whose rim lies on the box's faces and whose other vertices
+// all lie inside the box: one label pair, every edge used once each way at most, one rim cycle,
+// one fan at every vertex, connected, Euler characteristic 1.
+bool diskOf(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& triangles, const Box& box, LocalMesh& m, Disk& disk) {
+  if (triangles.size() < 3 || triangles.size() > kMostTriangles || !m.read(mesh, triangles)) return false;
+  std::array<std::uint8_t, kMostVertices> next, parent;
+  next.fill(0xff);
+  std::iota(parent.begin(), parent.end(), std::uint8_t{0});
+  const auto root = [&](std::size_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  std::size_t rimEdges = 0, components = m.vertices;
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = m.corners[i][k], b = m.corners[i][(k + 1) % 3];
+      if (const std::size_t ra = root(a), rb = root(b); ra != rb) parent[ra] = static_cast<std::uint8_t>(rb), --components;
+      if (m.third(b, a)) continue;
+      if (next[a] != 0xff) return false;  // two rim edges leave a: a pinch
+      next[a] = static_cast<std::uint8_t>(b), ++rimEdges;
+    }
+  const std::size_t edges = (3 * triangles.size() + rimEdges) / 2;
+  if (components != 1 || m.vertices + triangles.size() != edges + 1 || rimEdges < 3 || rimEdges > kLongestRim) return false;
+  std::size_t start = 0;
+  while (next[start] == 0xff) ++start;
+  disk.rim.clear(), disk.inner.clear();
+  for (std::size_t a = start; disk.rim.size() < rimEdges;) {  // one cycle through every rim edge
+    disk.rim.push_back(m.ids[a]);
+    if (next[a] == 0xff || facesOf(mesh.keys[m.ids[a]], box) == 0) return false;
+    a = next[a];
+    if (a == start) break;
+  }
+  if (disk.rim.size() != rimEdges) return false;
+  for (std::size_t a = 0; a < m.vertices; ++a) {
+    const bool onRim = next[a] != 0xff;
+    if (!oneFan(m, a, onRim ? next[a] : m.anyOut[a])) return false;
+    if (!onRim) {
+      if (facesOf(mesh.keys[m.ids[a]], box) != 0) return false;
+      disk.inner.push_back(m.ids[a]);
+    }
+  }
+  return !disk.inner.empty();
 }
 
 // The rim's triangulation with the largest smallest angle and no edge between two vertices on
-// one cube face (dynamic programming over sub-polygons); false if there is none.
+// one face of the box (dynamic programming over sub-polygons); false if there is none.
 bool triangulateRim(const std::vector<Vec3>& p, const std::vector<int>& faces, const std::vector<std::uint32_t>& rim,
-                    std::vector<std::uint32_t>& out) {
+                    std::vector<std::uint32_t>& out, double& sharpest) {
   const std::size_t n = p.size();
-  std::array<double, kLongestRim * kLongestRim> square;  // squared distances between rim vertices
+  if (n == 3 && (faces[0] & faces[1] & faces[2])) return false;  // a triangle in one face
+  std::array<double, kLongestRim * kLongestRim> square;          // squared distances between rim vertices
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) square[i * n + j] = glm::dot(p[j] - p[i], p[j] - p[i]);
   const auto allowed = [&](std::size_t i, std::size_t j) {
     return j - i == 1 || (i == 0 && j == n - 1) || !(faces[i] & faces[j]);
   };
   std::array<double, kLongestRim * kLongestRim> worst;  // of sub-polygon i..j: its sharpest triangle's sharpness
-  std::array<std::uint8_t, kLongestRim * kLongestRim> split{};
-  worst.fill(2);                                                      // 2: no triangulation
+  std::array<std::uint8_t, kLongestRim * kLongestRim> split;
+  std::fill_n(worst.begin(), n * n, 2.0);  // 2: no triangulation (only the first n * n entries are used)
   for (std::size_t i = 0; i + 1 < n; ++i) worst[i * n + i + 1] = -1;  // an edge: no triangle yet
   for (std::size_t length = 2; length < n; ++length)
     for (std::size_t i = 0; i + length < n; ++i) {
@@ -200,6 +260,7 @@ bool triangulateRim(const std::vector<Vec3>& p, const std::vector<int>& faces, c
       }
     }
   if (worst[n - 1] > 1) return false;
+  sharpest = worst[n - 1];
   out.clear();
   std::array<std::pair<std::size_t, std::size_t>, kLongestRim> stack;
   std::size_t top = 0;
@@ -215,39 +276,47 @@ bool triangulateRim(const std::vector<Vec3>& p, const std::vector<int>& faces, c
 }
 
 struct Scratch {
-  Fan fan;
+  LocalMesh local;
+  Disk disk;
   std::vector<Vec3> points;
   std::vector<int> faces;
   std::vector<std::uint32_t> triangles;
 };
 
-// Plans cube [begin, end): on success its new triangles are in s.triangles and its view returned
-// (else -1). Reads only the cube's triangles.
-int planCube(const MultiLabelMesh& mesh, double voxel, std::size_t begin, std::size_t end, Scratch& s) {
-  const Key cube = cubeOf(mesh, begin);
-  if (!fanOf(mesh, begin, end, cube, s.fan)) return -1;
+// Plans a region (its triangles, in slot order): on success its new triangles are in
+// s.triangles and its view returned (else -1).
+int planRegion(const MultiLabelMesh& mesh, double voxel, const std::vector<std::uint32_t>& region, const Box& box, Scratch& s) {
+  if (!diskOf(mesh, region, box, s.local, s.disk)) return -1;
   const float* positions = mesh.positions.data();
   s.points.clear(), s.faces.clear();
-  for (std::uint32_t v : s.fan.rim) s.points.push_back(at(positions, v)), s.faces.push_back(facesOf(mesh.keys[v], cube));
-  if (!triangulateRim(s.points, s.faces, s.fan.rim, s.triangles)) return -1;
-  Vec3 facing{0, 0, 0};  // the fan's area vector
-  for (std::size_t t = begin; t < end; ++t) {
-    const Vec3 a = at(positions, mesh.triangles[3 * t]);
-    facing += glm::cross(at(positions, mesh.triangles[3 * t + 1]) - a, at(positions, mesh.triangles[3 * t + 2]) - a);
+  for (std::uint32_t v : s.disk.rim) s.points.push_back(at(positions, v)), s.faces.push_back(facesOf(mesh.keys[v], box));
+  double sharpest = 1;
+  if (!triangulateRim(s.points, s.faces, s.disk.rim, s.triangles, sharpest)) return -1;
+  Vec3 facing{0, 0, 0};  // the old disk's area vector
+  double sharpestBefore = -1;
+  for (std::uint32_t t : region) {
+    const Vec3 a = at(positions, mesh.triangles[3 * t]), b = at(positions, mesh.triangles[3 * t + 1]),
+               c = at(positions, mesh.triangles[3 * t + 2]);
+    facing += glm::cross(b - a, c - a);
+    sharpestBefore = std::max(sharpestBefore, sharpness(glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)));
   }
+  if (sharpest > std::max(sharpestBefore, kFair)) return -1;
   int axis = 0;
   for (int a = 1; a < 3; ++a)
     if (std::abs(facing[a]) > std::abs(facing[axis])) axis = a;
   const int view = axis + (facing[axis] < 0 ? 3 : 0);
-  const Vec3 inner = at(positions, s.fan.inner);
-  double distance = INFINITY;
   for (std::size_t t = 0; t < s.triangles.size(); t += 3) {
     const Vec3 a = at(positions, s.triangles[t]), b = at(positions, s.triangles[t + 1]), c = at(positions, s.triangles[t + 2]);
     if (!(glm::dot(glm::cross(b - a, c - a), facing) > 0)) return -1;
-    distance = std::min(distance, pointTriangleDistance(inner, a, b, c));
   }
-  if (!(distance <= kTolerance * voxel)) return -1;
-  return projectsOneToOne(positions, s.fan.rim.data(), s.fan.rim.size(), s.triangles.data(), view) ? view : -1;
+  for (std::uint32_t v : s.disk.inner) {  // each removed vertex near some new triangle
+    bool near = false;
+    for (std::size_t t = 0; t < s.triangles.size() && !near; t += 3)
+      near = pointTriangleDistance(at(positions, v), at(positions, s.triangles[t]), at(positions, s.triangles[t + 1]),
+                                   at(positions, s.triangles[t + 2])) <= kTolerance * voxel;
+    if (!near) return -1;
+  }
+  return projectsOneToOne(positions, s.disk.rim.data(), s.disk.rim.size(), s.triangles.data(), view) ? view : -1;
 }
 
 // Where each cube's triangles start (cell order groups them), and the end; empty if the
@@ -274,72 +343,131 @@ std::vector<std::uint32_t> cubeRuns(const MultiLabelMesh& mesh, int threads) {
   return runs;
 }
 
-struct Plans {
-  std::vector<std::int8_t> view;  // per run: its disk's view, -1: the fan stays
-  std::vector<char> removed;      // per vertex
+// Regions to try, each a list of runs (from cubeRuns): region i's are runs[start[i]..start[i+1]).
+struct Regions {
+  std::vector<std::uint32_t> start{0}, runs;
+  std::size_t count() const { return start.size() - 1; }
 };
 
-// Plans every cube in parallel, writing each one's new triangles over its first old ones (its
-// rim, for the disk record, over the rest of its slots in `rims`).
-Plans planCubes(MultiLabelMesh& mesh, double voxel, const std::vector<std::uint32_t>& runs, std::vector<std::uint32_t>& rims,
-                int threads) {
-  Plans plans{std::vector<std::int8_t>(runs.size() - 1, -1), std::vector<char>(mesh.vertexCount(), 0)};
-  rims.assign(mesh.triangleCount(), 0);
-  parallelChunks(runs.size() - 1, threads, [&](int, std::size_t first, std::size_t last) {
-    Scratch s;
-    for (std::size_t r = first; r < last; ++r) {
-      const int view = planCube(mesh, voxel, runs[r], runs[r + 1], s);
-      if (view < 0) continue;
-      plans.view[r] = static_cast<std::int8_t>(view);
-      plans.removed[s.fan.inner] = 1;  // no other cube holds it
-      std::copy(s.triangles.begin(), s.triangles.end(), mesh.triangles.begin() + 3 * std::ptrdiff_t{runs[r]});
-      std::copy(s.fan.rim.begin(), s.fan.rim.end(), rims.begin() + std::ptrdiff_t{runs[r]});
-    }
-  });
-  return plans;
+// Every cube alone.
+Regions cubesOf(std::size_t runCount) {
+  Regions out{std::vector<std::uint32_t>(runCount + 1), std::vector<std::uint32_t>(runCount)};
+  std::iota(out.start.begin(), out.start.end(), 0u), std::iota(out.runs.begin(), out.runs.end(), 0u);
+  return out;
 }
 
-// Drops the removed vertices (keys stay in order) and the two last slots of every re-triangulated
-// cube, renumbering; records the disks.
-CubeDisks compact(MultiLabelMesh& mesh, std::vector<bool>& onSheet, const std::vector<std::uint32_t>& runs, const Plans& plans,
-                  const std::vector<std::uint32_t>& rims) {
+// Every block of 2 x 2 cubes (at even voxel indices) with its cubes' runs, in key order.
+Regions blocksOf(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& runs) {
+  std::vector<std::pair<Key, std::uint32_t>> byBlock(runs.size() - 1);
+  for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
+    const auto c = unpack(cubeOf(mesh, runs[r]));
+    byBlock[r] = {packVertexKey(c[0] / 2, c[1] / 2, c[2]), static_cast<std::uint32_t>(r)};
+  }
+  std::sort(byBlock.begin(), byBlock.end());
+  Regions out;
+  out.runs.reserve(byBlock.size());
+  for (std::size_t i = 0; i < byBlock.size(); ++i) {
+    if (i > 0 && byBlock[i].first != byBlock[i - 1].first) out.start.push_back(static_cast<std::uint32_t>(i));
+    out.runs.push_back(byBlock[i].second);
+  }
+  out.start.push_back(static_cast<std::uint32_t>(byBlock.size()));
+  return out;
+}
+
+// The regions re-triangulated: each one's rim, the slots its new triangles went to, its view.
+struct Planned {
+  std::vector<std::uint32_t> rimStart{0}, rims, slotStart{0}, slots;
+  std::vector<std::uint8_t> views;
+
+  void add(const std::vector<std::uint32_t>& rim, const std::uint32_t* slotsUsed, std::size_t count, int view) {
+    rims.insert(rims.end(), rim.begin(), rim.end()), slots.insert(slots.end(), slotsUsed, slotsUsed + count);
+    rimStart.push_back(static_cast<std::uint32_t>(rims.size())), slotStart.push_back(static_cast<std::uint32_t>(slots.size()));
+    views.push_back(static_cast<std::uint8_t>(view));
+  }
+};
+
+// Plans each region whose runs are all free, in parallel; a planned region's new triangles go
+// over its first slots, its other slots die, its runs are taken and its inner vertices removed.
+// Results in region order.
+void planRegions(MultiLabelMesh& mesh, double voxel, const std::vector<std::uint32_t>& runs, const Regions& regions,
+                 std::uint64_t size, std::vector<char>& taken, std::vector<char>& removed, Planned& out, int threads) {
+  std::vector<Planned> perChunk(static_cast<std::size_t>(chunkCount(regions.count(), threads)));
+  parallelChunks(regions.count(), threads, [&](int chunk, std::size_t first, std::size_t last) {
+    Scratch s;
+    std::vector<std::uint32_t> slots;
+    for (std::size_t i = first; i < last; ++i) {
+      slots.clear();
+      bool free = true;
+      for (std::uint32_t k = regions.start[i]; k < regions.start[i + 1]; ++k) {
+        const std::uint32_t r = regions.runs[k];
+        free = free && !taken[r];
+        for (std::uint32_t t = runs[r]; t < runs[r + 1]; ++t) slots.push_back(t);
+      }
+      if (!free || slots.size() > kMostTriangles) continue;
+      if (size > 1 && regions.start[i + 1] - regions.start[i] < 2) continue;  // a block of one cube: its cube's turn
+      const auto c = unpack(cubeOf(mesh, slots.front()));
+      const Box box{{c[0] / size * size, c[1] / size * size, c[2]}, size};
+      const int view = planRegion(mesh, voxel, slots, box, s);
+      if (view < 0) continue;
+      for (std::uint32_t k = regions.start[i]; k < regions.start[i + 1]; ++k) taken[regions.runs[k]] = 1;
+      for (std::uint32_t v : s.disk.inner) removed[v] = 1;  // no other region holds it
+      const std::size_t kept = s.triangles.size() / 3;
+      for (std::size_t k = 0; k < slots.size(); ++k) {
+        std::uint32_t* tri = &mesh.triangles[3 * std::size_t{slots[k]}];
+        if (k < kept)
+          std::copy(&s.triangles[3 * k], &s.triangles[3 * k] + 3, tri);
+        else
+          tri[0] = kDead;
+      }
+      perChunk[static_cast<std::size_t>(chunk)].add(s.disk.rim, slots.data(), kept, view);
+    }
+  });
+  for (const Planned& c : perChunk)
+    for (std::size_t d = 0; d + 1 < c.rimStart.size(); ++d)
+      out.add({c.rims.begin() + c.rimStart[d], c.rims.begin() + c.rimStart[d + 1]}, &c.slots[c.slotStart[d]],
+              c.slotStart[d + 1] - c.slotStart[d], c.views[d]);
+}
+
+// Drops the removed vertices (keys stay in order) and the dead slots, renumbering; records the
+// disks.
+CubeDisks compact(MultiLabelMesh& mesh, std::vector<bool>& onSheet, const std::vector<char>& removed, const Planned& planned) {
   std::vector<std::uint32_t> newIndex(mesh.vertexCount());
   std::uint32_t kept = 0;
   for (std::size_t v = 0; v < newIndex.size(); ++v) {
     newIndex[v] = kept;
-    if (plans.removed[v]) continue;
-    for (int a = 0; a < 3; ++a)
-      mesh.positions[3 * kept + static_cast<std::uint32_t>(a)] = mesh.positions[3 * v + static_cast<std::size_t>(a)];
+    if (removed[v]) continue;
+    for (std::size_t a = 0; a < 3; ++a) mesh.positions[3 * std::size_t{kept} + a] = mesh.positions[3 * v + a];
     mesh.keys[kept] = mesh.keys[v];
     if (v < onSheet.size()) onSheet[kept] = onSheet[v];
     ++kept;
   }
   mesh.positions.resize(3 * std::size_t{kept}), mesh.keys.resize(kept);
   if (onSheet.size() > kept) onSheet.resize(kept);
-  CubeDisks disks;
+  std::vector<std::uint32_t> newSlot(mesh.triangleCount());
   std::size_t out = 0;
-  for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
-    const std::size_t size = runs[r + 1] - runs[r], keep = plans.view[r] < 0 ? size : size - 2;
-    if (plans.view[r] >= 0) {
-      disks.firstTriangle.push_back(static_cast<std::uint32_t>(out));
-      disks.view.push_back(static_cast<std::uint8_t>(plans.view[r]));
-      for (std::size_t i = 0; i < size; ++i) disks.rims.push_back(newIndex[rims[runs[r] + i]]);
-      disks.rimStart.push_back(static_cast<std::uint32_t>(disks.rims.size()));
-    }
-    for (std::size_t t = runs[r]; t < runs[r] + keep; ++t, ++out) {
-      for (int c = 0; c < 3; ++c)
-        mesh.triangles[3 * out + static_cast<std::size_t>(c)] = newIndex[mesh.triangles[3 * t + static_cast<std::size_t>(c)]];
-      mesh.labels[2 * out] = mesh.labels[2 * t], mesh.labels[2 * out + 1] = mesh.labels[2 * t + 1];
-    }
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    newSlot[t] = static_cast<std::uint32_t>(out);
+    if (mesh.triangles[3 * t] == kDead) continue;
+    for (std::size_t c = 0; c < 3; ++c) mesh.triangles[3 * out + c] = newIndex[mesh.triangles[3 * t + c]];
+    mesh.labels[2 * out] = mesh.labels[2 * t], mesh.labels[2 * out + 1] = mesh.labels[2 * t + 1];
+    ++out;
   }
   mesh.triangles.resize(3 * out), mesh.labels.resize(2 * out);
+  CubeDisks disks;
+  disks.rimStart = planned.rimStart, disks.triangleStart = planned.slotStart, disks.view = planned.views;
+  disks.rims.resize(planned.rims.size()), disks.triangles.resize(planned.slots.size());
+  for (std::size_t i = 0; i < planned.rims.size(); ++i) disks.rims[i] = newIndex[planned.rims[i]];
+  for (std::size_t i = 0; i < planned.slots.size(); ++i) disks.triangles[i] = newSlot[planned.slots[i]];
   return disks;
 }
 
 bool diskEmbedded(const CubeDisks& disks, const MultiLabelMesh& mesh, std::size_t d) {
-  const std::uint32_t* rim = &disks.rims[disks.rimStart[d]];
-  const std::size_t n = disks.rimStart[d + 1] - disks.rimStart[d];
-  return projectsOneToOne(mesh.positions.data(), rim, n, &mesh.triangles[3 * std::size_t{disks.firstTriangle[d]}], disks.view[d]);
+  std::array<std::uint32_t, 3 * kLongestRim> triangles;
+  std::size_t k = 0;
+  for (std::uint32_t i = disks.triangleStart[d]; i < disks.triangleStart[d + 1]; ++i)
+    for (std::size_t c = 0; c < 3; ++c) triangles[k++] = mesh.triangles[3 * std::size_t{disks.triangles[i]} + c];
+  return projectsOneToOne(mesh.positions.data(), &disks.rims[disks.rimStart[d]], disks.rimStart[d + 1] - disks.rimStart[d],
+                          triangles.data(), disks.view[d]);
 }
 
 }  // namespace
@@ -348,9 +476,14 @@ CubeDisks retriangulateCubeFans(MultiLabelMesh& mesh, const Grid& grid, std::vec
   if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return {};
   const std::vector<std::uint32_t> runs = cubeRuns(mesh, threads);
   if (runs.size() < 2) return {};
-  std::vector<std::uint32_t> rims;
-  const Plans plans = planCubes(mesh, std::min(grid.spacingX, grid.spacingY), runs, rims, threads);
-  return compact(mesh, onSheet, runs, plans, rims);
+  const double voxel = std::min(grid.spacingX, grid.spacingY);
+  std::vector<char> taken(runs.size() - 1, 0), removed(mesh.vertexCount(), 0);
+  Planned planned;
+  planRegions(mesh, voxel, runs, blocksOf(mesh, runs), 2, taken, removed, planned, threads);
+  planRegions(mesh, voxel, runs, cubesOf(runs.size() - 1), 1, taken, removed, planned, threads);
+  CubeDisks disks = compact(mesh, onSheet, removed, planned);
+  disks.removedVertices = static_cast<std::size_t>(std::count(removed.begin(), removed.end(), 1));
+  return disks;
 }
 
 bool disksEmbedded(const CubeDisks& disks, const MultiLabelMesh& mesh, int threads) {

@@ -14,24 +14,28 @@
 
 namespace scansurf {
 
-// The re-triangulated cubes: each one's rim and new triangles, and the axis along which its new
-// disk is seen one-to-one (what keeps it from folding onto itself when its rim moves).
+// The re-triangulated regions (cubes and blocks): each one's rim and new triangles, and the axis
+// along which its new disk is seen one-to-one (what keeps it from folding onto itself when its
+// rim moves).
 struct CubeDisks {
-  std::vector<std::uint32_t> rimStart{0};    // per disk, where its rim starts in `rims` (+ the end)
-  std::vector<std::uint32_t> rims;           // rim vertices in the triangles' orientation
-  std::vector<std::uint32_t> firstTriangle;  // per disk: its (rim size - 2) triangles start here
-  std::vector<std::uint8_t> view;            // per disk: the axis it is seen along, + 3 from below
+  std::vector<std::uint32_t> rimStart{0};       // per disk, where its rim starts in `rims` (+ the end)
+  std::vector<std::uint32_t> rims;              // rim vertices in the triangles' orientation
+  std::vector<std::uint32_t> triangleStart{0};  // per disk, where its (rim size - 2) triangles start in `triangles`
+  std::vector<std::uint32_t> triangles;         // mesh triangle indices
+  std::vector<std::uint8_t> view;               // per disk: the axis it is seen along, + 3 from below
+  std::size_t removedVertices = 0;              // the mesh lost these and twice as many triangles
 
-  std::size_t count() const { return firstTriangle.size(); }
+  std::size_t count() const { return view.size(); }
 };
 
-// Every voxel cube whose triangles carry one label pair and form a disk around the one vertex
-// strictly inside the cube (its rim on the cube's faces) gets the rim's triangulation with the
-// largest smallest angle that adds no edge inside one cube face, if that triangulation projects
-// one-to-one along an axis, faces the way the fan did and passes within 0.05 in-plane voxels of
-// the removed vertex. The new triangles lie in the open cube, so they meet no other cube's; the
-// rim (the curve on the cube's faces, contour planes included) and the shared interfaces stay
-// (cube_fans.cpp). Needs mesh.keys and triangles in cell order (assemblyMesh's; snapping and
+// Every block of 2 x 2 cubes (one layer thick, at even voxel indices), and then every cube not
+// in such a block, whose triangles carry one label pair and form one disk with its rim on the
+// box's faces and every other vertex strictly inside the box gets the rim's triangulation with
+// the largest smallest angle that adds no edge inside one face of the box, if that triangulation
+// projects one-to-one along an axis, faces the way the old disk did and passes within 0.05
+// in-plane voxels of every removed vertex. The new triangles lie in the open box, so they meet
+// no other box's; the rim (the curve on the box's faces, contour planes included) and the
+// shared interfaces stay (cube_fans.cpp). Needs mesh.keys and triangles in cell order (assemblyMesh's; snapping and
 // the quad diagonals keep it); a mesh out of that order is left as it is. Vertices stay in key
 // order; onSheet follows them. Deterministic for any thread count (0 = all).
 CubeDisks retriangulateCubeFans(MultiLabelMesh& mesh, const Grid& grid, std::vector<bool>& onSheet, int threads = 0);

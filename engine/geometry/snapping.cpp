@@ -407,6 +407,7 @@ void accumulate(SnappingReport& into, const SnappingReport& layer) {
   into.ran = into.ran || layer.ran;
   into.candidates += layer.candidates, into.points += layer.points, into.mergedVertices += layer.mergedVertices;
   into.removedTriangles += layer.removedTriangles, into.quadsFlipped += layer.quadsFlipped, into.cubeFans += layer.cubeFans;
+  into.fanVerticesRemoved += layer.fanVerticesRemoved;
   into.seconds += layer.seconds;
 }
 

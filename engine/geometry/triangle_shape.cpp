@@ -8,13 +8,13 @@
 namespace scansurf {
 
 ShapedTriangles shapeTriangles(MultiLabelMesh& mesh, const Grid& grid, double snapFraction, std::vector<bool>& onSheet,
-                               int threads) {
+                               bool cubeFans, int threads) {
   const auto start = std::chrono::steady_clock::now();
   ShapedTriangles out;
   out.report = snapToLattice(mesh, grid, snapFraction, onSheet, threads);
   out.report.quadsFlipped = chooseQuadDiagonals(mesh, threads);
-  out.disks = retriangulateCubeFans(mesh, grid, onSheet, threads);
-  out.report.cubeFans = out.disks.count();
+  if (cubeFans) out.disks = retriangulateCubeFans(mesh, grid, onSheet, threads);
+  out.report.cubeFans = out.disks.count(), out.report.fanVerticesRemoved = out.disks.removedVertices;
   out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

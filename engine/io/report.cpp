@@ -172,6 +172,7 @@ nlohmann::ordered_json snappingJson(const SnappingReport& r) {
           {"removed_triangles", r.removedTriangles},
           {"quads_flipped", r.quadsFlipped},
           {"cube_fans", r.cubeFans},
+          {"fan_vertices_removed", r.fanVerticesRemoved},
           {"seconds", r.seconds}};
 }
 

@@ -398,9 +398,13 @@ TEST_F(BuildOptionsTest, SimplificationThroughBuildKeepsEverySurface) {
   const SimplificationReport& r = simplified->surfaces.simplification;
   EXPECT_TRUE(r.ran);
   EXPECT_FALSE(plain->surfaces.simplification.ran);
-  EXPECT_EQ(r.trianglesBefore, plain->surfaces.mesh.triangleCount());
+  // Simplification starts from the mesh before the cubes' fans and ends with fewer triangles
+  // than the default's.
+  EXPECT_EQ(r.trianglesBefore, plain->surfaces.mesh.triangleCount() + 2 * plain->surfaces.snapping.fanVerticesRemoved);
+  EXPECT_EQ(simplified->surfaces.snapping.cubeFans, 0u);
   EXPECT_EQ(r.trianglesAfter, simplified->surfaces.mesh.triangleCount());
   EXPECT_LT(r.trianglesAfter, r.trianglesBefore * 4 / 5);
+  EXPECT_LT(r.trianglesAfter, plain->surfaces.mesh.triangleCount());
   EXPECT_GE(r.anglesAfter.min, r.anglesBefore.min - 1e-3);
   for (std::size_t f = 0; f < set.features.size(); ++f) {
     const MeshStats a = computeMeshStats(plain->surfaces.mesh.positions, plain->surfaces.features[f].triangles);

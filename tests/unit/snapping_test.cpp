@@ -1,6 +1,7 @@
-// Snapping crowded vertices onto voxel centres and choosing each quad's diagonal (issue 28), on
-// the CPU pipeline: makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh ->
-// smoothMesh -> snapToLattice -> chooseQuadDiagonals. Every shape the smoothing tests use,
+// The triangle shape steps (issue 28): snapping crowded vertices onto voxel centres, choosing
+// each quad's diagonal and re-triangulating the cubes' and blocks' fans, on the CPU pipeline:
+// makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh ->
+// shapeTriangles -> restoreVolumes. Every shape the smoothing tests use,
 // checked exactly afterwards: both conventions' surfaces, crossings, carriers, shared interfaces,
 // angles and counts (printed, and held as bounds), accuracy against the analytic surfaces.
 #include "geometry/snapping.h"
@@ -44,7 +45,7 @@ Snapped snapAndFlip(Built& b, std::vector<bool> onSheet, double fraction = kDefa
   std::vector<double> volumes;
   for (const MeshStats& s : surfaceStats(b, SurfaceConvention::Enclosing)) volumes.push_back(s.volume);
   Snapped out;
-  const ShapedTriangles shaped = shapeTriangles(b.mesh, b.grid, fraction, onSheet, threads);
+  const ShapedTriangles shaped = shapeTriangles(b.mesh, b.grid, fraction, onSheet, true, threads);
   EXPECT_EQ(onSheet.size(), b.mesh.vertexCount());
   EXPECT_TRUE(disksEmbedded(shaped.disks, b.mesh)) << b.set.source;
   out.report = shaped.report, out.flips = shaped.report.quadsFlipped;
@@ -96,8 +97,9 @@ void expectOneLabelPairAtSnappedPoints(const MultiLabelMesh& m) {
     }
 }
 
-// Smooths, snaps and flips `set`, checking every promise against the smoothed mesh; `fewer`: the
-// most of the smoothed triangle count snapping may keep (a bound, printed with the figures).
+// Smooths, snaps, flips and re-triangulates `set`, checking every promise against the smoothed
+// mesh; `fewer`: the most of the smoothed triangle count the three may keep (a bound, printed
+// with the figures).
 // Volumes within 1 % at any fraction: the restoration after snapping takes back what it moved.
 Built checkSnap(const ContourSet& set, double voxel, double fewer, double fraction = kDefaultSnap) {
   Built b = buildCpu(set, voxel);
@@ -116,25 +118,26 @@ Built checkSnap(const ContourSet& set, double voxel, double fewer, double fracti
   expectOneLabelPairAtSnappedPoints(b.mesh);
   const Angles after = minAngles(b.mesh);
   EXPECT_GE(after.p5, before.p5 - 0.1) << set.source;
-  EXPECT_EQ(trianglesBefore - b.mesh.triangleCount(), s.report.removedTriangles + 2 * s.report.cubeFans) << set.source;
+  EXPECT_EQ(trianglesBefore - b.mesh.triangleCount(), s.report.removedTriangles + 2 * s.report.fanVerticesRemoved) << set.source;
   EXPECT_LE(s.report.points, s.report.candidates) << set.source;
   EXPECT_LE(static_cast<double>(b.mesh.triangleCount()), fewer * static_cast<double>(trianglesBefore)) << set.source;
   std::printf(
       "[ figure   ] %-14s snap %.2f: %zu points of %zu candidates (%zu not disks), triangles %7zu -> "
-      "%7zu (%.2fx), %zu quads flipped, %zu cube fans (%zu restoration moves undone), min angle %4.1f -> %4.1f, "
+      "%7zu (%.2fx), %zu quads flipped, %zu cubes and blocks (%zu vertices; %zu restoration moves undone), min angle "
+      "%4.1f -> %4.1f, "
       "5%% %4.1f -> %4.1f; %.3f s\n",
       set.source.c_str(), fraction, s.report.points, s.report.candidates, s.report.candidates - s.report.points, trianglesBefore,
       b.mesh.triangleCount(), static_cast<double>(b.mesh.triangleCount()) / static_cast<double>(trianglesBefore), s.flips,
-      s.report.cubeFans, s.heldBack, before.min, after.min, before.p5, after.p5, seconds);
+      s.report.cubeFans, s.report.fanVerticesRemoved, s.heldBack, before.min, after.min, before.p5, after.p5, seconds);
   return b;
 }
 
 // ---------------------------------------------------------------- soundness on every shape
 
-TEST(Snapping, NestedSpheres) { checkSnap(nestedSpheresContours(), 1.0, 0.97); }
-TEST(Snapping, BranchingVessel) { checkSnap(yBranchContours(), 0.5, 0.97); }
-TEST(Snapping, Phantom) { checkSnap(phantomContours(), 3.0, 0.97); }
-TEST(Snapping, SphereWithSlicesAsThickAsPixels) { checkSnap(sphereContours(10, 1.0), 1.0, 0.97); }
+TEST(Snapping, NestedSpheres) { checkSnap(nestedSpheresContours(), 1.0, 0.7); }
+TEST(Snapping, BranchingVessel) { checkSnap(yBranchContours(), 0.5, 0.75); }
+TEST(Snapping, Phantom) { checkSnap(phantomContours(), 3.0, 0.7); }
+TEST(Snapping, SphereWithSlicesAsThickAsPixels) { checkSnap(sphereContours(10, 1.0), 1.0, 0.7); }
 TEST(Snapping, TheLargestFractionKeepsEveryPromise) {
   checkSnap(nestedSpheresContours(), 1.0, 0.9, 0.45);
   checkSnap(phantomContours(), 3.0, 0.9, 0.45);
@@ -142,7 +145,7 @@ TEST(Snapping, TheLargestFractionKeepsEveryPromise) {
 
 // Abutting structures still share every interface vertex.
 TEST(Snapping, AbuttingHalvesShareTheirInterface) {
-  const Built b = checkSnap(abuttingContours(10, 6, 2.5), 0.5, 0.98);
+  const Built b = checkSnap(abuttingContours(10, 6, 2.5), 0.5, 0.7);
   const InterfaceUse use = interfaceUse(b.mesh, b.features[0], b.features[1], 1, 2);
   EXPECT_GT(use.triangles, 0u);
   EXPECT_EQ(use.unshared, 0u);
@@ -164,7 +167,7 @@ TEST(Snapping, JunctionCurvesWhereThreeFeaturesMeetStay) {
       if (pairs[v].size() > 1) curveKeys.insert(b.mesh.keys[v]);
   }
   ASSERT_FALSE(curveKeys.empty());
-  const Built snapped = checkSnap(threeSectorsContours(), 0.5, 0.99);
+  const Built snapped = checkSnap(threeSectorsContours(), 0.5, 0.8);
   for (std::size_t t = 0; t < snapped.mesh.triangleCount(); ++t)
     pairsAfter.insert({snapped.mesh.labels[2 * t], snapped.mesh.labels[2 * t + 1]});
   EXPECT_EQ(pairsAfter, pairsBefore);
@@ -176,8 +179,8 @@ TEST(Snapping, JunctionCurvesWhereThreeFeaturesMeetStay) {
 // sheets is no disk), so no bar collapses through itself (surfacesLost: same components, genus).
 TEST(Snapping, ThinBarsDoNotCollapseThroughThemselves) {
   for (const double fraction : {kDefaultSnap, 0.2}) {
-    checkSnap(thinBarsContours(1.4), 1.0, 1.0, fraction);
-    checkSnap(thinBarsContours(2.2), 1.0, 1.0, fraction);
+    checkSnap(thinBarsContours(1.4), 1.0, 0.9, fraction);
+    checkSnap(thinBarsContours(2.2), 1.0, 0.9, fraction);
   }
 }
 
@@ -221,7 +224,7 @@ TEST(CubeFans, TrianglesOutOfCellOrderAreLeftAlone) {
   EXPECT_EQ(b.mesh.positions, before.positions);
 }
 
-// Each disk loses a vertex and two triangles; the rims stay as they were (every rim edge was an
+// Each disk loses its inner vertices and twice as many triangles; the rims stay as they were (every rim edge was an
 // edge before), and a vertex moved so that its disk folds is put back.
 TEST(CubeFans, RimsStayAndAFoldIsPutBack) {
   Built b = buildCpu(sphereContours(10, 2.0), 1.0);
@@ -233,8 +236,9 @@ TEST(CubeFans, RimsStayAndAFoldIsPutBack) {
   const MultiLabelMesh fans = b.mesh;
   const CubeDisks disks = retriangulateCubeFans(b.mesh, b.grid, sheet);
   ASSERT_GT(disks.count(), 100u);
-  EXPECT_EQ(fans.vertexCount() - b.mesh.vertexCount(), disks.count());
-  EXPECT_EQ(fans.triangleCount() - b.mesh.triangleCount(), 2 * disks.count());
+  EXPECT_GT(disks.removedVertices, disks.count()) << "blocks of 2 x 2 cubes lose more than one vertex";
+  EXPECT_EQ(fans.vertexCount() - b.mesh.vertexCount(), disks.removedVertices);
+  EXPECT_EQ(fans.triangleCount() - b.mesh.triangleCount(), 2 * disks.removedVertices);
   std::set<std::pair<std::uint64_t, std::uint64_t>> edgesBefore;
   for (std::size_t t = 0; t < fans.triangleCount(); ++t)
     for (int c = 0; c < 3; ++c)

@@ -45,13 +45,14 @@ struct SmoothingOptions {
 // when smoothing did not run. With several layers, the layers' sums.
 struct SnappingReport {
   bool ran = false;
-  std::size_t candidates = 0;        // voxel centres some vertex came within the fraction of
-  std::size_t points = 0;            // of them, snapped: now vertices
-  std::size_t mergedVertices = 0;    // vertices merged into them
-  std::size_t removedTriangles = 0;  // triangles that vanished
-  std::size_t quadsFlipped = 0;      // quads split along their other diagonal
-  std::size_t cubeFans = 0;          // cubes whose fan became its rim's triangles (a vertex, two triangles fewer each)
-  double seconds = 0;                // the three steps, inside the smoothing stage
+  std::size_t candidates = 0;          // voxel centres some vertex came within the fraction of
+  std::size_t points = 0;              // of them, snapped: now vertices
+  std::size_t mergedVertices = 0;      // vertices merged into them
+  std::size_t removedTriangles = 0;    // triangles that vanished
+  std::size_t quadsFlipped = 0;        // quads split along their other diagonal
+  std::size_t cubeFans = 0;            // cubes and 2 x 2 blocks whose surface became its rim's triangles
+  std::size_t fanVerticesRemoved = 0;  // the vertices they lost (and twice as many triangles)
+  double seconds = 0;                  // the three steps, inside the smoothing stage
 };
 
 }  // namespace scansurf
