@@ -105,7 +105,6 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
 // axis: every triangle turns the view's way (exact), and no two rim edges meet but neighbours at
 // their shared vertex (exact; collinear touches count as meeting).
 bool projectsOneToOne(const float* positions, const std::uint32_t* rim, std::size_t n, const std::uint32_t* triangles, int view) {
-  // n - 2 triangles: a disk with no vertex left inside
   const int axis = view % 3, u = (axis + 1) % 3, v = (axis + 2) % 3, sign = view < 3 ? 1 : -1;
   for (std::size_t t = 0; t + 2 < n; ++t)
     if (orient2d(at(positions, triangles[3 * t]), at(positions, triangles[3 * t + 1]), at(positions, triangles[3 * t + 2]), u,

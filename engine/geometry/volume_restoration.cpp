@@ -239,6 +239,7 @@ VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, c
   if (report.features == 0) return report;
   AngleGuard guard(mesh, minAngle, threads, &restorer.incident());
   std::vector<float> before;
+  if (disks && disks->count() == 0) disks = nullptr;  // nothing to keep unfolded: no copy of the positions a round
   std::vector<double> volumes = restorer.volumes(threads);
   report.worstBefore = worstError(volumes, targets, restored);
   for (int r = 0; r < kRounds && worstError(volumes, targets, restored) > kClose; ++r) {
