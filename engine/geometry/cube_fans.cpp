@@ -2,19 +2,28 @@
 // labels, the Freudenthal cut puts a vertex on each cut cube edge and face diagonal and one on
 // the body diagonal, and fans the surface around that last one; marching cubes (Lorensen &
 // Cline 1987) triangulates the same rim with no inner vertex. Where the surface is flat over a
-// block of 2 x 2 cubes, the vertices on the block's inner faces and edges go too.
+// box of 2 x 2 x 2, 2 x 2 x 1 or 1 x 1 x 2 cubes, the vertices on the box's inner faces and
+// edges go too (passes in that order, the 2-thick ones at both parities of z; then single cubes).
 //
-// Why the surfaces still never cross. A region is a box: a cube, or a block of 2 x 2 cubes one
-// layer thick. Its disk's rim lies on the box's faces (on cube edges, face diagonals or voxel
-// centres) and no new edge joins two vertices of one face, so every new triangle but its rim
-// edges lies in the open box, where no other region's triangle is (each lies in its own closed
-// tetrahedron or box); the rim edges are the ones the surface had, shared with the neighbouring
-// regions. Inside the box the new triangles are the only ones (the box carried one disk), and
-// they cannot meet each other: each projects along the disk's axis with the same orientation
-// (exact), and so does the rim, one-to-one, so the projection maps the disk onto the rim's
-// inside one-to-one (a locally one-to-one map of a disk with a simple boundary curve is). The
-// disk has the old rim, so it splits the box's voxel centres as the old surface did: the labels
-// on either side stay; the vertices removed were inside the box, on no other region's triangle.
+// Why the surfaces still never cross. A region is a box. Its disk's rim lies on the box's faces
+// (on cube edges, face diagonals or voxel centres) and no new edge joins two vertices of one
+// face, so every new triangle but its rim edges lies in the open box, where no other region's
+// triangle is (each lies in its own closed tetrahedron or box); the rim edges are the ones the
+// surface had, shared with the neighbouring regions. Inside the box the new triangles are the
+// only ones (the box carried one disk), and they cannot meet each other: each projects along
+// the disk's axis with the same orientation (exact), and so does the rim, one-to-one, so the
+// projection maps the disk onto the rim's inside one-to-one (a locally one-to-one map of a disk
+// with a simple boundary curve is). The disk has the old rim, so it splits the box's voxel
+// centres on its faces as the old surface did: the labels on either side stay; the vertices
+// removed were inside the box, on no other region's triangle.
+//
+// Why the contour planes stay. A box two layers thick has a lattice layer inside (a contour
+// plane or one between); its disk's cut there becomes the chord between the rim's two vertices
+// on the layer: no new triangle reaches from one side of the layer to the other, so the layer
+// cuts the new disk along that edge alone, and every removed vertex on the layer lies within
+// 0.05 in-plane voxels of it (so the cross-section moves no further). The old cut lies within
+// that distance too, so a 2 x 2 x 2 box's one inner voxel centre, if further, keeps its side; nearer,
+// the box is left.
 #include "geometry/cube_fans.h"
 
 #include <algorithm>
@@ -31,8 +40,8 @@ namespace scansurf {
 namespace {
 
 constexpr double kTolerance = 0.05;                        // in-plane voxels: how far a removed vertex may lie from the new disk
-constexpr std::size_t kLongestRim = 24;                    // a longer rim keeps its triangles
-constexpr std::size_t kMostTriangles = 48;                 // so does a region with more triangles
+constexpr std::size_t kLongestRim = 32;                    // a longer rim keeps its triangles
+constexpr std::size_t kMostTriangles = 96;                 // so does a region with more triangles
 constexpr std::size_t kMostVertices = kMostTriangles + 1;  // a disk has at most F + 1 vertices
 constexpr std::uint32_t kDead = UINT32_MAX;                // a triangle slot left empty
 // A new triangle may be sharper than the sharpest it replaces only if its smallest angle is at
@@ -57,10 +66,13 @@ Key cubeOf(const MultiLabelMesh& mesh, std::size_t t) {
   return packVertexKey(sum[0] / 36, sum[1] / 36, sum[2] / 36);
 }
 
-// A box of `size` x `size` x 1 cubes whose lowest voxel centre is `low` (voxel indices).
+// A box of `size` x `size` x `height` cubes whose lowest voxel centre is `low` (voxel indices).
 struct Box {
   std::array<std::uint64_t, 3> low{};
-  std::uint64_t size = 1;
+  std::uint64_t size = 1, height = 1;
+
+  // A box two layers thick has a layer inside: its key along z (0 if none).
+  std::uint64_t middle() const { return height == 2 ? 12 * (low[2] + 1) : 0; }
 };
 
 // Bit 2a (2a + 1): the key lies on the box's low (high) face across axis a; 0: inside.
@@ -68,7 +80,7 @@ int facesOf(Key key, const Box& box) {
   const auto k = unpack(key);
   int mask = 0;
   for (int a = 0; a < 3; ++a) {
-    const std::uint64_t low = 12 * box.low[a], high = low + 12 * (a < 2 ? box.size : 1);
+    const std::uint64_t low = 12 * box.low[a], high = low + 12 * (a < 2 ? box.size : box.height);
     mask |= (k[a] == low ? 1 : 0) << (2 * a) | (k[a] == high ? 2 : 0) << (2 * a);
   }
   return mask;
@@ -83,6 +95,12 @@ double sharpness(double ab, double bc, double ca) {
   return twiceProduct * twiceProduct * shortest / (4 * ab * bc * ca);
 }
 
+double pointSegmentDistance(const Vec3& p, const Vec3& s, const Vec3& e) {
+  const Vec3 d = e - s;
+  const double t = std::clamp(glm::dot(p - s, d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
+  return glm::length(p - (s + d * t));
+}
+
 double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 n = glm::cross(b - a, c - a);
   const double twiceArea = glm::length(n);
@@ -93,12 +111,7 @@ double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const 
         glm::dot(glm::cross(a - c, q - c), n) >= 0)
       return std::abs(glm::dot(p - a, unit));
   }
-  const auto segment = [&](const Vec3& s, const Vec3& e) {
-    const Vec3 d = e - s;
-    const double t = std::clamp(glm::dot(p - s, d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
-    return glm::length(p - (s + d * t));
-  };
-  return std::min({segment(a, b), segment(b, c), segment(c, a)});
+  return std::min({pointSegmentDistance(p, a, b), pointSegmentDistance(p, b, c), pointSegmentDistance(p, c, a)});
 }
 
 // Whether the disk (rim of n vertices, its n - 2 triangles) projects one-to-one along `view`'s
@@ -140,15 +153,21 @@ struct LocalMesh {
   std::array<std::uint8_t, kMostVertices> incident, anyOut;         // per vertex: triangles, one edge out
   std::array<std::array<std::uint8_t, 3>, kMostTriangles> corners;  // per triangle, local indices
   std::size_t vertices = 0;
+  // Open addressing from vertex id to local index + 1 (0: empty): a region meets each of its
+  // vertices about six times, and a linear search over ids cost more than the rest of reading.
+  static constexpr std::size_t kSlots = 256;  // a power of two, over twice kMostVertices
+  std::array<std::uint32_t, kSlots> slotIds;
+  std::array<std::uint8_t, kSlots> slotLocal;
 
   std::uint8_t& third(std::size_t a, std::size_t b) { return thirds[a * kMostVertices + b]; }
-  // The local index of v, added (its row and column of `thirds` cleared) if new; kMostVertices if full.
+  // The local index of v, added if new; kMostVertices if full.
   std::size_t local(std::uint32_t v) {
-    for (std::size_t i = 0; i < vertices; ++i)
-      if (ids[i] == v) return i;
+    std::size_t slot = (v * 2654435761u) >> 24;  // Knuth's multiplicative hash, top 8 of 32 bits
+    for (; slotLocal[slot] != 0; slot = (slot + 1) & (kSlots - 1))
+      if (slotIds[slot] == v) return slotLocal[slot] - 1u;
     if (vertices == kMostVertices) return kMostVertices;
-    for (std::size_t i = 0; i <= vertices; ++i) third(vertices, i) = 0, third(i, vertices) = 0;
-    ids[vertices] = v, incident[vertices] = 0;
+    slotIds[slot] = v, slotLocal[slot] = static_cast<std::uint8_t>(vertices + 1);
+    ids[vertices] = v;
     return vertices++;
   }
   // Reads the region's triangles; false if one label pair does not hold them all, a directed
@@ -156,15 +175,20 @@ struct LocalMesh {
   bool read(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& triangles) {
     const std::size_t first = triangles.front();
     vertices = 0;
+    slotLocal.fill(0);
     for (std::size_t i = 0; i < triangles.size(); ++i) {
       const std::size_t t = triangles[i];
       if (mesh.labels[2 * t] != mesh.labels[2 * first] || mesh.labels[2 * t + 1] != mesh.labels[2 * first + 1]) return false;
-      std::array<std::uint8_t, 3>& c = corners[i];
       for (std::size_t k = 0; k < 3; ++k) {
         const std::size_t a = local(mesh.triangles[3 * t + k]);
         if (a == kMostVertices) return false;
-        c[k] = static_cast<std::uint8_t>(a);
+        corners[i][k] = static_cast<std::uint8_t>(a);
       }
+    }
+    std::fill_n(thirds.begin(), vertices * kMostVertices, std::uint8_t{0});
+    std::fill_n(incident.begin(), vertices, std::uint8_t{0});
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+      const std::array<std::uint8_t, 3>& c = corners[i];
       for (std::size_t k = 0; k < 3; ++k) {
         std::uint8_t& t3 = third(c[k], c[(k + 1) % 3]);
         if (t3 != 0) return false;
@@ -231,17 +255,19 @@ bool diskOf(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& triang
   return !disk.inner.empty();
 }
 
-// The rim's triangulation with the largest smallest angle and no edge between two vertices on
-// one face of the box (dynamic programming over sub-polygons); false if there is none.
-bool triangulateRim(const std::vector<Vec3>& p, const std::vector<int>& faces, const std::vector<std::uint32_t>& rim,
-                    std::vector<std::uint32_t>& out, double& sharpest) {
+// The rim's triangulation with the largest smallest angle, no edge between two vertices on one
+// face of the box and none from one side of its middle layer to the other (`sides`: -1 below, 0
+// on, 1 above; all 1 in a box one layer thick), by dynamic programming over sub-polygons; false
+// if there is none.
+bool triangulateRim(const std::vector<Vec3>& p, const std::vector<int>& faces, const std::vector<int>& sides,
+                    const std::vector<std::uint32_t>& rim, std::vector<std::uint32_t>& out, double& sharpest) {
   const std::size_t n = p.size();
   if (n == 3 && (faces[0] & faces[1] & faces[2])) return false;  // a triangle in one face
   std::array<double, kLongestRim * kLongestRim> square;          // squared distances between rim vertices
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) square[i * n + j] = glm::dot(p[j] - p[i], p[j] - p[i]);
   const auto allowed = [&](std::size_t i, std::size_t j) {
-    return j - i == 1 || (i == 0 && j == n - 1) || !(faces[i] & faces[j]);
+    return j - i == 1 || (i == 0 && j == n - 1) || (!(faces[i] & faces[j]) && sides[i] * sides[j] >= 0);
   };
   std::array<double, kLongestRim * kLongestRim> worst;  // of sub-polygon i..j: its sharpest triangle's sharpness
   std::array<std::uint8_t, kLongestRim * kLongestRim> split;
@@ -278,19 +304,59 @@ struct Scratch {
   LocalMesh local;
   Disk disk;
   std::vector<Vec3> points;
-  std::vector<int> faces;
+  std::vector<int> faces, sides;
   std::vector<std::uint32_t> triangles;
 };
 
+// The side of a box's middle layer a key lies on: -1 below, 0 on, 1 above (1 if no middle).
+int sideOf(Key key, const Box& box) {
+  const std::uint64_t z = unpack(key)[2], middle = box.middle();
+  return middle == 0 || z > middle ? 1 : z < middle ? -1 : 0;
+}
+
+// In a box two layers thick, the disk's cut by the middle layer becomes the chord between its two
+// rim vertices there: true if it has two, each removed vertex on the layer lies within
+// `tolerance` of the chord (so the cross-section moves no further), and the new triangles keep
+// to either side (triangulateRim), so the layer cuts them along the chord only. The old cut lies
+// within `tolerance` of the chord too (its vertices do, and so their segments), so a voxel
+// centre further from the chord keeps its side: a block's one inner centre must be.
+bool chordKeepsCrossSection(const MultiLabelMesh& mesh, const Grid& grid, const Box& box, const Scratch& s, double tolerance) {
+  if (box.middle() == 0) return true;
+  std::array<std::uint32_t, 2> ends{};
+  std::size_t onLayer = 0;
+  for (std::size_t i = 0; i < s.disk.rim.size(); ++i)
+    if (s.sides[i] == 0) {
+      if (onLayer < 2) ends[onLayer] = s.disk.rim[i];
+      ++onLayer;
+    }
+  if (onLayer != 2) return false;
+  const float* positions = mesh.positions.data();
+  const Vec3 a = at(positions, ends[0]), b = at(positions, ends[1]);
+  if (box.size == 2) {  // the inner voxel centre, on the layer
+    const Vec3 centre{grid.originX + grid.spacingX * static_cast<double>(box.low[0] + 1),
+                      grid.originY + grid.spacingY * static_cast<double>(box.low[1] + 1), a[2]};
+    if (!(pointSegmentDistance(centre, a, b) > tolerance)) return false;
+  }
+  for (std::uint32_t v : s.disk.inner)
+    if (sideOf(mesh.keys[v], box) == 0 && pointSegmentDistance(at(positions, v), a, b) > tolerance) return false;
+  return true;
+}
+
 // Plans a region (its triangles, in slot order): on success its new triangles are in
 // s.triangles and its view returned (else -1).
-int planRegion(const MultiLabelMesh& mesh, double voxel, const std::vector<std::uint32_t>& region, const Box& box, Scratch& s) {
+int planRegion(const MultiLabelMesh& mesh, const Grid& grid, const std::vector<std::uint32_t>& region, const Box& box,
+               Scratch& s) {
+  const double tolerance = kTolerance * std::min(grid.spacingX, grid.spacingY);
   if (!diskOf(mesh, region, box, s.local, s.disk)) return -1;
   const float* positions = mesh.positions.data();
-  s.points.clear(), s.faces.clear();
-  for (std::uint32_t v : s.disk.rim) s.points.push_back(at(positions, v)), s.faces.push_back(facesOf(mesh.keys[v], box));
+  s.points.clear(), s.faces.clear(), s.sides.clear();
+  for (std::uint32_t v : s.disk.rim) {
+    s.points.push_back(at(positions, v)), s.faces.push_back(facesOf(mesh.keys[v], box));
+    s.sides.push_back(sideOf(mesh.keys[v], box));
+  }
+  if (!chordKeepsCrossSection(mesh, grid, box, s, tolerance)) return -1;
   double sharpest = 1;
-  if (!triangulateRim(s.points, s.faces, s.disk.rim, s.triangles, sharpest)) return -1;
+  if (!triangulateRim(s.points, s.faces, s.sides, s.disk.rim, s.triangles, sharpest)) return -1;
   Vec3 facing{0, 0, 0};  // the old disk's area vector
   double sharpestBefore = -1;
   for (std::uint32_t t : region) {
@@ -312,7 +378,7 @@ int planRegion(const MultiLabelMesh& mesh, double voxel, const std::vector<std::
     bool near = false;
     for (std::size_t t = 0; t < s.triangles.size() && !near; t += 3)
       near = pointTriangleDistance(at(positions, v), at(positions, s.triangles[t]), at(positions, s.triangles[t + 1]),
-                                   at(positions, s.triangles[t + 2])) <= kTolerance * voxel;
+                                   at(positions, s.triangles[t + 2])) <= tolerance;
     if (!near) return -1;
   }
   return projectsOneToOne(positions, s.disk.rim.data(), s.disk.rim.size(), s.triangles.data(), view) ? view : -1;
@@ -355,12 +421,30 @@ Regions cubesOf(std::size_t runCount) {
   return out;
 }
 
-// Every block of 2 x 2 cubes (at even voxel indices) with its cubes' runs, in key order.
-Regions blocksOf(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& runs) {
-  std::vector<std::pair<Key, std::uint32_t>> byBlock(runs.size() - 1);
-  for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
-    const auto c = unpack(cubeOf(mesh, runs[r]));
-    byBlock[r] = {packVertexKey(c[0] / 2, c[1] / 2, c[2]), static_cast<std::uint32_t>(r)};
+// The boxes a pass tries: `size` x `size` x `height` cubes, at voxel indices that are multiples
+// of the size in x and y and, less `offset`, of the height in z.
+struct BoxShape {
+  std::uint64_t size = 1, height = 1, offset = 0;
+
+  std::uint64_t cubes() const { return size * size * height; }
+  std::array<std::uint64_t, 3> blockOf(const std::array<std::uint64_t, 3>& cube) const {
+    return {cube[0] / size, cube[1] / size, (cube[2] + offset) / height};
+  }
+  // The box holding a cube; false where it would reach below the volume.
+  bool boxOf(const std::array<std::uint64_t, 3>& cube, Box& box) const {
+    const auto b = blockOf(cube);
+    if (b[2] * height < offset) return false;
+    box = {{b[0] * size, b[1] * size, b[2] * height - offset}, size, height};
+    return true;
+  }
+};
+
+// Every block of the shape's boxes with its cubes' runs, in key order.
+Regions blocksOf(const std::vector<Key>& cubes, const BoxShape& shape) {
+  std::vector<std::pair<Key, std::uint32_t>> byBlock(cubes.size());
+  for (std::size_t r = 0; r < cubes.size(); ++r) {
+    const auto b = shape.blockOf(unpack(cubes[r]));
+    byBlock[r] = {packVertexKey(b[0], b[1], b[2]), static_cast<std::uint32_t>(r)};
   }
   std::sort(byBlock.begin(), byBlock.end());
   Regions out;
@@ -388,8 +472,9 @@ struct Planned {
 // Plans each region whose runs are all free, in parallel; a planned region's new triangles go
 // over its first slots, its other slots die, its runs are taken and its inner vertices removed.
 // Results in region order.
-void planRegions(MultiLabelMesh& mesh, double voxel, const std::vector<std::uint32_t>& runs, const Regions& regions,
-                 std::uint64_t size, std::vector<char>& taken, std::vector<char>& removed, Planned& out, int threads) {
+void planRegions(MultiLabelMesh& mesh, const Grid& grid, const std::vector<std::uint32_t>& runs, const std::vector<Key>& cubes,
+                 const Regions& regions, const BoxShape& shape, std::vector<char>& taken, std::vector<char>& removed,
+                 Planned& out, int threads) {
   std::vector<Planned> perChunk(static_cast<std::size_t>(chunkCount(regions.count(), threads)));
   parallelChunks(regions.count(), threads, [&](int chunk, std::size_t first, std::size_t last) {
     Scratch s;
@@ -403,10 +488,10 @@ void planRegions(MultiLabelMesh& mesh, double voxel, const std::vector<std::uint
         for (std::uint32_t t = runs[r]; t < runs[r + 1]; ++t) slots.push_back(t);
       }
       if (!free || slots.size() > kMostTriangles) continue;
-      if (size > 1 && regions.start[i + 1] - regions.start[i] < 2) continue;  // a block of one cube: its cube's turn
-      const auto c = unpack(cubeOf(mesh, slots.front()));
-      const Box box{{c[0] / size * size, c[1] / size * size, c[2]}, size};
-      const int view = planRegion(mesh, voxel, slots, box, s);
+      if (shape.cubes() > 1 && regions.start[i + 1] - regions.start[i] < 2) continue;  // a block of one cube: its cube's turn
+      Box box;
+      if (!shape.boxOf(unpack(cubes[regions.runs[regions.start[i]]]), box)) continue;
+      const int view = planRegion(mesh, grid, slots, box, s);
       if (view < 0) continue;
       for (std::uint32_t k = regions.start[i]; k < regions.start[i + 1]; ++k) taken[regions.runs[k]] = 1;
       for (std::uint32_t v : s.disk.inner) removed[v] = 1;  // no other region holds it
@@ -475,11 +560,13 @@ CubeDisks retriangulateCubeFans(MultiLabelMesh& mesh, const Grid& grid, std::vec
   if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return {};
   const std::vector<std::uint32_t> runs = cubeRuns(mesh, threads);
   if (runs.size() < 2) return {};
-  const double voxel = std::min(grid.spacingX, grid.spacingY);
   std::vector<char> taken(runs.size() - 1, 0), removed(mesh.vertexCount(), 0);
   Planned planned;
-  planRegions(mesh, voxel, runs, blocksOf(mesh, runs), 2, taken, removed, planned, threads);
-  planRegions(mesh, voxel, runs, cubesOf(runs.size() - 1), 1, taken, removed, planned, threads);
+  std::vector<Key> cubes(runs.size() - 1);  // each run's cube, read before any pass rewrites its triangles
+  for (std::size_t r = 0; r < cubes.size(); ++r) cubes[r] = cubeOf(mesh, runs[r]);
+  for (const BoxShape shape : {BoxShape{2, 2, 0}, BoxShape{2, 2, 1}, BoxShape{2, 1, 0}, BoxShape{1, 2, 0}, BoxShape{1, 2, 1}})
+    planRegions(mesh, grid, runs, cubes, blocksOf(cubes, shape), shape, taken, removed, planned, threads);
+  planRegions(mesh, grid, runs, cubes, cubesOf(cubes.size()), BoxShape{}, taken, removed, planned, threads);
   CubeDisks disks = compact(mesh, onSheet, removed, planned);
   disks.removedVertices = static_cast<std::size_t>(std::count(removed.begin(), removed.end(), 1));
   return disks;

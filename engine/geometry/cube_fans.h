@@ -1,8 +1,8 @@
-// scansurf: fewer triangles where a separating surface crosses a voxel cube as one fan (issue
-// 28). The Freudenthal cut gives a flat wall about eight triangles per cube, around a vertex on
-// the cube's body diagonal; marching cubes gives two. Where a cube's surface is one label pair's
-// disk around its one vertex inside the cube, that vertex goes and the disk's rim is
-// triangulated again: a vertex and two triangles fewer per cube, nothing else moved.
+// scansurf: fewer triangles where a separating surface crosses voxel cubes as fans (issue 28).
+// The Freudenthal cut gives a flat wall about eight triangles per cube, around a vertex on the
+// cube's body diagonal; marching cubes gives two. Where a cube's (or a box of cubes') surface is
+// one label pair's disk, the vertices inside go and the disk's rim is triangulated again: a
+// vertex and two triangles fewer for each, nothing else moved.
 #pragma once
 
 #include <cstddef>
@@ -28,16 +28,19 @@ struct CubeDisks {
   std::size_t count() const { return view.size(); }
 };
 
-// Every block of 2 x 2 cubes (one layer thick, at even voxel indices), and then every cube not
-// in such a block, whose triangles carry one label pair and form one disk with its rim on the
-// box's faces and every other vertex strictly inside the box gets the rim's triangulation with
-// the largest smallest angle that adds no edge inside one face of the box, if that triangulation
-// projects one-to-one along an axis, faces the way the old disk did and passes within 0.05
-// in-plane voxels of every removed vertex. The new triangles lie in the open box, so they meet
-// no other box's; the rim (the curve on the box's faces, contour planes included) and the
-// shared interfaces stay (cube_fans.cpp). Needs mesh.keys and triangles in cell order (assemblyMesh's; snapping and
-// the quad diagonals keep it); a mesh out of that order is left as it is. Vertices stay in key
-// order; onSheet follows them. Deterministic for any thread count (0 = all).
+// Every box of 2 x 2 x 2 cubes, then 2 x 2 x 1, then 1 x 1 x 2 (at even voxel indices in x and
+// y, both parities in z where two thick), and then every cube not in such a box, whose triangles
+// carry one label pair and form one disk with its rim on the box's faces and every other vertex
+// strictly inside the box gets the rim's triangulation with the largest smallest angle that adds
+// no edge inside one face of the box nor across its middle layer, if that triangulation projects
+// one-to-one along an axis, faces the way the old disk did, passes within 0.05 in-plane voxels
+// of every removed vertex, is no sharper than both 15 degrees and the sharpest triangle it
+// replaces and, two layers thick, cuts its middle layer along one chord within 0.05 in-plane
+// voxels of the old cut and further than that from the box's inner voxel centre. The new
+// triangles lie in the open box, so they meet no other box's; the rim and the shared interfaces
+// stay (cube_fans.cpp). Needs mesh.keys and triangles in cell order (assemblyMesh's; snapping
+// and the quad diagonals keep it); a mesh out of that order is left as it is. Vertices stay in
+// key order; onSheet follows them. Deterministic for any thread count (0 = all).
 CubeDisks retriangulateCubeFans(MultiLabelMesh& mesh, const Grid& grid, std::vector<bool>& onSheet, int threads = 0);
 
 // Whether every disk's new triangles and rim still project one-to-one along its axis (exact).

@@ -258,6 +258,34 @@ TEST(CubeFans, RimsStayAndAFoldIsPutBack) {
   EXPECT_EQ(b.mesh.positions, before);
 }
 
+// Boxes two layers thick: some disks span two layers, and no triangle crosses a lattice layer
+// (each keeps to one side of its box's middle layer, so the layer cuts the disk along its chord,
+// which the accuracy test below holds within 0.05 pixel of the contours).
+TEST(CubeFans, DisksTwoLayersThickCutAlongTheirMiddleLayer) {
+  for (const auto& [set, voxel] : {std::pair{sphereContours(10, 2.0), 1.0}, std::pair{torusContours(10, 4, 2.0), 1.0},
+                                   std::pair{phantomContours(), 3.0}, std::pair{nestedSpheresContours(), 1.0}}) {
+    Built b = buildCpu(set, voxel);
+    std::vector<bool> sheet = smoothWithDefaults(b).onSheet;
+    snapToLattice(b.mesh, b.grid, kDefaultSnap, sheet);
+    chooseQuadDiagonals(b.mesh);
+    const CubeDisks disks = retriangulateCubeFans(b.mesh, b.grid, sheet);
+    const auto zKey = [&](std::uint32_t v) { return b.mesh.keys[v] >> (2 * kKeyBits); };
+    std::size_t thick = 0;
+    for (std::size_t d = 0; d < disks.count(); ++d) {
+      const auto [low, high] = std::minmax_element(&disks.rims[disks.rimStart[d]], &disks.rims[disks.rimStart[d + 1]],
+                                                   [&](std::uint32_t u, std::uint32_t v) { return zKey(u) < zKey(v); });
+      thick += zKey(*high) - zKey(*low) == 24;
+    }
+    std::printf("[ figure   ] %-14s %zu of %zu disks two layers thick\n", set.source.c_str(), thick, disks.count());
+    EXPECT_GT(thick, disks.count() / 50) << set.source;
+    for (std::size_t t = 0; t < b.mesh.triangleCount(); ++t) {
+      const std::uint32_t* c = &b.mesh.triangles[3 * t];
+      const auto [low, high] = std::minmax({zKey(c[0]), zKey(c[1]), zKey(c[2])});
+      ASSERT_LE(high - low, 12u) << set.source << " triangle " << t << " crosses a layer";
+    }
+  }
+}
+
 // ---------------------------------------------------------------- accuracy
 
 // The sphere and torus at 1 mm pixels, 2 mm slices: snapping at the default keeps the mean
