@@ -50,7 +50,7 @@ struct SnappingReport {
   std::size_t mergedVertices = 0;      // vertices merged into them
   std::size_t removedTriangles = 0;    // triangles that vanished
   std::size_t quadsFlipped = 0;        // quads split along their other diagonal
-  std::size_t cubeFans = 0;            // cubes and 2 x 2 blocks whose surface became its rim's triangles
+  std::size_t cubeFans = 0;            // cubes and boxes (up to 2 x 2 x 2) whose surface became its rim's triangles
   std::size_t fanVerticesRemoved = 0;  // the vertices they lost (and twice as many triangles)
   double seconds = 0;                  // the three steps, inside the smoothing stage
 };
