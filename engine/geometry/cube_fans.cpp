@@ -33,6 +33,7 @@
 
 #include "core/parallel.h"
 #include "geometry/assembly.h"
+#include "geometry/carrier_projection.h"
 #include "geometry/triangle_intersection.h"
 #include "geometry/vec3.h"
 
@@ -333,9 +334,8 @@ bool chordKeepsCrossSection(const MultiLabelMesh& mesh, const Grid& grid, const 
   const float* positions = mesh.positions.data();
   const Vec3 a = at(positions, ends[0]), b = at(positions, ends[1]);
   if (box.size == 2) {  // the inner voxel centre, on the layer
-    const Vec3 centre{grid.originX + grid.spacingX * static_cast<double>(box.low[0] + 1),
-                      grid.originY + grid.spacingY * static_cast<double>(box.low[1] + 1), a[2]};
-    if (!(pointSegmentDistance(centre, a, b) > tolerance)) return false;
+    const int centre[3] = {static_cast<int>(box.low[0] + 1), static_cast<int>(box.low[1] + 1), static_cast<int>(box.low[2] + 1)};
+    if (!(pointSegmentDistance(cornerPosition(grid, centre), a, b) > tolerance)) return false;
   }
   for (std::uint32_t v : s.disk.inner)
     if (sideOf(mesh.keys[v], box) == 0 && pointSegmentDistance(at(positions, v), a, b) > tolerance) return false;
