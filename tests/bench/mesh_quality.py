@@ -24,12 +24,11 @@ from wireframe import read_ply  # noqa: E402
 
 
 def smallest_angles(v, f):
-    """Each triangle's smallest angle in degrees."""
+    """Each triangle's smallest angle in degrees (v: points, f: triangles as rows of 3 indices)."""
     corners = []
     for a, b, c in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
         u, w = v[f[:, b]] - v[f[:, a]], v[f[:, c]] - v[f[:, a]]
-        lengths = np.maximum(np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1), 1e-300)
-        corners.append(np.degrees(np.arccos(np.clip((u * w).sum(1) / lengths, -1, 1))))
+        corners.append(np.degrees(np.arctan2(np.linalg.norm(np.cross(u, w), axis=1), (u * w).sum(1))))
     return np.minimum.reduce(corners)
 
 

@@ -40,18 +40,14 @@ def angle_figures(surfaces):
     """Smallest angle of every triangle, degrees: the least, the 5th percentile, the share under 5."""
     import numpy as np
     from vtk.util.numpy_support import vtk_to_numpy
+    from mesh_quality import smallest_angles  # beside this script
     smallest = []
     for poly in surfaces:
         if poly.GetNumberOfPolys() == 0:
             continue
         points = vtk_to_numpy(poly.GetPoints().GetData()).astype(np.float64)
         cells = vtk_to_numpy(poly.GetPolys().GetData()).reshape(-1, 4)[:, 1:]
-        a, b, c = points[cells[:, 0]], points[cells[:, 1]], points[cells[:, 2]]
-
-        def angle(p, q, r):
-            u, w = q - p, r - p
-            return np.degrees(np.arctan2(np.linalg.norm(np.cross(u, w), axis=1), (u * w).sum(1)))
-        smallest.append(np.minimum(np.minimum(angle(a, b, c), angle(b, c, a)), angle(c, a, b)))
+        smallest.append(smallest_angles(points, cells))
     m = np.concatenate(smallest)
     return {"min_angle": float(m.min()), "p5_angle": float(np.percentile(m, 5)), "under_5": float((m < 5).mean())}
 

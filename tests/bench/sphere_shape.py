@@ -16,6 +16,7 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mesh_quality import smallest_angles  # noqa: E402
 from wireframe import read_ply  # noqa: E402
 
 
@@ -46,13 +47,7 @@ def main():
     error = np.degrees(np.arccos(np.clip(cosine, -1, 1)))
     order = np.argsort(error)
     p95 = error[order][np.searchsorted(np.cumsum(area[order]) / area.sum(), 0.95)]
-
-    def corner(a, b, c):
-        u, w = b - a, c - a
-        return np.degrees(np.arccos(np.clip((u * w).sum(1) / (np.linalg.norm(u, axis=1) * np.linalg.norm(w, axis=1)), -1, 1)))
-
-    smallest = np.minimum(np.minimum(corner(p[:, 0], p[:, 1], p[:, 2]), corner(p[:, 1], p[:, 2], p[:, 0])),
-                          corner(p[:, 2], p[:, 0], p[:, 1]))
+    smallest = smallest_angles(v, faces)
     print("sphere r 20, 1 mm / 3 mm, %s: %d faces; face normal error mean %.1f, 95th percentile %.1f deg; "
           "smallest angle %.1f, 5th percentile %.1f deg" % (" ".join(flags) or "defaults", len(faces),
                                                            (error * area).sum() / area.sum(), p95, smallest.min(),
