@@ -21,9 +21,9 @@
 // plane or one between); its disk's cut there becomes the chord between the rim's two vertices
 // on the layer: no new triangle reaches from one side of the layer to the other, so the layer
 // cuts the new disk along that edge alone, and every removed vertex on the layer lies within
-// 0.05 in-plane voxels of it (so the cross-section moves no further). The old cut lies within
-// that distance too, so a 2 x 2 x 2 box's one inner voxel centre, if further, keeps its side; nearer,
-// the box is left.
+// 0.05 of the box's finest lattice spacing of it (so the cross-section moves no further). The
+// old cut lies within that distance too, so a 2 x 2 x 2 box's one inner voxel centre, if
+// further, keeps its side; nearer, the box is left.
 #include "geometry/cube_fans.h"
 
 #include <algorithm>
@@ -40,9 +40,9 @@
 namespace scansurf {
 namespace {
 
-constexpr double kTolerance = 0.05;                        // in-plane voxels: how far a removed vertex may lie from the new disk
-constexpr std::size_t kLongestRim = 32;                    // a longer rim keeps its triangles
-constexpr std::size_t kMostTriangles = 96;                 // so does a region with more triangles
+constexpr double kTolerance = 0.05;         // of the box's finest spacing: how far a removed vertex may lie from the new disk
+constexpr std::size_t kLongestRim = 32;     // a longer rim keeps its triangles
+constexpr std::size_t kMostTriangles = 96;  // so does a region with more triangles
 constexpr std::size_t kMostVertices = kMostTriangles + 1;  // a disk has at most F + 1 vertices
 constexpr std::uint32_t kDead = UINT32_MAX;                // a triangle slot left empty
 // A new triangle may be sharper than the sharpest it replaces only if its smallest angle is at
@@ -342,11 +342,20 @@ bool chordKeepsCrossSection(const MultiLabelMesh& mesh, const Grid& grid, const 
   return true;
 }
 
+// The box's finest lattice spacing: the pixel, or a layer gap inside it where the layers lie
+// closer (slices thinner than the pixels), so that the tolerance is a share of the lattice there.
+double finestSpacing(const Grid& grid, const Box& box) {
+  double finest = std::min(grid.spacingX, grid.spacingY);
+  for (std::uint64_t k = box.low[2]; k < box.low[2] + box.height; ++k)
+    finest = std::min(finest, grid.layerZ[k + 1] - grid.layerZ[k]);
+  return finest;
+}
+
 // Plans a region (its triangles, in slot order): on success its new triangles are in
 // s.triangles and its view returned (else -1).
 int planRegion(const MultiLabelMesh& mesh, const Grid& grid, const std::vector<std::uint32_t>& region, const Box& box,
                Scratch& s) {
-  const double tolerance = kTolerance * std::min(grid.spacingX, grid.spacingY);
+  const double tolerance = kTolerance * finestSpacing(grid, box);
   if (!diskOf(mesh, region, box, s.local, s.disk)) return -1;
   const float* positions = mesh.positions.data();
   s.points.clear(), s.faces.clear(), s.sides.clear();

@@ -33,14 +33,15 @@ struct CubeDisks {
 // carry one label pair and form one disk with its rim on the box's faces and every other vertex
 // strictly inside the box gets the rim's triangulation with the largest smallest angle that adds
 // no edge inside one face of the box nor across its middle layer, if that triangulation projects
-// one-to-one along an axis, faces the way the old disk did, passes within 0.05 in-plane voxels
-// of every removed vertex, is no sharper than both 15 degrees and the sharpest triangle it
-// replaces and, two layers thick, cuts its middle layer along one chord within 0.05 in-plane
-// voxels of the old cut and further than that from the box's inner voxel centre. The new
-// triangles lie in the open box, so they meet no other box's; the rim and the shared interfaces
-// stay (cube_fans.cpp). Needs mesh.keys and triangles in cell order (assemblyMesh's; snapping
-// and the quad diagonals keep it); a mesh out of that order is left as it is. Vertices stay in
-// key order; onSheet follows them. Deterministic for any thread count (0 = all).
+// one-to-one along an axis, faces the way the old disk did, passes within 0.05 of the box's
+// finest lattice spacing (pixel or layer gap) of every removed vertex, is no sharper than both
+// 15 degrees and the sharpest triangle it replaces and, two layers thick, cuts its middle layer
+// along one chord within that distance of the old cut and further from the box's inner voxel
+// centre. The new triangles lie in the open box, so they meet no other box's; the rim and the
+// shared interfaces stay (cube_fans.cpp). Needs mesh.keys and triangles in cell order
+// (assemblyMesh's; snapping and the quad diagonals keep it); a mesh out of that order is left as
+// it is. Vertices stay in key order; onSheet follows them. Deterministic for any thread count
+// (0 = all).
 CubeDisks retriangulateCubeFans(MultiLabelMesh& mesh, const Grid& grid, std::vector<bool>& onSheet, int threads = 0);
 
 // Whether every disk's new triangles and rim still project one-to-one along its axis (exact).
