@@ -346,8 +346,9 @@ bool chordKeepsCrossSection(const MultiLabelMesh& mesh, const Grid& grid, const 
 // closer (slices thinner than the pixels), so that the tolerance is a share of the lattice there.
 double finestSpacing(const Grid& grid, const Box& box) {
   double finest = std::min(grid.spacingX, grid.spacingY);
-  for (std::uint64_t k = box.low[2]; k < box.low[2] + box.height; ++k)
-    finest = std::min(finest, grid.layerZ[k + 1] - grid.layerZ[k]);
+  // A box of two layers may reach past the top layer; no surface lies beyond it.
+  const std::uint64_t top = std::min<std::uint64_t>(box.low[2] + box.height, grid.layerZ.size() - 1);
+  for (std::uint64_t k = box.low[2]; k < top; ++k) finest = std::min(finest, grid.layerZ[k + 1] - grid.layerZ[k]);
   return finest;
 }
 
