@@ -175,7 +175,8 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
       ->capture_default_str();
   app.add_option("--snap", s.snap,
                  "merge the vertices crowding a voxel centre into it when one lies within this fraction of its lattice "
-                 "edge of it (removes slivers; docs/method.md \"Triangle shape\"); 0: off")
+                 "edge of it (removes slivers; scaled down where the slices lie closer than two pixels; docs/method.md "
+                 "\"Triangle shape\"); 0: off")
       ->check(numberIn(0, 0.45, false, "a number in [0, 0.45]"))
       ->capture_default_str();
 }

@@ -23,6 +23,7 @@
 #include "geometry/remesh.h"
 #include "geometry/simplification.h"
 #include "geometry/smoothing.h"
+#include "geometry/snapping.h"
 #include "geometry/triangle_shape.h"
 #include "geometry/validate.h"
 #include "geometry/volume_restoration.h"
@@ -155,8 +156,9 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
     // Simplification merges further from the mesh before the cubes' fans (docs/method.md).
-    const ShapedTriangles shaped = shapeTriangles(surfaces.mesh, grid, options.smoothing.snap, smoothed.onSheet,
-                                                  !options.simplification.enabled, options.threads);
+    const double snap = snapFractionFor(grid, planes, options.smoothing.snap);
+    const ShapedTriangles shaped =
+        shapeTriangles(surfaces.mesh, grid, snap, smoothed.onSheet, !options.simplification.enabled, options.threads);
     surfaces.snapping = shaped.report;
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,

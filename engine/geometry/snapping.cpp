@@ -391,6 +391,7 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& st
 SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads) {
   SnappingReport report;
   report.ran = true;
+  report.fraction = fraction;
   if (!(fraction > 0) || mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
   const std::vector<EdgeCorners> corners = edgeCornersOf(mesh, threads);
   const std::vector<Candidate> candidates = findCandidates(mesh, grid, fraction, corners, threads);
@@ -403,8 +404,22 @@ SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double frac
   return report;
 }
 
+double snapFractionFor(const Grid& grid, const std::vector<bool>& contourLayers, double fraction) {
+  std::vector<double> planes;
+  for (std::size_t k = 0; k < contourLayers.size() && k < grid.layerZ.size(); ++k)
+    if (contourLayers[k]) planes.push_back(grid.layerZ[k]);
+  if (planes.size() < 2) planes = grid.layerZ;
+  if (planes.size() < 2) return fraction;
+  std::vector<double> gaps(planes.size() - 1);
+  for (std::size_t i = 0; i + 1 < planes.size(); ++i) gaps[i] = planes[i + 1] - planes[i];
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  const double pixel = std::min(grid.spacingX, grid.spacingY);
+  return fraction * std::min(1.0, gaps[gaps.size() / 2] / (2 * pixel));
+}
+
 void accumulate(SnappingReport& into, const SnappingReport& layer) {
   into.ran = into.ran || layer.ran;
+  into.fraction = std::max(into.fraction, layer.fraction);
   into.candidates += layer.candidates, into.points += layer.points, into.mergedVertices += layer.mergedVertices;
   into.removedTriangles += layer.removedTriangles, into.quadsFlipped += layer.quadsFlipped, into.cubeFans += layer.cubeFans;
   into.fanVerticesRemoved += layer.fanVerticesRemoved;

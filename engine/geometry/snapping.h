@@ -24,6 +24,14 @@ namespace scansurf {
 SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
                              int threads = 0);
 
+// The fraction snapping uses on this grid: `fraction` where the contour planes lie at least two
+// pixels apart, less in proportion where they lie closer (their median gap). Snapping moves a
+// vertex by up to the fraction of its edge, the same share of a pixel at any slice spacing, while
+// the surface's own error shrinks with the spacing: at 1 mm pixels and 1 mm slices the full
+// fraction costs the sphere 18 % of its mean distance, half of it 9 % (docs/method.md).
+// contourLayers: contourLayers()'s flags; with fewer than two, the median gap of all layers.
+double snapFractionFor(const Grid& grid, const std::vector<bool>& contourLayers, double fraction);
+
 // Another layer's report added in (surface_layers.cpp).
 void accumulate(SnappingReport& into, const SnappingReport& layer);
 

@@ -166,7 +166,8 @@ nlohmann::ordered_json simplificationJson(const SimplificationReport& r) {
 
 // Snapping's figures: the voxel centres that became vertices, what vanished, the quads flipped.
 nlohmann::ordered_json snappingJson(const SnappingReport& r) {
-  return {{"candidates", r.candidates},
+  return {{"fraction", r.fraction},
+          {"candidates", r.candidates},
           {"points", r.points},
           {"merged_vertices", r.mergedVertices},
           {"removed_triangles", r.removedTriangles},

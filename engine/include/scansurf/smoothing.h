@@ -36,7 +36,9 @@ struct SmoothingOptions {
   // restored (Raman & Wenger's snapping; geometry/snapping.h): every voxel centre that a vertex
   // on one of its lattice edges lies within this fraction of the edge from becomes a vertex,
   // where one label pair meets around it. Removes the slivers that sliding vertices make near
-  // voxel centres, and their triangles. In [0, 0.45]; 0: off.
+  // voxel centres, and their triangles. In [0, 0.45]; 0: off. Where the contour planes lie
+  // closer than two pixels it is used scaled down in proportion (else it would cost more than a
+  // tenth of the surfaces' accuracy there); SnappingReport::fraction says what was used.
   double snap = 0.05;
 };
 
@@ -45,6 +47,7 @@ struct SmoothingOptions {
 // when smoothing did not run. With several layers, the layers' sums.
 struct SnappingReport {
   bool ran = false;
+  double fraction = 0;                 // the fraction used (SmoothingOptions::snap, scaled for thin slices)
   std::size_t candidates = 0;          // voxel centres some vertex came within the fraction of
   std::size_t points = 0;              // of them, snapped: now vertices
   std::size_t mergedVertices = 0;      // vertices merged into them
