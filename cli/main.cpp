@@ -277,8 +277,7 @@ int run(const cli::CliOptions& o) {
   std::vector<MeshStats> stats;
   if (!o.quiet || !o.report.empty()) {
     laps.begin("statistics");
-    for (const FeatureSurface& f : result.surfaces.features)
-      stats.push_back(computeMeshStats(result.surfaces.mesh.positions, f.triangles));
+    stats = computeFeatureStats(result.surfaces, o.build.threads);
     laps.lap("statistics");
   }
 

@@ -4,10 +4,12 @@
 // the vertices and their corners (no sort of the whole mesh's edges): linear in the surface.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 #include <vector>
 
+#include "core/parallel.h"
 #include "geometry/mesh_topology.h"
 #include "scansurf/surfaces.h"
 
@@ -189,6 +191,23 @@ MeshStats computeMeshStats(std::span<const float> positions, std::span<const std
   stats.oriented = census.oriented;
   stats.manifold = census.closed && census.fans;
   return stats;
+}
+
+std::vector<MeshStats> computeFeatureStats(const Surfaces& surfaces, int threads) {
+  const std::vector<FeatureSurface>& features = surfaces.features;
+  std::vector<std::size_t> order(features.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  // Largest first, so that the body (most of the triangles) does not start last.
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return features[a].triangles.size() > features[b].triangles.size(); });
+  std::vector<MeshStats> out(features.size());
+  std::atomic<std::size_t> next{0};
+  const int workers = chunkCount(features.size(), threads);
+  parallelChunks(static_cast<std::size_t>(workers), workers, [&](int, std::size_t, std::size_t) {
+    for (std::size_t i = next++; i < order.size(); i = next++)
+      out[order[i]] = computeMeshStats(surfaces.mesh.positions, features[order[i]].triangles);
+  });
+  return out;
 }
 
 }  // namespace scansurf

@@ -99,11 +99,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.userOrder = built.nesting.userOrder;
   r.meshVertices = built.surfaces.mesh.vertexCount();
   r.meshTriangles = built.surfaces.mesh.triangleCount();
-  if (stats.size() != built.surfaces.features.size()) {
-    stats.clear();
-    for (const FeatureSurface& f : built.surfaces.features)
-      stats.push_back(computeMeshStats(built.surfaces.mesh.positions, f.triangles));
-  }
+  if (stats.size() != built.surfaces.features.size()) stats = computeFeatureStats(built.surfaces);
   const std::vector<Rgb> colors = featureColors(contours);
   const std::vector<std::vector<std::string>> neighbours = surfaceNeighbours(contours, built.surfaces.mesh);
   for (std::size_t f = 0; f < contours.features.size() && f < stats.size(); ++f) {

@@ -191,5 +191,41 @@ TEST(MeshStats, RepeatedVerticesAndPartialTriangles) {
   EXPECT_EQ(s.components, 1);
 }
 
+// Features of one shared mesh (two boxes, one of them with a box inside, a feature with no
+// surface): in parallel, largest first, the same figures as one at a time, for any thread count.
+TEST(MeshStats, FeaturesInParallelGiveEachFeaturesOwnFigures) {
+  HandMesh m;
+  addBox(m, 0, 0, 0, 4, 4, 4);
+  const std::size_t first = m.triangles.size();
+  addBox(m, 1, 1, 1, 2, 3, 2);
+  const std::size_t second = m.triangles.size();
+  addBox(m, 10, 0, 0, 11, 1, 5);
+  Surfaces surfaces;
+  surfaces.mesh.positions = m.positions;
+  const auto part = [&](std::size_t begin, std::size_t end) {
+    return std::vector<std::uint32_t>(m.triangles.begin() + static_cast<std::ptrdiff_t>(begin),
+                                      m.triangles.begin() + static_cast<std::ptrdiff_t>(end));
+  };
+  surfaces.features = {{0, part(0, second)}, {1, part(first, second)}, {2, {}}, {3, part(second, m.triangles.size())}};
+  for (const int threads : {1, 2, 3, 0}) {
+    const std::vector<MeshStats> all = computeFeatureStats(surfaces, threads);
+    ASSERT_EQ(all.size(), surfaces.features.size());
+    for (std::size_t f = 0; f < all.size(); ++f) {
+      const MeshStats one = computeMeshStats(surfaces.mesh.positions, surfaces.features[f].triangles);
+      EXPECT_EQ(all[f].triangles, one.triangles) << f;
+      EXPECT_EQ(all[f].vertices, one.vertices) << f;
+      EXPECT_EQ(all[f].area, one.area) << f;
+      EXPECT_EQ(all[f].volume, one.volume) << f;
+      EXPECT_EQ(all[f].components, one.components) << f;
+      EXPECT_EQ(all[f].genus, one.genus) << f;
+      EXPECT_EQ(all[f].closed, one.closed) << f;
+    }
+    EXPECT_EQ(all[0].components, 2);
+    EXPECT_DOUBLE_EQ(all[0].volume, 64 + 2);  // the inner box, faces outward too, adds its own
+    EXPECT_EQ(all[2].triangles, 0u);
+    EXPECT_DOUBLE_EQ(all[3].volume, 5);
+  }
+}
+
 }  // namespace
 }  // namespace scansurf

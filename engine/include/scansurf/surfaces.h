@@ -77,4 +77,8 @@ struct MeshStats {
 // Computes the statistics of the triangles (3 indices each) over positions (xyz each).
 MeshStats computeMeshStats(std::span<const float> positions, std::span<const std::uint32_t> triangles);
 
+// computeMeshStats of every feature surface, in feature order: the features in parallel on
+// `threads` (0 = all), the largest first; the same figures for any thread count.
+std::vector<MeshStats> computeFeatureStats(const Surfaces& surfaces, int threads = 0);
+
 }  // namespace scansurf
