@@ -188,7 +188,7 @@ class SlabPlanner {
     const std::size_t firstEntry = slab_.entries.size();
     addEntries(p, k);
     markTouchingCaps(k, firstEntry);
-    addLayerTables(firstEntry, factor);
+    addLayerTables(firstEntry, k, factor);
     addTiles(firstEntry);
     slab_.pairs.push_back(pair);
   }
@@ -240,7 +240,7 @@ class SlabPlanner {
   // offsets on both planes (not for a container: see planInterpolationSlab), dome erosions on
   // one plane only. The union has none: one offset for several features grew one at another's
   // cost, and a union's dome, sized by every feature's area together, grew the largest cap.
-  void addLayerTables(std::size_t first, int factor) {
+  void addLayerTables(std::size_t first, int k, int factor) {
     for (std::size_t i = first; i < slab_.entries.size(); ++i) {
       shared::PairEntry& e = slab_.entries[i];
       const bool both = e.fieldA >= 0 && e.fieldB >= 0;
@@ -249,7 +249,9 @@ class SlabPlanner {
       if (both)
         slab_.blendedEntries.push_back({i, factor, slab_.layerInts});
       else
-        slab_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, slab_.layerInts});
+        slab_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, slab_.layerInts,
+                                       e.fieldA >= 0 ? capTaper(g_, census_, static_cast<Label>(e.label), k, k - 1, k + 1)
+                                                     : capTaper(g_, census_, static_cast<Label>(e.label), k + 1, k + 2, k)});
       slab_.layerInts += static_cast<std::size_t>(factor) + 1;
     }
   }
@@ -359,37 +361,46 @@ InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCe
 
 namespace {
 
-// A round cap's cross-section at layer m of n, as a fraction of its plane's area: an
-// ellipsoid's, 1 - (m / h)^2, as high as h = 3/4 of the gap, which holds the flat half slab
-// (2h/3 = 1/2). A paraboloid (1 - m/n) holds it too but must stand a whole gap high: a sphere's
-// pole, which lies less than half a gap beyond its last plane, was overshot twice as far.
-inline constexpr double kDomeHeight = 0.75;
-double domeFraction(int m, int factor) {
-  const double s = m / (kDomeHeight * factor);
-  return std::max(0.0, 1 - s * s);
+// A round cap's profile (interpolation_plan.h, domeErosions): in u = s / H, the height over
+// the dome's, f = 1 - c u - (1 - c) u^2 with c = a H, which falls from 1 to 0 on [0, 1] for
+// any taper a in [0, 1]. Taper 0 is half an ellipsoid 3/4 of the gap high (2H/3 = 1/2); a
+// paraboloid (1 - m/n) holds the half slab too but must stand a whole gap high: a sphere's
+// pole, which lies less than half a gap beyond its last plane, was overshot twice as far, so
+// only a structure that tapered as fast toward its end plane gets it.
+struct DomeProfile {
+  double height = 0.75;  // H, in gaps
+  double slope = 0;      // c = a H
+};
+DomeProfile domeProfile(double taper) {
+  const double height = 6 / (4 + std::sqrt(16 - 12 * taper));
+  return {height, taper * height};
+}
+double domeFraction(const DomeProfile& dome, int m, int factor) {
+  const double u = m / (dome.height * factor);
+  return std::max(0.0, 1 - dome.slope * u - (1 - dome.slope) * u * u);
 }
 
 // The last layer a dome of n layers is open on, and how far beyond it its tip stands (in
-// layers, at most 1): at 3/4 of the gap, not on the next layer.
-int domeTop(int factor) { return static_cast<int>(std::ceil(kDomeHeight * factor)) - 1; }
-double domeTipHeight(int factor) { return kDomeHeight * factor - domeTop(factor); }
+// layers, at most 1): at H, not on the next layer.
+int domeTop(const DomeProfile& dome, int factor) { return static_cast<int>(std::ceil(dome.height * factor)) - 1; }
+double domeTipHeight(const DomeProfile& dome, int factor) { return dome.height * factor - domeTop(dome, factor); }
 
 // The surface between two layers of a dome is close to a frustum (its cross-sections are the
 // label's region eroded, alike in shape): h (a + sqrt(a b) + b) / 3, less than the trapezoid
 // h (a + b) / 2 that the fractions integrate. The areas of the dome's layers are scaled by the
 // factor that makes the frusta and the tip's cone hold half a gap, the flat half slab (a few
 // per cent).
-double domeAreaScale(int factor) {
-  const int top = domeTop(factor);
+double domeAreaScale(const DomeProfile& dome, int factor) {
+  const int top = domeTop(dome, factor);
   const auto volume = [&](double scale) {
     double v = 0;
     for (int m = 0; m < top; ++m) {
-      const double a = m == 0 ? 1.0 : std::min(1.0, scale * domeFraction(m, factor));
-      const double b = std::min(1.0, scale * domeFraction(m + 1, factor));
+      const double a = m == 0 ? 1.0 : std::min(1.0, scale * domeFraction(dome, m, factor));
+      const double b = std::min(1.0, scale * domeFraction(dome, m + 1, factor));
       v += (a + std::sqrt(a * b) + b) / 3;
     }
-    const double last = top == 0 ? 1.0 : std::min(1.0, scale * domeFraction(top, factor));
-    return v + domeTipHeight(factor) * last / 3;  // in layer spacings, with the tip's cone
+    const double last = top == 0 ? 1.0 : std::min(1.0, scale * domeFraction(dome, top, factor));
+    return v + domeTipHeight(dome, factor) * last / 3;  // in layer spacings, with the tip's cone
   };
   double lo = 0.5, hi = 2;
   for (int i = 0; i < 50; ++i) (volume(0.5 * (lo + hi)) < 0.5 * factor ? lo : hi) = 0.5 * (lo + hi);
@@ -458,7 +469,8 @@ std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const s
         const InterpolationSlab::CappedEntry& ref = slab.cappedEntries[i];
         const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(ref.field)];
         domeErosions(fieldValues[static_cast<std::size_t>(ref.field)],
-                     static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h), ref.factor, table.data() + ref.table);
+                     static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h), ref.factor, ref.taper,
+                     table.data() + ref.table);
         continue;
       }
       const InterpolationSlab::BlendedEntry& ref = slab.blendedEntries[i - caps];
@@ -471,7 +483,21 @@ std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const s
   return table;
 }
 
-void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out) {
+double capTaper(const Grid& grid, const PlaneCensus& census, Label label, int end, int before, int next) {
+  if (before < 0 || before >= grid.nz) return 0;
+  const auto count = [&](int k) -> double {
+    for (const LabelCensus& c : census[static_cast<std::size_t>(k)])
+      if (c.label == label) return static_cast<double>(c.count);
+    return 0;
+  };
+  const double atEnd = count(end), atBefore = count(before);
+  if (atEnd <= 0 || atBefore <= atEnd) return 0;
+  const auto z = [&](int k) { return grid.layerZ[static_cast<std::size_t>(k)]; };
+  const double taper = (atBefore - atEnd) / atEnd * std::abs(z(next) - z(end)) / std::abs(z(end) - z(before));
+  return std::clamp(std::min(taper, 5 - 4 * taper), 0.0, 1.0);
+}
+
+void domeErosions(const std::int32_t* values, std::size_t count, int factor, double taper, std::int32_t* out) {
   std::vector<std::int32_t> near;  // what an erosion can uncover: inside, or within half a pixel outside
   for (std::size_t i = 0; i < count; ++i)
     if (values[i] < kFieldPixel / 2) near.push_back(values[i]);
@@ -479,11 +505,12 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, std
   auto cover = [&](std::int32_t erosion) { return coveredArea(near.data(), near.size(), kFieldPixel, -erosion); };
   const double area = cover(0);
   out[0] = 0;
-  const double scale = domeAreaScale(factor);
-  const int top = domeTop(factor);
+  const DomeProfile dome = domeProfile(taper);
+  const double scale = domeAreaScale(dome, factor);
+  const int top = domeTop(dome, factor);
   for (int m = 1; m <= top; ++m) {
     // The least erosion that leaves at most the dome's area covered.
-    const double want = area * std::min(1.0, scale * domeFraction(m, factor));
+    const double want = area * std::min(1.0, scale * domeFraction(dome, m, factor));
     std::int32_t lo = -1, hi = deepest + kFieldPixel;
     while (hi - lo > 1) {
       const std::int32_t mid = lo + (hi - lo) / 2;
@@ -493,7 +520,7 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, std
   }
   // Closed beyond: an erosion that puts the deepest pixel's level through zero at the tip's
   // height between the top layer and the next, so the dome ends in a tip there.
-  const double t = domeTipHeight(factor);
+  const double t = domeTipHeight(dome, factor);
   const double depth = deepest - out[top];
   const auto closed = static_cast<std::int32_t>(std::lround(deepest + depth * (1 - t) / t));
   for (int m = top + 1; m <= factor; ++m) out[m] = factor == 1 ? -1 : closed;

@@ -17,8 +17,9 @@
 //  - where L is on one plane only, it closes with a cap (CapShape) that takes its voxels from
 //    any label that goes on: flat keeps its region on that plane up to half the gap (an
 //    extrusion and a lid, as planning systems count volume; beyond the lid L only counts as
-//    runner-up, for the lid's clearance); round erodes it layer by layer to half an ellipsoid
-//    3/4 of the gap high holding the flat half slab's volume (domeErosions). A voxel outside a
+//    runner-up, for the lid's clearance); round erodes it layer by layer to a dome holding
+//    the flat half slab's volume that leaves the plane at the structure's taper there
+//    (domeErosions, capTaper): half an ellipsoid 3/4 of the gap high where it did not taper. A voxel outside a
 //    cap (or a lid) keeps the cap's value as its clearance when that is smaller, so the
 //    surface between them lies where the cap's level crosses zero;
 //  - the union of all features gets a value of its own where it is on both planes (it caps
@@ -104,6 +105,7 @@ struct InterpolationSlab {
     int field = 0;
     int factor = 1;
     std::size_t table = 0;
+    double taper = 0;  // capTaper: how the dome leaves its plane
   };
   std::vector<CappedEntry> cappedEntries;
   // Entries of a feature on both planes, with their area-keeping offsets' place in the table.
@@ -136,16 +138,28 @@ std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& cen
 InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
                                         const std::vector<int>& factors, const std::vector<bool>& containers = {});
 
-// Round caps: a dome 3/4 of the gap high, whose cross-section at layer m of n counted from the
-// label's plane keeps 1 - (4m / 3n)^2 of the label's area there, so the cap holds what a flat
-// half slab holds (half an ellipsoid over a disc) whatever the outline's shape. Its region at
+// Round caps: a dome that holds what a flat half slab holds, whatever the outline's shape, and
+// leaves its plane at the taper the structure had there. Its cross-section at height s (in
+// gaps) keeps f(s) = 1 - a s - b s^2 of the label's area on its plane, closed at H, with
+// f' (0) = -taper (= a) and the integral of f over [0, H] = 1/2: H = 6 / (4 + sqrt(16 - 12 a)),
+// from 3/4 of the gap (taper 0: half an ellipsoid over a disc) to the whole gap (taper 1: the
+// area shrinks linearly to the next plane). Its region at
 // layer m is {d < -erosion(m)}, d the label's field on its plane, the areas its pixels' covers
 // (coveredArea) and scaled a little so that the frusta between the layers, not the trapezoids,
 // hold the half slab: out gets factor + 1 erosions (1/16 pixel), the deepest depth where the
 // dome is closed, so that it closes in a tip on its first closed layer (a fully eroded layer
 // left the top flat, a third of a layer's frustum short: -3 % of a cap at 5 layers a gap).
 // values: the field's window values (negative inside).
-void domeErosions(const std::int32_t* values, std::size_t count, int factor, std::int32_t* out);
+void domeErosions(const std::int32_t* values, std::size_t count, int factor, double taper, std::int32_t* out);
+
+// A round cap's taper in [0, 1]: how fast the label's area shrank toward its end plane `end`
+// over the gap before it (from layer `before`), as a share of its area on the end plane per
+// cap gap (`next`: the layer the cap closes toward), so that the dome goes on as the structure
+// went (a sphere's cap, not a wall and a lid; docs/method.md, "Caps"). A structure that grew
+// or kept its area toward its end, or that has no plane before it, gets 0 (half an
+// ellipsoid). Beyond 1 the trend ends the structure within the gap, which no dome holding
+// the half slab can follow without standing taller still: the taper falls back to 0 by 1.25.
+double capTaper(const Grid& grid, const PlaneCensus& census, Label label, int end, int before, int next);
 
 // Area-keeping blends: a feature on both planes of a pair keeps, at layer m of n, the linear
 // blend ((n - m) areaA + m areaB) / n of its areas on them, so that its volume follows

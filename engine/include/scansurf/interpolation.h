@@ -12,8 +12,10 @@ namespace scansurf {
 // the volume the slab rule gives the end plane beyond it: its contour's area times half the gap.
 enum class CapShape {
   Flat,  // the end contour extruded half a gap, then a flat lid
-  // Half an ellipsoid over the end contour, 3/4 of the gap high (its cross-section keeps
-  // 1 - (4s/3g)^2 of the area at height s), so it holds a flat half slab's volume; where
+  // A dome over the end contour that holds a flat half slab's volume and leaves the contour at
+  // the feature's taper there (how fast its area shrank over the gap before): half an
+  // ellipsoid 3/4 of the gap high where it did not taper, up to a whole gap where its area
+  // shrank as fast as it would to vanish on the next plane (docs/method.md, "Caps"); where
   // another feature begins over the end contour on the next plane, flat.
   Round,
 };
