@@ -305,6 +305,39 @@ TEST(Assembly, IdenticalForAnyThreadCount) {
   }
 }
 
+// A block whose keys span more than 32 bits relative to their least corner (two copies of one
+// volume's cells 100 000 layers apart) takes assembly's other way of indexing its keys; both
+// copies must come out as the volume alone does.
+TEST(Assembly, KeysSpanningMoreThan32BitsIndexTheSame) {
+  const LabelVolume v = randomVolume(7, 16, 3);
+  const std::vector<CellCase> cases = classifyCellsReference(v);
+  const MultiLabelMesh alone = assembleMesh(v.grid, cases, 2);
+  ASSERT_GT(alone.triangleCount(), 1000u);
+  constexpr std::uint32_t kApart = 100000;  // layers
+  Grid tall = v.grid;
+  for (std::uint32_t k = 0; k < kApart; ++k) tall.layerZ.push_back(tall.layerZ.back() + 1.0);
+  tall.nz += static_cast<int>(kApart);
+  std::vector<CellCase> twice = cases;
+  const std::uint32_t layerCells = static_cast<std::uint32_t>((v.grid.nx - 1) * (v.grid.ny - 1));
+  for (CellCase c : cases) twice.push_back((c.cell += kApart * layerCells, c));
+  const MultiLabelMesh both = assembleMesh(tall, twice, 2);
+  const std::size_t vertices = alone.vertexCount(), triangles = alone.triangleCount();
+  ASSERT_EQ(both.vertexCount(), 2 * vertices);
+  ASSERT_EQ(both.triangleCount(), 2 * triangles);
+  const std::uint64_t shift = std::uint64_t{12} * kApart << (2 * kKeyBits);
+  for (std::size_t i = 0; i < vertices; ++i) {
+    EXPECT_EQ(both.keys[i], alone.keys[i]);
+    EXPECT_EQ(both.keys[vertices + i], alone.keys[i] + shift);
+  }
+  for (std::size_t i = 0; i < 3 * triangles; ++i) {
+    EXPECT_EQ(both.triangles[i], alone.triangles[i]);
+    EXPECT_EQ(both.triangles[3 * triangles + i], alone.triangles[i] + vertices);
+  }
+  EXPECT_TRUE(std::equal(alone.labels.begin(), alone.labels.end(), both.labels.begin()));
+  EXPECT_TRUE(std::equal(alone.labels.begin(), alone.labels.end(),
+                         both.labels.begin() + static_cast<std::ptrdiff_t>(alone.labels.size())));
+}
+
 TEST(Assembly, PositionsFollowUnevenLayers) {
   LabelVolume v = implicitVolume(3, 1.0, {ball(0, 0, 0, 0.1)});
   v.grid.originX = 10;
