@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <iterator>
 #include <span>
 #include <utility>
@@ -225,9 +226,10 @@ struct IndexScratch {
   std::vector<std::uint32_t> count;
 };
 
-// The block's keys less their least x, y and z, packed (z, y, x) into one number that orders
-// as the keys do; false if that needs more than 32 bits.
-bool packRelative(const std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& pairs, std::uint64_t& range) {
+// The block's keys less their least x, y and z, packed (z, y, x) into one number that orders as
+// the keys do, above `indexBits` bits that hold the key's index; false if they do not fit 64.
+bool packRelative(const std::vector<std::uint64_t>& keys, int indexBits, std::vector<std::uint64_t>& pairs,
+                  std::uint64_t& range) {
   std::uint64_t low[3] = {kKeyMask, kKeyMask, kKeyMask}, high[3] = {0, 0, 0};
   for (const std::uint64_t key : keys)
     for (int a = 0; a < 3; ++a) {
@@ -235,20 +237,20 @@ bool packRelative(const std::vector<std::uint64_t>& keys, std::vector<std::uint6
       low[a] = std::min(low[a], c), high[a] = std::max(high[a], c);
     }
   const std::uint64_t rx = high[0] - low[0] + 1, ry = high[1] - low[1] + 1, rz = high[2] - low[2] + 1;
-  if (rx * ry > (std::uint64_t{1} << 32) || rx * ry * rz > (std::uint64_t{1} << 32)) return false;  // each < 2^21
-  range = rx * ry * rz;
+  range = rx * ry * rz;  // each at most 2^21: no overflow
+  if (indexBits >= 64 || (range - 1) >> (64 - indexBits) != 0) return false;
   pairs.resize(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const std::uint64_t key = keys[i];
     const std::uint64_t x = (key & kKeyMask) - low[0], y = ((key >> kKeyBits) & kKeyMask) - low[1],
                         z = ((key >> (2 * kKeyBits)) & kKeyMask) - low[2];
-    pairs[i] = ((z * ry + y) * rx + x) << 32 | i;
+    pairs[i] = ((z * ry + y) * rx + x) << indexBits | i;
   }
   return true;
 }
 
-// One stable counting-sort pass over kDigitBits of the pairs' upper half, from bit `shift`:
-// few enough buckets that the scattered writes stay in cache.
+// One stable counting-sort pass over kDigitBits of the pairs from bit `shift`: few enough
+// buckets that the scattered writes stay in cache.
 constexpr int kDigitBits = 11;
 constexpr std::uint64_t kDigitMask = (std::uint64_t{1} << kDigitBits) - 1;
 void radixPass(const std::vector<std::uint64_t>& from, std::vector<std::uint64_t>& to, int shift,
@@ -262,23 +264,25 @@ void radixPass(const std::vector<std::uint64_t>& from, std::vector<std::uint64_t
 }
 
 // Pass 1 of a block: its sorted unique keys, and its triangles' corners as indices into them.
-// A block spans a few layers of cells, so its keys fit 32 bits relative to their least corner:
-// (relative key, corner) pairs sort in at most three radix passes and the ranks fall out of one
-// walk, where sorting the keys and searching each corner's took 90 % of assembly. Otherwise
-// that way.
+// A block spans a few layers of cells, so its keys relative to their least corner and each
+// key's index fit one 64-bit word: the words sort in a few radix passes over the key's bits and
+// the ranks fall out of one walk, where sorting the keys and searching each corner's took 90 %
+// of assembly. Otherwise that way.
 std::vector<std::uint64_t> indexBlock(const std::vector<std::uint64_t>& keys, IndexScratch& s, std::uint32_t* corners) {
   std::vector<std::uint64_t> unique;
+  const int indexBits = std::max(1, static_cast<int>(std::bit_width(keys.size())));
   std::uint64_t range = 0;
-  if (keys.size() < (std::size_t{1} << 32) && packRelative(keys, s.pairs, range)) {
-    for (int digit = 0; digit == 0 || (range - 1) >> (digit * kDigitBits) != 0; ++digit) {
-      radixPass(s.pairs, s.sorted, 32 + digit * kDigitBits, s.count);
+  if (packRelative(keys, indexBits, s.pairs, range)) {
+    const int digits = std::max(1, (static_cast<int>(std::bit_width(range - 1)) + kDigitBits - 1) / kDigitBits);
+    for (int digit = 0; digit < digits; ++digit) {
+      radixPass(s.pairs, s.sorted, indexBits + digit * kDigitBits, s.count);
       s.sorted.swap(s.pairs);
     }
-    s.sorted.swap(s.pairs);
+    const std::uint64_t indexMask = (std::uint64_t{1} << indexBits) - 1;
     std::uint64_t previous = UINT64_MAX;
-    for (const std::uint64_t p : s.sorted) {
-      const auto i = static_cast<std::uint32_t>(p);
-      if (p >> 32 != previous) unique.push_back(keys[i]), previous = p >> 32;
+    for (const std::uint64_t p : s.pairs) {
+      const std::uint64_t i = p & indexMask;
+      if (p >> indexBits != previous) unique.push_back(keys[i]), previous = p >> indexBits;
       corners[i] = static_cast<std::uint32_t>(unique.size() - 1);
     }
     return unique;

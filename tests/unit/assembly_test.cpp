@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -305,37 +306,61 @@ TEST(Assembly, IdenticalForAnyThreadCount) {
   }
 }
 
-// A block whose keys span more than 32 bits relative to their least corner (two copies of one
-// volume's cells 100 000 layers apart) takes assembly's other way of indexing its keys; both
-// copies must come out as the volume alone does.
-TEST(Assembly, KeysSpanningMoreThan32BitsIndexTheSame) {
-  const LabelVolume v = randomVolume(7, 16, 3);
+// Two copies of a volume's cells in one block of a larger grid, the second `far` cells away
+// in x, y and z: both copies must come out as the volume alone does, keys, corners and labels.
+void expectTwoCopiesIndexAsOne(const LabelVolume& v, const Grid& large, const std::array<std::uint32_t, 3>& far,
+                               std::size_t leastCorners) {
   const std::vector<CellCase> cases = classifyCellsReference(v);
   const MultiLabelMesh alone = assembleMesh(v.grid, cases, 2);
-  ASSERT_GT(alone.triangleCount(), 1000u);
-  constexpr std::uint32_t kApart = 100000;  // layers
-  Grid tall = v.grid;
-  for (std::uint32_t k = 0; k < kApart; ++k) tall.layerZ.push_back(tall.layerZ.back() + 1.0);
-  tall.nz += static_cast<int>(kApart);
-  std::vector<CellCase> twice = cases;
-  const std::uint32_t layerCells = static_cast<std::uint32_t>((v.grid.nx - 1) * (v.grid.ny - 1));
-  for (CellCase c : cases) twice.push_back((c.cell += kApart * layerCells, c));
-  const MultiLabelMesh both = assembleMesh(tall, twice, 2);
+  ASSERT_GE(3 * alone.triangleCount(), leastCorners);
+  const auto cellOf = [](const Grid& g, std::uint64_t i, std::uint64_t j, std::uint64_t k) {
+    return i + static_cast<std::uint64_t>(g.nx - 1) * (j + static_cast<std::uint64_t>(g.ny - 1) * k);
+  };
+  std::vector<CellCase> twice;
+  for (int copy = 0; copy < 2; ++copy)
+    for (CellCase c : cases) {
+      const std::uint64_t i = c.cell % (v.grid.nx - 1), j = c.cell / (v.grid.nx - 1) % (v.grid.ny - 1),
+                          k = c.cell / (v.grid.nx - 1) / (v.grid.ny - 1);
+      c.cell = static_cast<std::uint32_t>(copy == 0 ? cellOf(large, i, j, k) : cellOf(large, i + far[0], j + far[1], k + far[2]));
+      twice.push_back(c);
+    }
+  const MultiLabelMesh both = assembleMesh(large, twice, 2);
   const std::size_t vertices = alone.vertexCount(), triangles = alone.triangleCount();
   ASSERT_EQ(both.vertexCount(), 2 * vertices);
   ASSERT_EQ(both.triangleCount(), 2 * triangles);
-  const std::uint64_t shift = std::uint64_t{12} * kApart << (2 * kKeyBits);
+  const std::uint64_t shift = packVertexKey(12 * std::uint64_t{far[0]}, 12 * std::uint64_t{far[1]}, 12 * std::uint64_t{far[2]});
   for (std::size_t i = 0; i < vertices; ++i) {
-    EXPECT_EQ(both.keys[i], alone.keys[i]);
-    EXPECT_EQ(both.keys[vertices + i], alone.keys[i] + shift);
+    ASSERT_EQ(both.keys[i], alone.keys[i]) << i;
+    ASSERT_EQ(both.keys[vertices + i], alone.keys[i] + shift) << i;
   }
   for (std::size_t i = 0; i < 3 * triangles; ++i) {
-    EXPECT_EQ(both.triangles[i], alone.triangles[i]);
-    EXPECT_EQ(both.triangles[3 * triangles + i], alone.triangles[i] + vertices);
+    ASSERT_EQ(both.triangles[i], alone.triangles[i]) << i;
+    ASSERT_EQ(both.triangles[3 * triangles + i], alone.triangles[i] + vertices) << i;
   }
+  const auto half = static_cast<std::ptrdiff_t>(alone.labels.size());
   EXPECT_TRUE(std::equal(alone.labels.begin(), alone.labels.end(), both.labels.begin()));
-  EXPECT_TRUE(std::equal(alone.labels.begin(), alone.labels.end(),
-                         both.labels.begin() + static_cast<std::ptrdiff_t>(alone.labels.size())));
+  EXPECT_TRUE(std::equal(alone.labels.begin(), alone.labels.end(), both.labels.begin() + half));
+}
+
+Grid largeGrid(const Grid& small, int nx, int ny, int nz) {
+  Grid g = small;
+  g.nx = nx, g.ny = ny, g.nz = nz;
+  while (g.layerZ.size() < static_cast<std::size_t>(nz)) g.layerZ.push_back(g.layerZ.back() + 1.0);
+  return g;
+}
+
+// Assembly sorts a block's keys relative to its least corner, by radix, as many passes as
+// their range needs: here four (2 x 10^10 values, two copies 100 000 layers apart).
+TEST(Assembly, KeysSpanningManyLayersIndexTheSame) {
+  const LabelVolume v = randomVolume(7, 16, 3);
+  expectTwoCopiesIndexAsOne(v, largeGrid(v.grid, 16, 16, 100016), {0, 0, 100000}, 1000);
+}
+
+// A block whose relative keys and corner numbers do not fit one 64-bit word (2^42.7 values
+// over a grid of 2^32 cells, over 2^22 corners) is sorted the slower general way, to the same end.
+TEST(Assembly, KeysTooWideForOneWordIndexTheSame) {
+  const LabelVolume v = randomVolume(11, 32, 6);
+  expectTwoCopiesIndexAsOne(v, largeGrid(v.grid, 2049, 2049, 1025), {2048 - 31, 2048 - 31, 1024 - 31}, std::size_t{1} << 21);
 }
 
 TEST(Assembly, PositionsFollowUnevenLayers) {
