@@ -156,6 +156,8 @@ class Collapser {
     if (u == ~0u) return false;
     const std::uint32_t c = opposite(t, a, b), d = opposite(u, a, b);
     if (c == d || (plane_[c] >= 0 && plane_[c] == plane_[d])) return false;
+    for (std::uint32_t w : {a, b, c, d})
+      if (locked_[w] == kFrozen) return false;
     for (std::uint32_t w : vtris_[c])
       if (contains(w, d)) return false;  // c and d are joined already
     const Vec3 &pa = pos_[a], &pb = pos_[b], &pc = pos_[c], &pd = pos_[d];

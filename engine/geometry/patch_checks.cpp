@@ -56,21 +56,32 @@ std::array<long long, 2> topologyOf(std::span<const std::uint32_t> tris, const s
   return {vertices - undirected + static_cast<long long>(tris.size() / 3), components};
 }
 
-bool everyVertexOneFan(std::span<const std::uint32_t> tris) {
-  std::vector<std::array<std::uint32_t, 3>> corners;  // v, b, c
+// Per vertex, its corners in the triangles, sorted by vertex: {v, b, c} for each triangle (v, b, c).
+std::vector<std::array<std::uint32_t, 3>> cornersOf(std::span<const std::uint32_t> tris) {
+  std::vector<std::array<std::uint32_t, 3>> corners;
   corners.reserve(tris.size());
   for (std::size_t t = 0; t < tris.size(); t += 3)
     for (int c = 0; c < 3; ++c) corners.push_back({tris[t + c], tris[t + (c + 1) % 3], tris[t + (c + 2) % 3]});
   std::sort(corners.begin(), corners.end());
-  std::vector<std::array<std::uint32_t, 2>> link;
-  std::vector<std::uint32_t> scratch;
-  for (std::size_t i = 0; i < corners.size();) {
-    link.clear();
-    const std::uint32_t v = corners[i][0];
-    for (; i < corners.size() && corners[i][0] == v; ++i) link.push_back({corners[i][1], corners[i][2]});
-    if (!singleFan(link, scratch)) return false;
-  }
-  return true;
+  return corners;
+}
+
+// No vertex is pinched after that was not before, and each vertex pinched before (where the
+// patch meets it from two sides, on its border) keeps its triangles as they were: simplifyPatch
+// leaves them, so its fans still join the same border edges.
+bool noNewPinch(std::span<const std::uint32_t> before, std::span<const std::uint32_t> after, std::size_t vertexCount) {
+  const std::vector<char> pinched = pinchedVertices(before, vertexCount);
+  if (std::find(pinched.begin(), pinched.end(), 1) == pinched.end()) return pinchedVertices(after, vertexCount) == pinched;
+  const std::vector<char> pinchedAfter = pinchedVertices(after, vertexCount);
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    if (pinchedAfter[v] && !pinched[v]) return false;
+  const auto around = [&](std::span<const std::uint32_t> tris) {
+    std::vector<std::array<std::uint32_t, 3>> kept;
+    for (const auto& corner : cornersOf(tris))
+      if (pinched[corner[0]]) kept.push_back(corner);
+    return kept;
+  };
+  return around(before) == around(after);
 }
 
 // Both ends on one contour plane: a piece of its cross-section.
@@ -123,6 +134,20 @@ bool anyDegenerate(std::span<const float> p, std::span<const std::uint32_t> tris
 
 }  // namespace
 
+std::vector<char> pinchedVertices(std::span<const std::uint32_t> triangles, std::size_t vertexCount) {
+  std::vector<char> pinched(vertexCount, 0);
+  const std::vector<std::array<std::uint32_t, 3>> corners = cornersOf(triangles);
+  std::vector<std::array<std::uint32_t, 2>> link;
+  std::vector<std::uint32_t> scratch;
+  for (std::size_t i = 0; i < corners.size();) {
+    link.clear();
+    const std::uint32_t v = corners[i][0];
+    for (; i < corners.size() && corners[i][0] == v; ++i) link.push_back({corners[i][1], corners[i][2]});
+    pinched[v] = !singleFan(link, scratch);
+  }
+  return pinched;
+}
+
 std::vector<char> newTriangles(std::span<const std::uint32_t> before, std::span<const std::uint32_t> after) {
   std::vector<std::array<std::uint32_t, 3>> old;
   for (std::size_t t = 0; t < before.size(); t += 3) old.push_back(canonical(&before[t]));
@@ -144,7 +169,7 @@ PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> p
   if (topologyOf(before, edgesBefore, borderBefore.size(), vertices) !=
       topologyOf(after, edgesAfter, borderAfter.size(), vertices))
     return PatchVerdict::Topology;
-  if (!everyVertexOneFan(after)) return PatchVerdict::Pinched;
+  if (!noNewPinch(before, after, vertices)) return PatchVerdict::Pinched;
   if (!noNewPlaneEdge(plane, edgesBefore, edgesAfter)) return PatchVerdict::PlaneEdge;
   if (!noneTurned(positions, before, after)) return PatchVerdict::Turned;
   return PatchVerdict::Kept;

@@ -14,7 +14,7 @@ enum class PatchVerdict {
   NotOriented,  // a directed edge used twice: not a manifold with one orientation
   Border,       // the edges used one way only changed
   Topology,     // Euler characteristic or edge-connected components changed
-  Pinched,      // a vertex whose triangles form more than one fan
+  Pinched,      // a vertex whose triangles form more than one fan, or one that did whose triangles changed
   PlaneEdge,    // an edge along a contour plane that the original did not have
   Turned,       // a triangle facing against the original surface at one of its corners
 };
@@ -23,6 +23,9 @@ enum class PatchVerdict {
 // plane[v] is the contour plane vertex v lies on, or -1.
 PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
                         std::span<const std::uint32_t> after);
+
+// Per vertex, whether its triangles form more than one fan (a patch's border vertex may).
+std::vector<char> pinchedVertices(std::span<const std::uint32_t> triangles, std::size_t vertexCount);
 
 // Per triangle of `after`, whether it is new: not one of `before`'s, however its corners are listed.
 std::vector<char> newTriangles(std::span<const std::uint32_t> before, std::span<const std::uint32_t> after);

@@ -157,6 +157,17 @@ PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t
   const LocalPatch p = localPatch(ctx, tris);
   std::vector<char> locked(p.vertices.size());
   for (std::size_t v = 0; v < locked.size(); ++v) locked[v] = ctx.shared[p.vertices[v]] || p.plane[v] >= 0;
+  // Where the patch meets a border vertex from two sides its triangles stay as they are: none
+  // of its neighbours goes (nor anything onto it) and no flip touches it, so nothing re-pairs
+  // its fans (checkPatch).
+  const std::vector<char> pinched = pinchedVertices(p.triangles, p.vertices.size());
+  for (std::size_t t = 0; t < p.triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c)
+      if (pinched[p.triangles[t + c]]) {
+        locked[p.triangles[t + c]] = kFrozen;
+        for (int k = 1; k < 3; ++k)
+          locked[p.triangles[t + (c + k) % 3]] = std::max(locked[p.triangles[t + (c + k) % 3]], char{1});
+      }
   const CollapseLimits limits{ctx.tolerance, ctx.edgeLength, ctx.minAngle};
   std::vector<std::uint32_t> after = collapseEdges(p.positions, p.triangles, locked, p.plane, limits);
   if (after.size() == p.triangles.size()) return result;

@@ -210,6 +210,8 @@ TEST(SimplificationAccuracy, FaceNormalsOnTheSphereAt1mmPixels3mmSlices) {
       mean0, mean1, p95_0, p95_1, r.trianglesBefore, r.trianglesAfter);
   EXPECT_LE(mean1, mean0 + 0.5);
   EXPECT_LE(p95_1, p95_0 + 2.0);
+  // Patches that meet a vertex from two sides simplify too, leaving that vertex's triangles.
+  EXPECT_EQ(r.refused, 0u);
 }
 
 TEST(Simplification, SameResultForAnyThreadCount) {
@@ -349,9 +351,14 @@ TEST(PatchChecks, EachLossIsNamed) {
   EXPECT_EQ(
       checkPatch(quad, quadPlanes, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}, std::vector<std::uint32_t>{0, 1, 3, 1, 2, 3}),
       PatchVerdict::Turned);
-  // Two fans sharing vertex 4 only (a pinch) are refused, even as they came.
-  const std::vector<std::uint32_t> twoFans = {0, 1, 4, 1, 2, 4, 2, 0, 4, 3, 7, 4, 7, 6, 4, 6, 3, 4};
-  EXPECT_EQ(checkPatch(f.positions, noPlane, twoFans, twoFans), PatchVerdict::Pinched);
+  // Two fans meeting at border vertex 4 only (a pinch: the patch meets 4 from two sides) pass
+  // as they came, but not once 4's triangles change: the fan 0-1-2 re-split at 0-2 keeps border
+  // and topology, yet could re-pair 4's fans with the rest of the mesh.
+  const std::vector<std::uint32_t> twoFans = {0, 1, 4, 1, 2, 4, 8, 7, 4, 7, 6, 4};
+  EXPECT_EQ(pinchedVertices(twoFans, 9), (std::vector<char>{0, 0, 0, 0, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(checkPatch(lowered, noPlane, twoFans, twoFans), PatchVerdict::Kept);
+  const std::vector<std::uint32_t> resplit = {0, 1, 2, 0, 2, 4, 8, 7, 4, 7, 6, 4};
+  EXPECT_EQ(checkPatch(lowered, noPlane, twoFans, resplit), PatchVerdict::Pinched);
 }
 
 }  // namespace
