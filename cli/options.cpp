@@ -203,10 +203,9 @@ void addInterpolation(CLI::App& app, Flags& f) {
           "auto|off|N"))
       ->capture_default_str();
   app.add_option("--caps", f.caps,
-                 "how a structure closes beyond its first and last contour (with interpolation): round (a dome "
-                 "3/4 to 1 slice gap high that leaves the last contour at the structure's taper there) or flat (its last contour "
-                 "extruded half a "
-                 "gap); both keep the volume planning systems give (the end contour's area times half the gap)")
+                 "how a structure closes beyond its first and last contour (with interpolation): round (a dome 3/4 to 1 "
+                 "slice gap high that leaves the last contour at the structure's taper there) or flat (its last contour "
+                 "extruded half a gap); both keep the volume planning systems give (the end contour's area times half the gap)")
       ->check(CLI::IsMember({"round", "flat"}))
       ->capture_default_str();
 }

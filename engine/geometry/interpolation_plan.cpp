@@ -486,9 +486,8 @@ std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const s
 double capTaper(const Grid& grid, const PlaneCensus& census, Label label, int end, int before, int next) {
   if (before < 0 || before >= grid.nz) return 0;
   const auto count = [&](int k) -> double {
-    for (const LabelCensus& c : census[static_cast<std::size_t>(k)])
-      if (c.label == label) return static_cast<double>(c.count);
-    return 0;
+    const LabelCensus* c = find(census[static_cast<std::size_t>(k)], label);
+    return c ? static_cast<double>(c->count) : 0;
   };
   const double atEnd = count(end), atBefore = count(before);
   if (atEnd <= 0 || atBefore <= atEnd) return 0;

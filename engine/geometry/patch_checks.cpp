@@ -70,11 +70,10 @@ std::vector<std::array<std::uint32_t, 3>> cornersOf(std::span<const std::uint32_
 // patch meets it from two sides, on its border) keeps its triangles as they were: simplifyPatch
 // leaves them, so its fans still join the same border edges.
 bool noNewPinch(std::span<const std::uint32_t> before, std::span<const std::uint32_t> after, std::size_t vertexCount) {
-  const std::vector<char> pinched = pinchedVertices(before, vertexCount);
-  if (std::find(pinched.begin(), pinched.end(), 1) == pinched.end()) return pinchedVertices(after, vertexCount) == pinched;
-  const std::vector<char> pinchedAfter = pinchedVertices(after, vertexCount);
+  const std::vector<char> pinched = pinchedVertices(before, vertexCount), pinchedAfter = pinchedVertices(after, vertexCount);
   for (std::size_t v = 0; v < vertexCount; ++v)
     if (pinchedAfter[v] && !pinched[v]) return false;
+  if (std::find(pinched.begin(), pinched.end(), 1) == pinched.end()) return true;
   const auto around = [&](std::span<const std::uint32_t> tris) {
     std::vector<std::array<std::uint32_t, 3>> kept;
     for (const auto& corner : cornersOf(tris))

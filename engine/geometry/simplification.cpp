@@ -163,11 +163,11 @@ PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t
   const std::vector<char> pinched = pinchedVertices(p.triangles, p.vertices.size());
   for (std::size_t t = 0; t < p.triangles.size(); t += 3)
     for (int c = 0; c < 3; ++c)
-      if (pinched[p.triangles[t + c]]) {
-        locked[p.triangles[t + c]] = kFrozen;
-        for (int k = 1; k < 3; ++k)
-          locked[p.triangles[t + (c + k) % 3]] = std::max(locked[p.triangles[t + (c + k) % 3]], char{1});
-      }
+      if (pinched[p.triangles[t + c]])
+        for (int k = 0; k < 3; ++k) {
+          char& lock = locked[p.triangles[t + (c + k) % 3]];
+          lock = k == 0 ? kFrozen : std::max(lock, char{1});
+        }
   const CollapseLimits limits{ctx.tolerance, ctx.edgeLength, ctx.minAngle};
   std::vector<std::uint32_t> after = collapseEdges(p.positions, p.triangles, locked, p.plane, limits);
   if (after.size() == p.triangles.size()) return result;

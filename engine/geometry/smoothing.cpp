@@ -465,13 +465,12 @@ void Relaxation::startOnCarrierEdges() {
 // each time (52 MiB less than an array of them on a clinical set, the same floats), as
 // edgeOfKey reads it but without b's x and y, since every sweep asks at every edge vertex.
 Float4 Relaxation::edgeStartOf(std::size_t v) const {
-  const std::uint64_t key = keys_[v];
-  const std::uint64_t x = key & kKeyMask, y = (key >> kKeyBits) & kKeyMask, z = (key >> (2 * kKeyBits)) & kKeyMask;
-  const std::size_t low = static_cast<std::size_t>(z / 12), high = low + (z % 12 != 0 ? 1 : 0);
-  const double az = grid_.layerZ[low];
-  return Float4{static_cast<float>(grid_.originX + grid_.spacingX * static_cast<int>(x / 12)),
-                static_cast<float>(grid_.originY + grid_.spacingY * static_cast<int>(y / 12)), static_cast<float>(az),
-                static_cast<float>(grid_.layerZ[high] - az)};
+  const std::uint64_t key = keys_[v], z = (key >> (2 * kKeyBits)) & kKeyMask;
+  const int low[3] = {static_cast<int>((key & kKeyMask) / 12), static_cast<int>(((key >> kKeyBits) & kKeyMask) / 12),
+                      static_cast<int>(z / 12)};
+  const Vec3 a = cornerPosition(grid_, low);
+  const double bz = grid_.layerZ[static_cast<std::size_t>(low[2]) + (z % 12 != 0 ? 1 : 0)];
+  return Float4{static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]), static_cast<float>(bz - a[2])};
 }
 
 // b - a of the carrier edge that starts at a (edgeStartOf).

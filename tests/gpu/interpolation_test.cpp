@@ -544,22 +544,22 @@ TEST_F(InterpolatedShapesTest, ThickSlicesAndCapsFigures) {
   }
 }
 
-// Round caps go on at the taper a structure had at its end plane (capTaper): the sphere of
-// tests/bench/sphere_shape.py (radius 20, planes at z = -17, -14, ... 19, 1 mm pixels) ends
-// below in a dome 2.8 mm high that meets the side at its slope, where half an ellipsoid stood
-// 2.25 mm with a vertical wall (its faces' normals 14 degrees off there, 30 at the wall); above,
-// where the last plane lies 1 mm from the pole, the trend ends within the gap and the cap stays
-// half an ellipsoid. Same volume, the slab rule's.
-// With round caps the interpolated sphere's simplification patches meet some border vertices
-// from two sides (pinched within the patch); they simplify too, leaving those vertices'
-// triangles as they were (21 of its 47 patches were put back whole before: 37 708 -> 27 084).
-TEST_F(InterpolatedShapesTest, SimplifyTakesThePatchesThatMeetAVertexTwice) {
+// The sphere of tests/bench/sphere_shape.py: radius 20, planes at z = -17, -14, ... 19, 256-gons.
+ContourSet sphereOfSphereShapePy() {
   const double r = 20;
   ContourSet set;
   set.source = "sphere";
   set.features.push_back({"sphere", {}, {}});
   for (double z = -17; z < r; z += 3)
     set.features[0].slices.push_back({z, {circleContour({0, 0}, std::sqrt(r * r - z * z), 256)}});
+  return set;
+}
+
+// With round caps the interpolated sphere's simplification patches meet some border vertices
+// from two sides (pinched within the patch); they simplify too, leaving those vertices'
+// triangles as they were (21 of its 47 patches were put back whole before: 37 708 -> 27 084).
+TEST_F(InterpolatedShapesTest, SimplifyTakesThePatchesThatMeetAVertexTwice) {
+  const ContourSet set = sphereOfSphereShapePy();
   BuildOptions options;
   options.grid.voxelSize = 1.0;
   options.interpolation.factor = InterpolationOptions::kAuto;  // the CLI's defaults
@@ -577,13 +577,15 @@ TEST_F(InterpolatedShapesTest, SimplifyTakesThePatchesThatMeetAVertexTwice) {
   expectTopology(built.value(), 0, 1, 0);
 }
 
+// Round caps go on at the taper a structure had at its end plane (capTaper): the sphere of
+// tests/bench/sphere_shape.py (radius 20, planes at z = -17, -14, ... 19, 1 mm pixels) ends
+// below in a dome 2.8 mm high that meets the side at its slope, where half an ellipsoid stood
+// 2.25 mm with a vertical wall (its faces' normals 14 degrees off there, 30 at the wall); above,
+// where the last plane lies 1 mm from the pole, the trend ends within the gap and the cap stays
+// half an ellipsoid. Same volume, the slab rule's.
 TEST_F(InterpolatedShapesTest, RoundCapsGoOnAtTheStructuresTaper) {
   const double r = 20;
-  ContourSet set;
-  set.source = "sphere";
-  set.features.push_back({"sphere", {}, {}});
-  for (double z = -17; z < r; z += 3)
-    set.features[0].slices.push_back({z, {circleContour({0, 0}, std::sqrt(r * r - z * z), 256)}});
+  const ContourSet set = sphereOfSphereShapePy();
   const BuildResult b = build(set, 1.0);
   expectTopology(b, 0, 1, 0);
   const MultiLabelMesh& m = b.surfaces.mesh;
