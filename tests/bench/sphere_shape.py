@@ -2,9 +2,11 @@
 """The analytic sphere's shape figures (issue 28): a sphere of radius 20 mm drawn on slices 3 mm
 apart (256 points per contour), surfaced at 1 mm pixels with scansurf's defaults plus any flags
 given; prints the faces, the area-weighted mean and 95th percentile of the angle between each
-face's normal and the true sphere's at its centroid, and the smallest and 5th-percentile angle.
+face's normal and the true sphere's at its centroid, the smallest and 5th-percentile angle, and
+the vertices' mean and largest distance to the true sphere. --gap G and --pixel P (before the
+flags) draw the slices G mm apart and surface them at P mm pixels.
 
-  tests/bench/sphere_shape.py build/cli/scansurf [FLAG...]      e.g. --simplify, --remesh
+  tests/bench/sphere_shape.py build/cli/scansurf [--gap G] [--pixel P] [FLAG...]      e.g. --simplify, --remesh
 """
 import json
 import math
@@ -32,12 +34,15 @@ def sphere_contours(radius=20.0, gap=3.0, points=256):
 
 def main():
     scansurf, flags = sys.argv[1], sys.argv[2:]
+    grid = {"--gap": "3", "--pixel": "1"}
+    while flags[:1] and flags[0] in grid and len(flags) > 1:
+        grid[flags[0]], flags = flags[1], flags[2:]
     with tempfile.TemporaryDirectory() as work:
         source = os.path.join(work, "sphere.json")
         with open(source, "w") as f:
-            json.dump(sphere_contours(), f)
+            json.dump(sphere_contours(gap=float(grid["--gap"])), f)
         out = os.path.join(work, "out")
-        subprocess.run([scansurf, source, "-o", out, "--voxel-size", "1", "-q", *flags], check=True)
+        subprocess.run([scansurf, source, "-o", out, "--voxel-size", grid["--pixel"], "-q", *flags], check=True)
         v, faces = read_ply(os.path.join(out, "ball.ply"))
     p = v[faces]
     n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
@@ -48,10 +53,12 @@ def main():
     order = np.argsort(error)
     p95 = error[order][np.searchsorted(np.cumsum(area[order]) / area.sum(), 0.95)]
     smallest = smallest_angles(v, faces)
-    print("sphere r 20, 1 mm / 3 mm, %s: %d faces; face normal error mean %.1f, 95th percentile %.1f deg; "
-          "smallest angle %.1f, 5th percentile %.1f deg" % (" ".join(flags) or "defaults", len(faces),
-                                                           (error * area).sum() / area.sum(), p95, smallest.min(),
-                                                           np.percentile(smallest, 5)))
+    distance = np.abs(np.linalg.norm(v[np.unique(faces)], axis=1) - 20)
+    print("sphere r 20, %s mm / %s mm, %s: %d faces; face normal error mean %.1f, 95th percentile %.1f deg; "
+          "smallest angle %.1f, 5th percentile %.1f deg; vertex distance mean %.4f, max %.4f mm"
+          % (grid["--pixel"], grid["--gap"], " ".join(flags) or "defaults", len(faces),
+             (error * area).sum() / area.sum(), p95, smallest.min(), np.percentile(smallest, 5), distance.mean(),
+             distance.max()))
 
 
 if __name__ == "__main__":
