@@ -155,10 +155,10 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.begin("smoothing");
     SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
-    // Simplification merges further from the mesh before the cubes' fans (docs/method.md).
+    // Simplification, when asked, starts from the fans' triangles: it merges the vertices the
+    // boxes' rims keep (docs/method.md, "Simplification").
     const double snap = snapFractionFor(grid, planes, options.smoothing.snap);
-    const ShapedTriangles shaped =
-        shapeTriangles(surfaces.mesh, grid, snap, smoothed.onSheet, !options.simplification.enabled, options.threads);
+    const ShapedTriangles shaped = shapeTriangles(surfaces.mesh, grid, snap, smoothed.onSheet, true, options.threads);
     surfaces.snapping = shaped.report;
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,

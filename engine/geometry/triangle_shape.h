@@ -18,8 +18,7 @@ struct ShapedTriangles {
 };
 
 // The three steps in order on the relaxed mesh (keys intact); onSheet follows the vertices.
-// cubeFans false: the third is left out (simplification, which merges further from the
-// unreduced mesh, follows). Deterministic for any thread count (0 = all).
+// cubeFans false: the third is left out (the tests of the first two alone). Deterministic for any thread count (0 = all).
 ShapedTriangles shapeTriangles(MultiLabelMesh& mesh, const Grid& grid, double snapFraction, std::vector<bool>& onSheet,
                                bool cubeFans = true, int threads = 0);
 
