@@ -86,8 +86,13 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
                                                         const std::vector<char>& isNew, double cell, int threads) {
   const std::size_t count = triangles.size() / 3;
   std::vector<Box> boxes(count);
+  std::vector<char> skipped(count, 0);  // old and degenerate: no crossing to find (once each, not per query)
   parallelChunks(count, threads, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t) boxes[t] = boxOf(cornersOf(positions, triangles, t));
+    for (std::size_t t = begin; t < end; ++t) {
+      const std::array<Point3, 3> p = cornersOf(positions, triangles, t);
+      boxes[t] = boxOf(p);
+      skipped[t] = !isNew[t] && isDegenerate(p);
+    }
   });
   const BucketGrid grid(boxes, cell);
   std::vector<std::uint32_t> queries;
@@ -108,8 +113,8 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
       const std::array<Point3, 3> pa = cornersOf(positions, triangles, a);
       const std::array<std::uint32_t, 3> ia{triangles[3 * a], triangles[3 * a + 1], triangles[3 * a + 2]};
       for (std::uint32_t b : candidates) {
+        if (skipped[b]) continue;
         const std::array<Point3, 3> pb = cornersOf(positions, triangles, b);
-        if (!isNew[b] && isDegenerate(pb)) continue;
         if (trianglesCross(ia, pa, {triangles[3 * b], triangles[3 * b + 1], triangles[3 * b + 2]}, pb))
           found[static_cast<std::size_t>(chunk)].push_back({a, b});
       }

@@ -15,8 +15,39 @@
 
 namespace scansurf {
 
+namespace {
+
+// singleFan for a link of at most kSmallLink edges (almost every vertex): the same union-find
+// over its vertices, on the stack, each vertex found by a linear scan.
+constexpr std::size_t kSmallLink = 32;
+
+bool singleSmallFan(std::span<const std::array<std::uint32_t, 2>> link) {
+  std::array<std::uint32_t, 2 * kSmallLink> ids, parent;
+  std::size_t count = 0;
+  const auto local = [&](std::uint32_t v) {
+    for (std::size_t i = 0; i < count; ++i)
+      if (ids[i] == v) return i;
+    ids[count] = v, parent[count] = static_cast<std::uint32_t>(count);
+    return count++;
+  };
+  const auto root = [&](std::size_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  std::size_t components = 0;
+  for (const auto& e : link) {
+    const std::size_t before = count, a = root(local(e[0])), b = root(local(e[1]));
+    components += count - before;
+    if (a != b) parent[a] = static_cast<std::uint32_t>(b), --components;
+  }
+  return components <= 1;  // an empty link counts as one fan, as below
+}
+
+}  // namespace
+
 // True when the triangles around v (given as the opposite edges of v's link) form one fan.
 bool singleFan(std::span<const std::array<std::uint32_t, 2>> link, std::vector<std::uint32_t>& scratch) {
+  if (link.size() <= kSmallLink) return singleSmallFan(link);
   scratch.clear();
   for (const auto& e : link) {
     scratch.push_back(e[0]);

@@ -134,16 +134,18 @@ bool anyDegenerate(std::span<const float> p, std::span<const std::uint32_t> tris
 }  // namespace
 
 std::vector<char> pinchedVertices(std::span<const std::uint32_t> triangles, std::size_t vertexCount) {
+  // Each vertex's link edges, bucketed by vertex (a counting sort: the ids are local and few).
+  std::vector<std::uint32_t> start(vertexCount + 1, 0);
+  for (std::uint32_t v : triangles) ++start[v + 1];
+  for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+  std::vector<std::array<std::uint32_t, 2>> link(triangles.size());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) link[fill[triangles[t + c]]++] = {triangles[t + (c + 1) % 3], triangles[t + (c + 2) % 3]};
   std::vector<char> pinched(vertexCount, 0);
-  const std::vector<std::array<std::uint32_t, 3>> corners = cornersOf(triangles);
-  std::vector<std::array<std::uint32_t, 2>> link;
   std::vector<std::uint32_t> scratch;
-  for (std::size_t i = 0; i < corners.size();) {
-    link.clear();
-    const std::uint32_t v = corners[i][0];
-    for (; i < corners.size() && corners[i][0] == v; ++i) link.push_back({corners[i][1], corners[i][2]});
-    pinched[v] = !singleFan(link, scratch);
-  }
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    if (start[v + 1] > start[v]) pinched[v] = !singleFan(std::span(link).subspan(start[v], start[v + 1] - start[v]), scratch);
   return pinched;
 }
 

@@ -720,16 +720,17 @@ void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, bool rem
 
 }  // namespace
 
-AngleFigures computeAngleFigures(std::span<const float> positions, std::span<const std::uint32_t> triangles) {
-  std::vector<double> smallest;
-  smallest.reserve(triangles.size() / 3);
+AngleFigures computeAngleFigures(std::span<const float> positions, std::span<const std::uint32_t> triangles, int threads) {
+  std::vector<double> smallest(triangles.size() / 3);
   const auto at = [&](std::uint32_t v) { return Vec3{positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; };
-  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
-    const Vec3 p[3] = {at(triangles[t]), at(triangles[t + 1]), at(triangles[t + 2])};
-    double best = std::numbers::pi;
-    for (int c = 0; c < 3; ++c) best = std::min(best, angleAt(p[c], p[(c + 1) % 3], p[(c + 2) % 3]));
-    smallest.push_back(best * 180 / std::numbers::pi);
-  }
+  parallelChunks(smallest.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      const Vec3 p[3] = {at(triangles[3 * t]), at(triangles[3 * t + 1]), at(triangles[3 * t + 2])};
+      double best = std::numbers::pi;
+      for (int c = 0; c < 3; ++c) best = std::min(best, angleAt(p[c], p[(c + 1) % 3], p[(c + 2) % 3]));
+      smallest[t] = best * 180 / std::numbers::pi;
+    }
+  });
   AngleFigures f;
   if (smallest.empty()) return f;
   double sum = 0;
@@ -769,7 +770,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   if (!options.enabled || mesh.triangleCount() == 0) return report;
   report.ran = true;
   report.trianglesBefore = mesh.triangleCount();
-  report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles);
+  report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles, threads);
   std::vector<double> planes = contours ? contourPlanes(*contours, sliceTolerance) : std::vector<double>{};
   report.edgeLength = targetLength(options, grid, planes);
   const SurfaceTable surfaces(mesh, nesting);
@@ -797,7 +798,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   }
   report.maxDistance = largestDistance(mesh, reference, report.edgeLength, threads);
   report.trianglesAfter = mesh.triangleCount();
-  report.anglesAfter = computeAngleFigures(mesh.positions, mesh.triangles);
+  report.anglesAfter = computeAngleFigures(mesh.positions, mesh.triangles, threads);
   return report;
 }
 

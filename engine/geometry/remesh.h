@@ -33,7 +33,8 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
 // and 5th percentile the least of the two, means weighted by triangles, distance the largest.
 void accumulate(RemeshReport& into, const RemeshReport& layer);
 
-// The smallest angle of each triangle (3 indices each into xyz positions), summarized.
-AngleFigures computeAngleFigures(std::span<const float> positions, std::span<const std::uint32_t> triangles);
+// The smallest angle of each triangle (3 indices each into xyz positions), summarized; the
+// same figures for any thread count (0 = all).
+AngleFigures computeAngleFigures(std::span<const float> positions, std::span<const std::uint32_t> triangles, int threads = 1);
 
 }  // namespace scansurf

@@ -279,7 +279,7 @@ SimplificationReport simplifyMesh(MultiLabelMesh& mesh, const Grid& grid, const 
   if (!options.enabled || mesh.triangleCount() == 0) return report;
   report.ran = true;
   report.trianglesBefore = mesh.triangleCount();
-  report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles);
+  report.anglesBefore = computeAngleFigures(mesh.positions, mesh.triangles, threads);
   const double voxel = std::min(grid.spacingX, grid.spacingY);
   const double planeTolerance = grid.planeTolerance > 0 ? grid.planeTolerance : 1e-6 * voxel;
   const std::vector<int> plane = planesOfVertices(mesh, grid, contourLayers, planeTolerance, threads);
@@ -299,7 +299,7 @@ SimplificationReport simplifyMesh(MultiLabelMesh& mesh, const Grid& grid, const 
   report.patches = patches.size();
   replaceTriangles(mesh, std::move(candidate));
   report.trianglesAfter = mesh.triangleCount();
-  report.anglesAfter = computeAngleFigures(mesh.positions, mesh.triangles);
+  report.anglesAfter = computeAngleFigures(mesh.positions, mesh.triangles, threads);
   return report;
 }
 
