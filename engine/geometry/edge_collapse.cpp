@@ -220,15 +220,12 @@ class Collapser {
 
   bool contains(std::uint32_t t, std::uint32_t v) const { return tris_[t][0] == v || tris_[t][1] == v || tris_[t][2] == v; }
 
-  // The edge v-u has two triangles (an inner edge).
-  bool innerEdge(std::uint32_t v, std::uint32_t u) const {
+  // The link condition: u and v share exactly the two vertices opposite their edge.
+  bool keepsManifold(std::uint32_t v, std::uint32_t u, const std::vector<std::uint32_t>& nv,
+                     const std::vector<std::uint32_t>& nu) const {
     int shared = 0;
     for (std::uint32_t t : vtris_[v]) shared += contains(t, u);
-    return shared == 2;
-  }
-
-  // The link condition on an inner edge: u and v share exactly the two vertices opposite it.
-  bool keepsManifold(const std::vector<std::uint32_t>& nv, const std::vector<std::uint32_t>& nu) const {
+    if (shared != 2) return false;
     std::size_t common = 0;
     for (std::uint32_t w : nv) common += std::binary_search(nu.begin(), nu.end(), w);
     return common == 2;
@@ -256,9 +253,9 @@ class Collapser {
   }
 
   bool canCollapse(std::uint32_t v, std::uint32_t u) {
-    if (vtris_[v].empty() || vtris_[u].empty() || !innerEdge(v, u)) return false;
+    if (vtris_[v].empty() || vtris_[u].empty()) return false;
     neighbours(v, nv_), neighbours(u, nu_);
-    if (!keepsManifold(nv_, nu_)) return false;
+    if (!keepsManifold(v, u, nv_, nu_)) return false;
     double worstBefore = -1;  // the sharpest corner among v's triangles
     for (std::uint32_t t : vtris_[v]) worstBefore = std::max(worstBefore, cosine_[t]);
     for (std::uint32_t t : vtris_[v])

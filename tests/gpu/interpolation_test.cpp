@@ -555,18 +555,22 @@ ContourSet sphereOfSphereShapePy() {
   return set;
 }
 
+// The CLI's defaults at 1 mm pixels, plus --simplify.
+BuildOptions simplifiedAtCliDefaults() {
+  BuildOptions options;
+  options.grid.voxelSize = 1.0;
+  options.interpolation.factor = InterpolationOptions::kAuto;
+  options.interpolation.caps = CapShape::Round;
+  options.smoothing.enabled = true;
+  options.simplification.enabled = true;
+  return options;
+}
+
 // With round caps the interpolated sphere's simplification patches meet some border vertices
 // from two sides (pinched within the patch); they simplify too, leaving those vertices'
 // triangles as they were (21 of its 47 patches were put back whole before: 37 708 -> 27 084).
 TEST_F(InterpolatedShapesTest, SimplifyTakesThePatchesThatMeetAVertexTwice) {
-  const ContourSet set = sphereOfSphereShapePy();
-  BuildOptions options;
-  options.grid.voxelSize = 1.0;
-  options.interpolation.factor = InterpolationOptions::kAuto;  // the CLI's defaults
-  options.interpolation.caps = CapShape::Round;
-  options.smoothing.enabled = true;
-  options.simplification.enabled = true;
-  auto built = engine_->build(set, options);
+  auto built = engine_->build(sphereOfSphereShapePy(), simplifiedAtCliDefaults());
   ASSERT_TRUE(built) << built.error().message;
   const SimplificationReport& s = built->surfaces.simplification;
   std::printf("[ figure   ] sphere r20, 1 mm / 3 mm, --simplify: %zu -> %zu triangles, %zu of %zu patches refused\n",
@@ -581,13 +585,7 @@ TEST_F(InterpolatedShapesTest, SimplifyTakesThePatchesThatMeetAVertexTwice) {
 // the boxes' rims keep. From the snapped mesh alone it left 16 320 of the sphere's 37 708
 // triangles; from the fans' 25 658 it leaves 13 652.
 TEST_F(InterpolatedShapesTest, SimplifyStartsFromTheFans) {
-  BuildOptions options;
-  options.grid.voxelSize = 1.0;
-  options.interpolation.factor = InterpolationOptions::kAuto;
-  options.interpolation.caps = CapShape::Round;
-  options.smoothing.enabled = true;
-  options.simplification.enabled = true;
-  auto built = engine_->build(sphereOfSphereShapePy(), options);
+  auto built = engine_->build(sphereOfSphereShapePy(), simplifiedAtCliDefaults());
   ASSERT_TRUE(built) << built.error().message;
   EXPECT_GT(built->surfaces.snapping.cubeFans, 0u);
   std::printf("[ figure   ] sphere r20, 1 mm / 3 mm, --simplify after the fans: %zu triangles\n",
