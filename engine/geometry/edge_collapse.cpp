@@ -231,35 +231,47 @@ class Collapser {
     return common == 2;
   }
 
-  // Whether triangle t (of v, not holding u) may have v replaced by u.
-  bool keepsTriangle(std::uint32_t t, std::uint32_t v, std::uint32_t u, const std::vector<std::uint32_t>& nu,
-                     double worstBefore) const {
+  // Whether triangle t (of v, not holding u) keeps its shape with v replaced by u: it turns by
+  // at most 60 degrees, faces the side the smoothed surface faced at each corner and gets no
+  // sharper than the lesser of the angle limit and v's sharpest corner before.
+  bool keepsShape(std::uint32_t t, std::uint32_t v, std::uint32_t u, double worstBefore) const {
     std::array<Vec3, 3> before, after;
-    int onPlane = 0;
     for (int c = 0; c < 3; ++c) {
       const std::uint32_t w = tris_[t][c];
       before[c] = pos_[w], after[c] = pos_[w == v ? u : w];
+    }
+    const Vec3 n0 = normalOf(before[0], before[1], before[2]), n1 = normalOf(after[0], after[1], after[2]);
+    const double l0 = glm::length(n0), l1 = glm::length(n1);
+    if (l1 <= 1e-12 * (l0 + 1e-300) || glm::dot(n0, n1) < kLeastTurnCosine * l0 * l1) return false;
+    for (int c = 0; c < 3; ++c)
+      if (glm::dot(n1, normal_[tris_[t][c] == v ? u : tris_[t][c]]) <= 0) return false;
+    return sharpestCosine(after[0], after[1], after[2]) <= std::max(leastCosine_, worstBefore);
+  }
+
+  // Whether triangle t's new edges (from u to its other corners) are allowed: none longer than
+  // the edge bound and none along a contour plane, unless u has that edge already.
+  bool keepsEdges(std::uint32_t t, std::uint32_t v, std::uint32_t u, const std::vector<std::uint32_t>& nu) const {
+    int onPlane = 0;
+    for (const std::uint32_t w : tris_[t]) {
       if (w == v) continue;
       if (glm::length(pos_[w] - pos_[u]) > limits_.maxEdge && !std::binary_search(nu.begin(), nu.end(), w)) return false;
       if (plane_[u] >= 0 && plane_[w] == plane_[u] && (++onPlane == 2 || !std::binary_search(nu.begin(), nu.end(), w)))
         return false;
     }
-    const Vec3 n0 = normalOf(before[0], before[1], before[2]), n1 = normalOf(after[0], after[1], after[2]);
-    const double l0 = glm::length(n0), l1 = glm::length(n1);
-    if (l1 <= 1e-12 * (l0 + 1e-300) || glm::dot(n0, n1) < kLeastTurnCosine * l0 * l1) return false;
-    for (int c = 0; c < 3; ++c)  // and faces the side the smoothed surface faced at each corner
-      if (glm::dot(n1, normal_[tris_[t][c] == v ? u : tris_[t][c]]) <= 0) return false;
-    return sharpestCosine(after[0], after[1], after[2]) <= std::max(leastCosine_, worstBefore);
+    return true;
   }
 
+  // The shapes first: most candidates fail there, before their neighbour lists are sorted.
   bool canCollapse(std::uint32_t v, std::uint32_t u) {
     if (vtris_[v].empty() || vtris_[u].empty()) return false;
-    neighbours(v, nv_), neighbours(u, nu_);
-    if (!keepsManifold(v, u, nv_, nu_)) return false;
     double worstBefore = -1;  // the sharpest corner among v's triangles
     for (std::uint32_t t : vtris_[v]) worstBefore = std::max(worstBefore, cosine_[t]);
     for (std::uint32_t t : vtris_[v])
-      if (!contains(t, u) && !keepsTriangle(t, v, u, nu_, worstBefore)) return false;
+      if (!contains(t, u) && !keepsShape(t, v, u, worstBefore)) return false;
+    neighbours(v, nv_), neighbours(u, nu_);
+    if (!keepsManifold(v, u, nv_, nu_)) return false;
+    for (std::uint32_t t : vtris_[v])
+      if (!contains(t, u) && !keepsEdges(t, v, u, nu_)) return false;
     return true;
   }
 
