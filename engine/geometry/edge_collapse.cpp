@@ -58,12 +58,12 @@ Vec3 normalOf(const Vec3& a, const Vec3& b, const Vec3& c) { return glm::cross(b
 // The largest cosine of a triangle's corners (its smallest angle's); 1 when degenerate.
 double sharpestCosine(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 e[3] = {b - a, c - b, a - c};
+  const double length[3] = {glm::length(e[0]), glm::length(e[1]), glm::length(e[2])};
   double worst = -1;
   for (int k = 0; k < 3; ++k) {
-    const Vec3 u = e[k], w = -e[(k + 2) % 3];  // the two edges leaving corner k
-    const double l = glm::length(u) * glm::length(w);
+    const double l = length[k] * length[(k + 2) % 3];  // the two edges leaving corner k
     if (l == 0) return 1;
-    worst = std::max(worst, glm::dot(u, w) / l);
+    worst = std::max(worst, glm::dot(e[k], -e[(k + 2) % 3]) / l);
   }
   return worst;
 }

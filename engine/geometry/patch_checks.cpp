@@ -21,21 +21,31 @@ Point3 pointAt(std::span<const float> p, std::uint32_t v) {
   return {p[3 * std::size_t{v}], p[3 * std::size_t{v} + 1], p[3 * std::size_t{v} + 2]};
 }
 
-// Every triangle's three directed edges, sorted.
-std::vector<std::uint64_t> directedEdges(std::span<const std::uint32_t> tris) {
-  std::vector<std::uint64_t> edges;
-  edges.reserve(tris.size());
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-    for (int c = 0; c < 3; ++c) edges.push_back(edgeKey(tris[t + c], tris[t + (c + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  return edges;
-}
+// Every triangle's three directed edges, sorted, and where each vertex's edges start: a counting
+// sort by the first vertex (a patch's ids are local and few), then each vertex's few by the second.
+struct DirectedEdges {
+  std::vector<std::uint64_t> sorted;
+  std::vector<std::uint32_t> start;  // vertexCount + 1 entries
+
+  DirectedEdges(std::span<const std::uint32_t> tris, std::size_t vertexCount) : sorted(tris.size()), start(vertexCount + 1, 0) {
+    for (std::uint32_t v : tris) ++start[v + 1];
+    for (std::size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < tris.size(); t += 3)
+      for (int c = 0; c < 3; ++c) sorted[fill[tris[t + c]]++] = edgeKey(tris[t + c], tris[t + (c + 1) % 3]);
+    for (std::size_t v = 0; v < vertexCount; ++v) std::sort(sorted.begin() + start[v], sorted.begin() + start[v + 1]);
+  }
+  bool has(std::uint64_t e) const {
+    const auto first = sorted.begin() + start[from(e)], last = sorted.begin() + start[from(e) + 1];
+    return std::find(first, last, e) != last;
+  }
+};
 
 // The directed edges whose reverse is not there: the border, sorted.
-std::vector<std::uint64_t> borderOf(const std::vector<std::uint64_t>& edges) {
+std::vector<std::uint64_t> borderOf(const DirectedEdges& edges) {
   std::vector<std::uint64_t> border;
-  for (std::uint64_t e : edges)
-    if (!std::binary_search(edges.begin(), edges.end(), edgeKey(to(e), from(e)))) border.push_back(e);
+  for (std::uint64_t e : edges.sorted)
+    if (!edges.has(edgeKey(to(e), from(e)))) border.push_back(e);
   return border;
 }
 
@@ -87,12 +97,9 @@ bool noNewPinch(std::span<const std::uint32_t> before, std::span<const std::uint
 bool alongPlane(std::span<const int> plane, std::uint64_t e) { return plane[from(e)] >= 0 && plane[from(e)] == plane[to(e)]; }
 
 // Every edge along a contour plane in `after` is one of `before`'s (either direction).
-bool noNewPlaneEdge(std::span<const int> plane, const std::vector<std::uint64_t>& before,
-                    const std::vector<std::uint64_t>& after) {
-  for (std::uint64_t e : after)
-    if (alongPlane(plane, e) && !std::binary_search(before.begin(), before.end(), e) &&
-        !std::binary_search(before.begin(), before.end(), edgeKey(to(e), from(e))))
-      return false;
+bool noNewPlaneEdge(std::span<const int> plane, const DirectedEdges& before, const DirectedEdges& after) {
+  for (std::uint64_t e : after.sorted)
+    if (alongPlane(plane, e) && !before.has(e) && !before.has(edgeKey(to(e), from(e)))) return false;
   return true;
 }
 
@@ -109,8 +116,8 @@ std::array<std::uint32_t, 3> canonical(const std::uint32_t* t) {
 
 // Every new triangle of `after` faces the same side as `before`'s area-weighted normal at each
 // of its corners (the triangles kept as they were may face as they did).
-bool noneTurned(std::span<const float> p, std::span<const std::uint32_t> before, std::span<const std::uint32_t> after) {
-  const std::vector<char> fresh = newTriangles(before, after);
+bool noneTurned(std::span<const float> p, std::span<const std::uint32_t> before, std::span<const std::uint32_t> after,
+                const std::vector<char>& fresh) {
   std::vector<Point3> normal(p.size() / 3, Point3{0, 0, 0});
   for (std::size_t t = 0; t < before.size(); t += 3) {
     const Point3 n = normalOf(p, &before[t]);
@@ -160,19 +167,22 @@ std::vector<char> newTriangles(std::span<const std::uint32_t> before, std::span<
 }
 
 PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
-                        std::span<const std::uint32_t> after) {
+                        std::span<const std::uint32_t> after, std::vector<char>* fresh) {
   if (anyDegenerate(positions, after)) return PatchVerdict::Degenerate;
-  const std::vector<std::uint64_t> edgesBefore = directedEdges(before), edgesAfter = directedEdges(after);
-  if (std::adjacent_find(edgesAfter.begin(), edgesAfter.end()) != edgesAfter.end()) return PatchVerdict::NotOriented;
+  const std::size_t vertices = plane.size();
+  const DirectedEdges edgesBefore(before, vertices), edgesAfter(after, vertices);
+  if (std::adjacent_find(edgesAfter.sorted.begin(), edgesAfter.sorted.end()) != edgesAfter.sorted.end())
+    return PatchVerdict::NotOriented;
   const std::vector<std::uint64_t> borderBefore = borderOf(edgesBefore), borderAfter = borderOf(edgesAfter);
   if (borderBefore != borderAfter) return PatchVerdict::Border;
-  const std::size_t vertices = plane.size();
-  if (topologyOf(before, edgesBefore, borderBefore.size(), vertices) !=
-      topologyOf(after, edgesAfter, borderAfter.size(), vertices))
+  if (topologyOf(before, edgesBefore.sorted, borderBefore.size(), vertices) !=
+      topologyOf(after, edgesAfter.sorted, borderAfter.size(), vertices))
     return PatchVerdict::Topology;
   if (!noNewPinch(before, after, vertices)) return PatchVerdict::Pinched;
   if (!noNewPlaneEdge(plane, edgesBefore, edgesAfter)) return PatchVerdict::PlaneEdge;
-  if (!noneTurned(positions, before, after)) return PatchVerdict::Turned;
+  std::vector<char> isNew = newTriangles(before, after);
+  if (!noneTurned(positions, before, after, isNew)) return PatchVerdict::Turned;
+  if (fresh) *fresh = std::move(isNew);
   return PatchVerdict::Kept;
 }
 

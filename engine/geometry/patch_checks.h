@@ -20,9 +20,10 @@ enum class PatchVerdict {
 };
 
 // Compares `after` with `before` (3 indices per triangle into positions, xyz per vertex);
-// plane[v] is the contour plane vertex v lies on, or -1.
+// plane[v] is the contour plane vertex v lies on, or -1. When kept, `fresh` (if given) gets
+// newTriangles(before, after), which the last check needs anyway.
 PatchVerdict checkPatch(std::span<const float> positions, std::span<const int> plane, std::span<const std::uint32_t> before,
-                        std::span<const std::uint32_t> after);
+                        std::span<const std::uint32_t> after, std::vector<char>* fresh = nullptr);
 
 // Per vertex, whether its triangles form more than one fan (a patch's border vertex may).
 std::vector<char> pinchedVertices(std::span<const std::uint32_t> triangles, std::size_t vertexCount);

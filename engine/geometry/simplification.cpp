@@ -171,11 +171,10 @@ PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t
   const CollapseLimits limits{ctx.tolerance, ctx.edgeLength, ctx.minAngle};
   std::vector<std::uint32_t> after = collapseEdges(p.positions, p.triangles, locked, p.plane, limits);
   if (after.size() == p.triangles.size()) return result;
-  if (checkPatch(p.positions, p.plane, p.triangles, after) != PatchVerdict::Kept) {
+  if (checkPatch(p.positions, p.plane, p.triangles, after, &result.changed) != PatchVerdict::Kept) {
     result.refused = true;
     return result;
   }
-  result.changed = newTriangles(p.triangles, after);
   for (std::uint32_t& v : after) v = p.vertices[v];
   result.triangles = std::move(after);
   return result;
