@@ -12,8 +12,9 @@
 namespace scansurf {
 namespace {
 
+// Positions are floats, so their bounds are exactly floats too: half the memory of doubles.
 struct Box {
-  Vec3 lo, hi;
+  glm::vec3 lo, hi;
 };
 
 Point3 pointAt(std::span<const float> p, std::uint32_t v) {
@@ -24,7 +25,9 @@ std::array<Point3, 3> cornersOf(std::span<const float> p, std::span<const std::u
   return {pointAt(p, tris[3 * t]), pointAt(p, tris[3 * t + 1]), pointAt(p, tris[3 * t + 2])};
 }
 
-Box boxOf(const std::array<Point3, 3>& c) { return {glm::min(glm::min(c[0], c[1]), c[2]), glm::max(glm::max(c[0], c[1]), c[2])}; }
+Box boxOf(const std::array<Point3, 3>& c) {
+  return {glm::vec3(glm::min(glm::min(c[0], c[1]), c[2])), glm::vec3(glm::max(glm::max(c[0], c[1]), c[2]))};
+}
 
 bool overlap(const Box& a, const Box& b) {
   for (int k = 0; k < 3; ++k)
@@ -35,17 +38,18 @@ bool overlap(const Box& a, const Box& b) {
 // Triangles by the buckets of the cells their boxes touch (offsets into one list).
 class BucketGrid {
  public:
-  BucketGrid(const std::vector<Box>& boxes, double cell) : cell_(cell) {
-    origin_ = boxes.empty() ? Vec3{0, 0, 0} : boxes.front().lo;
-    for (const Box& b : boxes) origin_ = glm::min(origin_, b.lo);
-    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(2 * boxes.size(), 64));
+  // The boxes of the triangles `members` lists.
+  BucketGrid(const std::vector<Box>& boxes, const std::vector<std::uint32_t>& members, double cell) : cell_(cell) {
+    origin_ = members.empty() ? Vec3{0, 0, 0} : Vec3(boxes[members.front()].lo);
+    for (std::uint32_t t : members) origin_ = glm::min(origin_, Vec3(boxes[t].lo));
+    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(2 * members.size(), 64));
     shift_ = 64 - std::countr_zero(buckets);
     start_.assign(buckets + 1, 0);
-    for (const Box& b : boxes) forBuckets(b, [&](std::size_t s) { ++start_[s + 1]; });
+    for (std::uint32_t t : members) forBuckets(boxes[t], [&](std::size_t s) { ++start_[s + 1]; });
     for (std::size_t s = 0; s < buckets; ++s) start_[s + 1] += start_[s];
     list_.resize(start_.back());
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::uint32_t t = 0; t < boxes.size(); ++t) forBuckets(boxes[t], [&](std::size_t s) { list_[fill[s]++] = t; });
+    for (std::uint32_t t : members) forBuckets(boxes[t], [&](std::size_t s) { list_[fill[s]++] = t; });
   }
 
   // Calls f(triangle) for every triangle in a bucket of a cell the box touches (with repeats).
@@ -67,7 +71,7 @@ class BucketGrid {
           f(static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> shift_));
         }
   }
-  std::array<std::uint64_t, 3> cellOf(const Vec3& p) const {
+  std::array<std::uint64_t, 3> cellOf(const glm::vec3& p) const {
     std::array<std::uint64_t, 3> c;
     for (int k = 0; k < 3; ++k) c[k] = static_cast<std::uint64_t>(std::floor((p[k] - origin_[k]) / cell_)) & 0x1fffff;
     return c;
@@ -85,20 +89,36 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
                                                         std::span<const std::uint32_t> triangles, const std::vector<char>& query,
                                                         const std::vector<char>& isNew, double cell, int threads) {
   const std::size_t count = triangles.size() / 3;
+  std::vector<std::uint32_t> queries;
+  bool newQuery = false;
+  for (std::uint32_t t = 0; t < count; ++t)
+    if (query[t]) queries.push_back(t), newQuery = newQuery || isNew[t];
+  if (queries.empty()) return {};
+  // A pair is tested only if one of the two is new: with old queries alone, only new triangles
+  // can be their partners (simplification's later rounds, where a few patches were put back).
+  std::vector<std::uint32_t> members;
+  for (std::uint32_t t = 0; t < count; ++t)
+    if (newQuery || isNew[t] || query[t]) members.push_back(t);
+  // Each member's corners side by side, since the narrow phase reads them for every candidate,
+  // and its box; old degenerate ones are skipped (no crossing to find).
+  std::vector<float> corners(9 * count);
   std::vector<Box> boxes(count);
-  std::vector<char> skipped(count, 0);  // old and degenerate: no crossing to find (once each, not per query)
-  parallelChunks(count, threads, [&](int, std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t) {
+  std::vector<char> skipped(count, 0);
+  parallelChunks(members.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t m = begin; m < end; ++m) {
+      const std::uint32_t t = members[m];
       const std::array<Point3, 3> p = cornersOf(positions, triangles, t);
+      for (std::size_t c = 0; c < 3; ++c)
+        std::copy_n(&positions[3 * std::size_t{triangles[3 * t + c]}], 3, &corners[9 * std::size_t{t} + 3 * c]);
       boxes[t] = boxOf(p);
       skipped[t] = !isNew[t] && isDegenerate(p);
     }
   });
-  const BucketGrid grid(boxes, cell);
-  std::vector<std::uint32_t> queries;
-  for (std::uint32_t t = 0; t < count; ++t)
-    if (query[t]) queries.push_back(t);
-  if (queries.empty()) return {};
+  const auto cornersAt = [&](std::uint32_t t) -> std::array<Point3, 3> {
+    const float* c = &corners[9 * std::size_t{t}];
+    return {Point3{c[0], c[1], c[2]}, Point3{c[3], c[4], c[5]}, Point3{c[6], c[7], c[8]}};
+  };
+  const BucketGrid grid(boxes, members, cell);
   std::vector<std::vector<std::array<std::uint32_t, 2>>> found(static_cast<std::size_t>(chunkCount(queries.size(), threads)));
   parallelChunks(queries.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> candidates;
@@ -110,12 +130,11 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
       });
       std::sort(candidates.begin(), candidates.end());
       candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      const std::array<Point3, 3> pa = cornersOf(positions, triangles, a);
+      const std::array<Point3, 3> pa = cornersAt(a);
       const std::array<std::uint32_t, 3> ia{triangles[3 * a], triangles[3 * a + 1], triangles[3 * a + 2]};
       for (std::uint32_t b : candidates) {
         if (skipped[b]) continue;
-        const std::array<Point3, 3> pb = cornersOf(positions, triangles, b);
-        if (trianglesCross(ia, pa, {triangles[3 * b], triangles[3 * b + 1], triangles[3 * b + 2]}, pb))
+        if (trianglesCross(ia, pa, {triangles[3 * b], triangles[3 * b + 1], triangles[3 * b + 2]}, cornersAt(b)))
           found[static_cast<std::size_t>(chunk)].push_back({a, b});
       }
     }

@@ -294,7 +294,9 @@ SimplificationReport simplifyMesh(MultiLabelMesh& mesh, const Grid& grid, const 
   std::vector<char> kept(patches.size());
   for (std::size_t i = 0; i < patches.size(); ++i) kept[i] = !results[i].triangles.empty(), report.refused += results[i].refused;
   Candidate candidate;
-  report.crossing = dropCrossingPatches(mesh, order, patches, results, kept, candidate, 2 * voxel, threads);
+  // Cells of 4 voxels: a triangle touches fewer of them than of 2 (grid 0.40 -> 0.16 s on pelvis),
+  // at no cost in candidates; any size gives the same pairs.
+  report.crossing = dropCrossingPatches(mesh, order, patches, results, kept, candidate, 4 * voxel, threads);
   report.patches = patches.size();
   replaceTriangles(mesh, std::move(candidate));
   report.trianglesAfter = mesh.triangleCount();

@@ -13,14 +13,17 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <random>
 #include <set>
 #include <vector>
 
 #include "geometry/contour_layers.h"
+#include "geometry/crossing_search.h"
 #include "geometry/edge_collapse.h"
 #include "geometry/feature_surfaces.h"
 #include "geometry/patch_checks.h"
 #include "geometry/smoothing.h"
+#include "geometry/triangle_intersection.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"
@@ -319,6 +322,64 @@ TEST(EdgeCollapse, NoEdgeAlongAContourPlaneThatWasNotThere) {
   const std::vector<std::uint32_t> after = collapseEdges(f.positions, f.triangles, locked, plane, {0.01, 4.0, 0});
   EXPECT_LT(after.size(), f.triangles.size());
   EXPECT_EQ(checkPatch(f.positions, plane, f.triangles, after), PatchVerdict::Kept);
+}
+
+// The crossing search against every pair tested exactly: a soup of small triangles sharing
+// corners from one pool (so that pairs meet at shared vertices and edges too), with new
+// queries (simplification's first round) and with old ones only (its later rounds).
+TEST(CrossingSearch, FindsThePairsEveryPairTestGives) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(0, 6), offset(-1, 1);
+  std::vector<float> positions;
+  for (int v = 0; v < 240; ++v) {
+    const float x = coordinate(random), y = coordinate(random), z = coordinate(random);
+    for (int k = 0; k < 3; ++k) positions.push_back(k == 0 ? x : k == 1 ? y : z);
+  }
+  std::vector<std::uint32_t> triangles;
+  std::uniform_int_distribution<std::uint32_t> corner(0, 79), anyCorner(0, 239);
+  for (std::uint32_t t = 0; t < 200; ++t) {  // each from one pool corner and two others near it
+    const std::uint32_t a = corner(random);
+    triangles.push_back(a);
+    for (int c = 0; c < 2; ++c) {
+      const std::uint32_t v = static_cast<std::uint32_t>(positions.size() / 3);
+      const bool shared = random() % 3 == 0;
+      if (const std::uint32_t w = anyCorner(random) % 80; shared && w != a && w != triangles.back()) {
+        triangles.push_back(w);
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) positions.push_back(positions[3 * a + k] + offset(random));
+      triangles.push_back(v);
+    }
+  }
+  const std::size_t count = triangles.size() / 3;
+  const auto cornersOf = [&](std::size_t t) {
+    std::array<Point3, 3> p;
+    for (int c = 0; c < 3; ++c)
+      p[c] = Point3{positions[3 * triangles[3 * t + c]], positions[3 * triangles[3 * t + c] + 1],
+                    positions[3 * triangles[3 * t + c] + 2]};
+    return p;
+  };
+  std::vector<char> isNew(count), oldQueries(count, 0);
+  for (std::size_t t = 0; t < count; ++t) isNew[t] = random() % 2, oldQueries[t] = !isNew[t] && random() % 4 == 0;
+  for (const std::vector<char>& query : {isNew, oldQueries}) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> expected;
+    for (std::uint32_t a = 0; a < count; ++a)
+      for (std::uint32_t b = 0; b < count && query[a]; ++b) {
+        if (b == a || (query[b] && b < a) || !(isNew[a] || isNew[b]) || (!isNew[b] && isDegenerate(cornersOf(b)))) continue;
+        const std::array<std::uint32_t, 3> ia{triangles[3 * a], triangles[3 * a + 1], triangles[3 * a + 2]};
+        const std::array<std::uint32_t, 3> ib{triangles[3 * b], triangles[3 * b + 1], triangles[3 * b + 2]};
+        if (trianglesCross(ia, cornersOf(a), ib, cornersOf(b))) expected.insert({a, b});
+      }
+    for (const double cell : {0.5, 2.0, 8.0})
+      for (const int threads : {1, 2}) {
+        std::set<std::pair<std::uint32_t, std::uint32_t>> found;
+        for (const auto& [a, b] : crossingPairs(positions, triangles, query, isNew, cell, threads)) found.insert({a, b});
+        EXPECT_EQ(found, expected) << "cell " << cell << ", " << threads << " threads";
+      }
+    std::printf("[ figure   ] %zu crossing pairs among %zu queries\n", expected.size(),
+                static_cast<std::size_t>(std::count(query.begin(), query.end(), 1)));
+    EXPECT_GT(expected.size(), 3u);  // the soup does cross
+  }
 }
 
 TEST(PatchChecks, EachLossIsNamed) {
