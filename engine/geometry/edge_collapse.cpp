@@ -89,6 +89,7 @@ class Collapser {
         if (length > 0) quadric_[v].addPlane(n / length, -glm::dot(n / length, pos_[tri[0]]));
       }
     }
+    starChangedAt_.assign(pos_.size(), 0), refusedAt_.assign(tris_.size(), 0);
     leastCosine_ = std::cos(limits.minAngle * std::numbers::pi / 180);
     maxCost_ = limits.maxDistance * limits.maxDistance;
   }
@@ -126,13 +127,28 @@ class Collapser {
   }
 
   // One pass of edge flips over every triangle's edges, in order; returns how many were made.
+  // A triangle whose edges were all refused before, and whose corners' stars have not changed
+  // since, is refused again (tryFlip reads nothing else that changes): it is skipped.
   std::size_t flipPass() {
     std::size_t flips = 0;
-    for (std::uint32_t t = 0; t < tris_.size(); ++t)
-      for (int c = 0; c < 3 && alive_[t]; ++c)
-        if (tryFlip(t, tris_[t][c], tris_[t][(c + 1) % 3])) ++flips, c = 3;
+    for (std::uint32_t t = 0; t < tris_.size(); ++t) {
+      if (!alive_[t] || refusedSinceChange(t)) continue;
+      bool flipped = false;
+      for (int c = 0; c < 3 && !flipped; ++c) flipped = tryFlip(t, tris_[t][c], tris_[t][(c + 1) % 3]);
+      if (flipped)
+        ++flips;
+      else
+        refusedAt_[t] = ++clock_;
+    }
     return flips;
   }
+
+  bool refusedSinceChange(std::uint32_t t) const {
+    const std::uint32_t refused = refusedAt_[t];
+    return refused > 0 &&
+           std::all_of(tris_[t].begin(), tris_[t].end(), [&](std::uint32_t v) { return starChangedAt_[v] < refused; });
+  }
+  void starChanged(std::uint32_t v) { starChangedAt_[v] = ++clock_; }
 
   // The other live triangle on edge a-b (a -> b in t), or ~0u when there is none or several.
   std::uint32_t across(std::uint32_t t, std::uint32_t a, std::uint32_t b) const {
@@ -185,6 +201,7 @@ class Collapser {
 
   // t = a, b, c and u = b, a, d become a, d, c and d, b, c.
   void flip(std::uint32_t t, std::uint32_t u, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    for (std::uint32_t w : {a, b, c, d}) starChanged(w);
     tris_[t] = {a, d, c}, tris_[u] = {d, b, c};
     std::erase(vtris_[a], u), std::erase(vtris_[b], t);
     vtris_[d].push_back(t), vtris_[c].push_back(u);
@@ -276,6 +293,8 @@ class Collapser {
   }
 
   void collapse(std::uint32_t v, std::uint32_t u) {
+    for (std::uint32_t t : vtris_[v])
+      for (std::uint32_t w : tris_[t]) starChanged(w);
     for (std::uint32_t t : vtris_[v]) {
       if (contains(t, u)) {
         alive_[t] = 0;
@@ -307,6 +326,10 @@ class Collapser {
   std::vector<std::vector<std::uint32_t>> vtris_;
   std::vector<Quadric> quadric_;
   std::vector<std::uint32_t> version_;
+  // Event times (clock_ ticks at each): when a vertex's star last changed (a flip or collapse
+  // there), when each triangle's edges were last all refused a flip (0: never tried).
+  std::uint32_t clock_ = 0;
+  std::vector<std::uint32_t> starChangedAt_, refusedAt_;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> heap_;
 };
 

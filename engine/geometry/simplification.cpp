@@ -131,30 +131,32 @@ struct LocalPatch {
   std::vector<int> plane;
 };
 
-LocalPatch localPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris) {
+// `localOf`: per mesh vertex ~0u, as it is left (a thread's scratch, so that no patch sorts
+// and searches its corners).
+LocalPatch localPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, std::vector<std::uint32_t>& localOf) {
   LocalPatch p;
   for (std::uint32_t t : tris)
-    for (int c = 0; c < 3; ++c) p.vertices.push_back(ctx.mesh.triangles[3 * std::size_t{t} + c]);
+    for (int c = 0; c < 3; ++c)
+      if (const std::uint32_t v = ctx.mesh.triangles[3 * std::size_t{t} + c]; localOf[v] == ~0u)
+        localOf[v] = 0, p.vertices.push_back(v);
   std::sort(p.vertices.begin(), p.vertices.end());
-  p.vertices.erase(std::unique(p.vertices.begin(), p.vertices.end()), p.vertices.end());
-  for (std::uint32_t v : p.vertices) {
+  for (std::uint32_t i = 0; i < p.vertices.size(); ++i) {
+    const std::uint32_t v = p.vertices[i];
+    localOf[v] = i;
     for (int c = 0; c < 3; ++c) p.positions.push_back(ctx.mesh.positions[3 * std::size_t{v} + c]);
     p.plane.push_back(ctx.plane[v]);
   }
   for (std::uint32_t t : tris)
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t v = ctx.mesh.triangles[3 * std::size_t{t} + c];
-      p.triangles.push_back(
-          static_cast<std::uint32_t>(std::lower_bound(p.vertices.begin(), p.vertices.end(), v) - p.vertices.begin()));
-    }
+    for (int c = 0; c < 3; ++c) p.triangles.push_back(localOf[ctx.mesh.triangles[3 * std::size_t{t} + c]]);
+  for (std::uint32_t v : p.vertices) localOf[v] = ~0u;
   return p;
 }
 
 // Simplifies one patch: vertices on contour planes or shared with another patch stay; empty
 // triangles when nothing changed or a check refused the result.
-PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris) {
+PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, std::vector<std::uint32_t>& localOf) {
   PatchResult result;
-  const LocalPatch p = localPatch(ctx, tris);
+  const LocalPatch p = localPatch(ctx, tris, localOf);
   std::vector<char> locked(p.vertices.size());
   for (std::size_t v = 0; v < locked.size(); ++v) locked[v] = ctx.shared[p.vertices[v]] || p.plane[v] >= 0;
   // Where the patch meets a border vertex from two sides its triangles stay as they are: none
@@ -288,8 +290,9 @@ SimplificationReport simplifyMesh(MultiLabelMesh& mesh, const Grid& grid, const 
   const PatchContext ctx{mesh, plane, shared, options.tolerance * voxel, options.edgeLength * voxel, options.minAngle};
   std::vector<PatchResult> results(patches.size());
   parallelChunks(patches.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> localOf(mesh.vertexCount(), ~0u);
     for (std::size_t i = begin; i < end; ++i)
-      results[i] = simplifyPatch(ctx, std::span(order).subspan(patches[i].first, patches[i].count));
+      results[i] = simplifyPatch(ctx, std::span(order).subspan(patches[i].first, patches[i].count), localOf);
   });
   std::vector<char> kept(patches.size());
   for (std::size_t i = 0; i < patches.size(); ++i) kept[i] = !results[i].triangles.empty(), report.refused += results[i].refused;
