@@ -215,7 +215,7 @@ void addSimplification(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_flag("--simplify,!--no-simplify", f.simplify,
                "merge the smoothed surfaces' triangles into fewer, better-shaped ones, every contour-plane cross-section "
                "and junction curve kept (default: off; on the benchmark sets about 1.35 times fewer triangles than the "
-               "default, the 3D Slicer route's count, for about twice smoothing's time; see docs/method.md "
+               "default, the 3D Slicer route's count, for about 1.3 times smoothing's time; see docs/method.md "
                "\"Simplification\")");
   app.add_option("--simplify-tolerance", s.tolerance, "how far simplification may move the surface, in-plane voxels")
       ->check(numberIn(0, SimplificationOptions::kMostTolerance, true, "a number in (0, 0.5]"))
