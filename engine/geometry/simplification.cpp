@@ -15,6 +15,7 @@
 #include "geometry/simplification.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 
@@ -131,32 +132,58 @@ struct LocalPatch {
   std::vector<int> plane;
 };
 
-// `localOf`: per mesh vertex ~0u, as it is left (a thread's scratch, so that no patch sorts
-// and searches its corners).
-LocalPatch localPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, std::vector<std::uint32_t>& localOf) {
+// Mesh vertex ids to a patch's local ids: open addressing over twice the patch's corners, so
+// that no patch sorts and searches every corner and a thread's scratch stays the size of a
+// patch, not of the mesh. Reused by a thread's patches.
+class LocalIds {
+ public:
+  void reset(std::size_t corners) {
+    const std::size_t size = std::bit_ceil(std::max<std::size_t>(2 * corners, 16));
+    ids_.assign(size, kEmpty), locals_.resize(size);
+    shift_ = 32 - std::countr_zero(size);
+  }
+  // v's slot; `added` says whether v was new (its local id is then to be set).
+  std::uint32_t& operator()(std::uint32_t v, bool& added) {
+    std::size_t slot = (v * 2654435761u) >> shift_;  // Knuth's multiplicative hash, top bits
+    for (; ids_[slot] != kEmpty; slot = (slot + 1) & (ids_.size() - 1))
+      if (ids_[slot] == v) return added = false, locals_[slot];
+    ids_[slot] = v, added = true;
+    return locals_[slot];
+  }
+
+ private:
+  static constexpr std::uint32_t kEmpty = ~0u;
+  std::vector<std::uint32_t> ids_, locals_;
+  int shift_ = 28;
+};
+
+LocalPatch localPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, LocalIds& local) {
   LocalPatch p;
+  local.reset(3 * tris.size());
+  bool added = false;
   for (std::uint32_t t : tris)
-    for (int c = 0; c < 3; ++c)
-      if (const std::uint32_t v = ctx.mesh.triangles[3 * std::size_t{t} + c]; localOf[v] == ~0u)
-        localOf[v] = 0, p.vertices.push_back(v);
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = ctx.mesh.triangles[3 * std::size_t{t} + c];
+      local(v, added);
+      if (added) p.vertices.push_back(v);
+    }
   std::sort(p.vertices.begin(), p.vertices.end());
   for (std::uint32_t i = 0; i < p.vertices.size(); ++i) {
     const std::uint32_t v = p.vertices[i];
-    localOf[v] = i;
+    local(v, added) = i;
     for (int c = 0; c < 3; ++c) p.positions.push_back(ctx.mesh.positions[3 * std::size_t{v} + c]);
     p.plane.push_back(ctx.plane[v]);
   }
   for (std::uint32_t t : tris)
-    for (int c = 0; c < 3; ++c) p.triangles.push_back(localOf[ctx.mesh.triangles[3 * std::size_t{t} + c]]);
-  for (std::uint32_t v : p.vertices) localOf[v] = ~0u;
+    for (int c = 0; c < 3; ++c) p.triangles.push_back(local(ctx.mesh.triangles[3 * std::size_t{t} + c], added));
   return p;
 }
 
 // Simplifies one patch: vertices on contour planes or shared with another patch stay; empty
 // triangles when nothing changed or a check refused the result.
-PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, std::vector<std::uint32_t>& localOf) {
+PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, LocalIds& local) {
   PatchResult result;
-  const LocalPatch p = localPatch(ctx, tris, localOf);
+  const LocalPatch p = localPatch(ctx, tris, local);
   std::vector<char> locked(p.vertices.size());
   for (std::size_t v = 0; v < locked.size(); ++v) locked[v] = ctx.shared[p.vertices[v]] || p.plane[v] >= 0;
   // Where the patch meets a border vertex from two sides its triangles stay as they are: none
@@ -290,9 +317,9 @@ SimplificationReport simplifyMesh(MultiLabelMesh& mesh, const Grid& grid, const 
   const PatchContext ctx{mesh, plane, shared, options.tolerance * voxel, options.edgeLength * voxel, options.minAngle};
   std::vector<PatchResult> results(patches.size());
   parallelChunks(patches.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-    std::vector<std::uint32_t> localOf(mesh.vertexCount(), ~0u);
+    LocalIds local;
     for (std::size_t i = begin; i < end; ++i)
-      results[i] = simplifyPatch(ctx, std::span(order).subspan(patches[i].first, patches[i].count), localOf);
+      results[i] = simplifyPatch(ctx, std::span(order).subspan(patches[i].first, patches[i].count), local);
   });
   std::vector<char> kept(patches.size());
   for (std::size_t i = 0; i < patches.size(); ++i) kept[i] = !results[i].triangles.empty(), report.refused += results[i].refused;
