@@ -38,18 +38,17 @@ bool overlap(const Box& a, const Box& b) {
 // Triangles by the buckets of the cells their boxes touch (offsets into one list).
 class BucketGrid {
  public:
-  // The boxes of the triangles `members` lists.
-  BucketGrid(const std::vector<Box>& boxes, const std::vector<std::uint32_t>& members, double cell) : cell_(cell) {
-    origin_ = members.empty() ? Vec3{0, 0, 0} : Vec3(boxes[members.front()].lo);
-    for (std::uint32_t t : members) origin_ = glm::min(origin_, Vec3(boxes[t].lo));
-    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(2 * members.size(), 64));
+  BucketGrid(const std::vector<Box>& boxes, double cell) : cell_(cell) {
+    origin_ = boxes.empty() ? Vec3{0, 0, 0} : Vec3(boxes.front().lo);
+    for (const Box& b : boxes) origin_ = glm::min(origin_, Vec3(b.lo));
+    const std::size_t buckets = std::bit_ceil(std::max<std::size_t>(2 * boxes.size(), 64));
     shift_ = 64 - std::countr_zero(buckets);
     start_.assign(buckets + 1, 0);
-    for (std::uint32_t t : members) forBuckets(boxes[t], [&](std::size_t s) { ++start_[s + 1]; });
+    for (const Box& b : boxes) forBuckets(b, [&](std::size_t s) { ++start_[s + 1]; });
     for (std::size_t s = 0; s < buckets; ++s) start_[s + 1] += start_[s];
     list_.resize(start_.back());
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::uint32_t t : members) forBuckets(boxes[t], [&](std::size_t s) { list_[fill[s]++] = t; });
+    for (std::uint32_t t = 0; t < boxes.size(); ++t) forBuckets(boxes[t], [&](std::size_t s) { list_[fill[s]++] = t; });
   }
 
   // Calls f(triangle) for every triangle in a bucket of a cell the box touches (with repeats).
@@ -89,54 +88,61 @@ std::vector<std::array<std::uint32_t, 2>> crossingPairs(std::span<const float> p
                                                         std::span<const std::uint32_t> triangles, const std::vector<char>& query,
                                                         const std::vector<char>& isNew, double cell, int threads) {
   const std::size_t count = triangles.size() / 3;
-  std::vector<std::uint32_t> queries;
   bool newQuery = false;
-  for (std::uint32_t t = 0; t < count; ++t)
-    if (query[t]) queries.push_back(t), newQuery = newQuery || isNew[t];
-  if (queries.empty()) return {};
+  for (std::size_t t = 0; t < count; ++t) newQuery = newQuery || (query[t] && isNew[t]);
   // A pair is tested only if one of the two is new: with old queries alone, only new triangles
   // can be their partners (simplification's later rounds, where a few patches were put back).
-  std::vector<std::uint32_t> members;
+  // The triangles that can take part, in order: everything below is indexed by their rank.
+  std::vector<std::uint32_t> members, queries;
   for (std::uint32_t t = 0; t < count; ++t)
-    if (newQuery || isNew[t] || query[t]) members.push_back(t);
+    if (newQuery || isNew[t] || query[t]) {
+      if (query[t]) queries.push_back(static_cast<std::uint32_t>(members.size()));
+      members.push_back(t);
+    }
+  if (queries.empty()) return {};
   // Each member's corners side by side, since the narrow phase reads them for every candidate,
-  // and its box; old degenerate ones are skipped (no crossing to find).
-  std::vector<float> corners(9 * count);
-  std::vector<Box> boxes(count);
-  std::vector<char> skipped(count, 0);
+  // its box and its flags; old degenerate ones are skipped (no crossing to find).
+  constexpr std::uint8_t kNew = 1, kQuery = 2, kSkipped = 4;
+  std::vector<float> corners(9 * members.size());
+  std::vector<Box> boxes(members.size());
+  std::vector<std::uint8_t> flags(members.size());
   parallelChunks(members.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t m = begin; m < end; ++m) {
       const std::uint32_t t = members[m];
       const std::array<Point3, 3> p = cornersOf(positions, triangles, t);
       for (std::size_t c = 0; c < 3; ++c)
-        std::copy_n(&positions[3 * std::size_t{triangles[3 * t + c]}], 3, &corners[9 * std::size_t{t} + 3 * c]);
-      boxes[t] = boxOf(p);
-      skipped[t] = !isNew[t] && isDegenerate(p);
+        std::copy_n(&positions[3 * std::size_t{triangles[3 * t + c]}], 3, &corners[9 * m + 3 * c]);
+      boxes[m] = boxOf(p);
+      flags[m] = static_cast<std::uint8_t>((isNew[t] ? kNew : 0) | (query[t] ? kQuery : 0) |
+                                           (!isNew[t] && isDegenerate(p) ? kSkipped : 0));
     }
   });
-  const auto cornersAt = [&](std::uint32_t t) -> std::array<Point3, 3> {
-    const float* c = &corners[9 * std::size_t{t}];
+  const auto cornersAt = [&](std::uint32_t m) -> std::array<Point3, 3> {
+    const float* c = &corners[9 * std::size_t{m}];
     return {Point3{c[0], c[1], c[2]}, Point3{c[3], c[4], c[5]}, Point3{c[6], c[7], c[8]}};
   };
-  const BucketGrid grid(boxes, members, cell);
+  const auto idsOf = [&](std::uint32_t m) -> std::array<std::uint32_t, 3> {
+    const std::size_t t = members[m];
+    return {triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]};
+  };
+  const BucketGrid grid(boxes, cell);
   std::vector<std::vector<std::array<std::uint32_t, 2>>> found(static_cast<std::size_t>(chunkCount(queries.size(), threads)));
   parallelChunks(queries.size(), threads, [&](int chunk, std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> candidates;
     for (std::size_t q = begin; q < end; ++q) {
-      const std::uint32_t a = queries[q];
+      const std::uint32_t a = queries[q];  // ranks order as the triangles do
       candidates.clear();
       grid.forCandidates(boxes[a], [&](std::uint32_t b) {
-        if (b != a && !(query[b] && b < a) && (isNew[a] || isNew[b]) && overlap(boxes[a], boxes[b])) candidates.push_back(b);
+        if (b != a && !((flags[b] & kQuery) && b < a) && ((flags[a] | flags[b]) & kNew) && overlap(boxes[a], boxes[b]))
+          candidates.push_back(b);
       });
       std::sort(candidates.begin(), candidates.end());
       candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
       const std::array<Point3, 3> pa = cornersAt(a);
-      const std::array<std::uint32_t, 3> ia{triangles[3 * a], triangles[3 * a + 1], triangles[3 * a + 2]};
-      for (std::uint32_t b : candidates) {
-        if (skipped[b]) continue;
-        if (trianglesCross(ia, pa, {triangles[3 * b], triangles[3 * b + 1], triangles[3 * b + 2]}, cornersAt(b)))
-          found[static_cast<std::size_t>(chunk)].push_back({a, b});
-      }
+      const std::array<std::uint32_t, 3> ia = idsOf(a);
+      for (std::uint32_t b : candidates)
+        if (!(flags[b] & kSkipped) && trianglesCross(ia, pa, idsOf(b), cornersAt(b)))
+          found[static_cast<std::size_t>(chunk)].push_back({members[a], members[b]});
     }
   });
   std::vector<std::array<std::uint32_t, 2>> pairs;

@@ -11,7 +11,7 @@ namespace scansurf {
 struct SimplificationOptions {
   // Off by default, in the library and the command-line tool: from the default's triangles
   // (after the cubes' fans) it leaves about three quarters on the benchmark sets, about the
-  // Slicer route's count, but costs about twice smoothing's time (docs/method.md,
+  // Slicer route's count, but costs about 1.3 times smoothing's time (docs/method.md,
   // "Simplification"). Runs after smoothing, before remeshing, on the multi-label mesh.
   bool enabled = false;
   // How far a collapse may move the surface, in in-plane voxels (the quadric error bound).
