@@ -21,9 +21,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", engine.error().message.c_str());
     return 5;
   }
-  scansurf::BuildOptions options;
-  options.smoothing.enabled = true;
-  auto built = engine->build(*contours, options);  // Result<BuildResult>
+  const auto options = scansurf::BuildOptions::recommended();  // what the command line does by default
+  auto built = engine->build(*contours, options);              // Result<BuildResult>
   if (!built) {
     std::fprintf(stderr, "%s\n", built.error().message.c_str());
     return 6;

@@ -141,7 +141,7 @@ def build(contour_set, engine=None, device=None, validation=None, **options):
     voxel_size, grid=(nx, ny), convention ("enclosing", "partition"), overlaps ("layers",
     "partition"), overlap_tolerance ("auto", "off", depth or (depth, percent)), interpolate
     ("auto", "off" or layers per gap), caps ("round", "flat"), smooth (True), smooth_iterations,
-    smooth_strength, contour_fit, junction_smoothing, keep_volume, min_angle, snap, simplify (False),
+    smooth_strength, contour_fit, junction_smoothing, keep_volume, min_angle, snap, simplify (True),
     simplify_tolerance, simplify_edge_length, simplify_min_angle, remesh (False), edge_length,
     curvature_sizing, threads (0: all cores), max_memory (bytes).
     engine: a scansurf.Engine to build on; else the one kept for `device` and `validation`.

@@ -92,10 +92,13 @@ def test_options_as_keywords(phantom):
 
 
 def test_simplify_merges_triangles_and_reports_it(phantom):
-    plain = scansurf.build(phantom, voxel_size=2.0)
-    fewer = scansurf.build(phantom, voxel_size=2.0, simplify=True, simplify_min_angle=10)
+    plain = scansurf.build(phantom, voxel_size=2.0, simplify=False)
+    default = scansurf.build(phantom, voxel_size=2.0)
+    fewer = scansurf.build(phantom, voxel_size=2.0, simplify_min_angle=10)
     figures = fewer.report["simplification"]
-    assert "simplification" not in plain.report
+    assert "simplification" not in plain.report and plain.report["parameters"]["simplification"] is False
+    assert default.report["parameters"]["simplification"] is True, "on by default, as on the command line"
+    assert default.report["multilabel_mesh"]["triangles"] < plain.report["multilabel_mesh"]["triangles"]
     assert fewer.report["parameters"]["simplification"] is True and fewer.report["parameters"]["simplify_min_angle"] == 10
     assert figures["triangles_after"] < 0.8 * figures["triangles_before"]
     for name, surface in fewer.surfaces.items():

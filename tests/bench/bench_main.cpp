@@ -99,7 +99,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
   options.smoothing.enabled = smooth;                   // as the command-line tool does by default
   options.smoothing.snap = snap;                        // SmoothingOptions' default unless --snap
   options.interpolation.factor = interpolate;           // kAuto, as the command-line tool does by default
-  options.simplification.enabled = smooth && simplify;  // off, as the command-line tool does by default (--simplify)
+  options.simplification.enabled = smooth && simplify;  // on, as the command-line tool does by default (--no-simplify)
   options.remeshing.enabled = smooth && remesh;         // off, as the command-line tool does by default (--remesh)
   options.keepLabelVolume = false;                      // as the command-line tool: the labels stay on the device
   BuildResult best;
@@ -204,13 +204,13 @@ int main(int argc, char** argv) {
   if (args.size() >= 2 && args[0] == "generate") return generate(args[1], {args.begin() + 2, args.end()});
   if (args.size() >= 3 && args[0] == "run") {
     int repeat = 1, interpolate = InterpolationOptions::kAuto;
-    bool smooth = true, remesh = false, simplify = false;
+    bool smooth = true, remesh = false, simplify = true;
     double snap = SmoothingOptions{}.snap;
     for (std::size_t a = 3; a < args.size(); ++a) {
       if (args[a] == "--repeat" && a + 1 < args.size()) repeat = std::stoi(args[++a]);
       if (args[a] == "--no-smooth") smooth = false;
       if (args[a] == "--remesh") remesh = true;
-      if (args[a] == "--simplify") simplify = true;
+      if (args[a] == "--no-simplify") simplify = false;
       if (args[a] == "--snap" && a + 1 < args.size()) snap = std::stod(args[++a]);
       if (args[a] == "--interpolate" && a + 1 < args.size()) {
         const std::string& v = args[++a];
@@ -221,6 +221,6 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr,
                "usage: scansurf_bench generate OUTDIR [SET...] | run INPUT.json PIXELS [--repeat N] [--no-smooth] "
-               "[--interpolate auto|off|N] [--snap F] [--simplify] [--remesh]\n");
+               "[--interpolate auto|off|N] [--snap F] [--no-simplify] [--remesh]\n");
   return 2;
 }

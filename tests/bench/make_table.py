@@ -23,6 +23,11 @@ def median(values):
     return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
+def raw_total(ours):
+    """scansurf's total less the stages that shape the mesh after assembly."""
+    return ours["total"] - sum(ours.get(s, 0.0) for s in ("smoothing", "simplification"))
+
+
 def by_set(runs):
     """Per set, in first-seen order: its runs, the run of median total (ours) and the ratios
     Slicer / scansurf pair by pair (each run's two routes ran back to back)."""
@@ -35,7 +40,7 @@ def by_set(runs):
         row = dict(ordered[(len(ordered) - 1) // 2])
         row["runs"] = len(rs)
         row["ratios"] = [r["slicer"]["total"] / r["ours"]["total"] for r in rs]
-        row["ratios_raw"] = [r["slicer"]["total"] / (r["ours"]["total"] - r["ours"].get("smoothing", 0.0)) for r in rs]
+        row["ratios_raw"] = [r["slicer"]["total"] / raw_total(r["ours"]) for r in rs]
         row["slicer_totals"] = [r["slicer"]["total"] for r in rs]
         row["our_totals"] = [r["ours"]["total"] for r in rs]
         rows.append(row)
@@ -52,7 +57,7 @@ def main():
     out.append("# Benchmarks\n")
     out.append("Reproduce with one command: `tests/bench/run_benchmarks.sh` (installs plastimatch and "
                "python3-vtk9, builds, generates the sets, runs both routes, rewrites this file above \"Measured changes\"). "
-               "`scansurf_bench run INPUT.json PIXELS [--no-smooth] [--interpolate auto|off|N] [--snap F] [--remesh]` times one input; "
+               "`scansurf_bench run INPUT.json PIXELS [--no-smooth] [--interpolate auto|off|N] [--snap F] [--no-simplify] [--remesh]` times one input; "
                "`tests/bench/count_instructions.sh SCANSURF INPUT [OPTIONS...]` counts the instructions one run executes "
                "(valgrind's callgrind), a cost that does not drift with the machine's load; "
                "`tests/bench/cgal_reference.sh INPUT [OPTIONS...]` puts remeshing's time beside smoothing's and beside CGAL's "
@@ -67,7 +72,7 @@ def main():
     out.append("Each set's run of median total among %s; every run's two routes ran back to back, "
                "interleaved with the other runs.\n" % ", ".join("%d (%s)" % (r["runs"], r["set"]) for r in rows))
     stages = ["parse", "nesting", "grid", "scan conversion", "classification", "assembly", "feature surfaces",
-              "smoothing", "write"]
+              "smoothing", "simplification", "write"]
     head = "| set | grid | " + " | ".join(stages) + " | **total** | floor copy | peak RSS MiB | volume+mesh MiB | triangles |"
     out.append(head)
     out.append("|" + "---|" * (len(stages) + 7))
@@ -82,14 +87,14 @@ def main():
                "and `vtkWindowedSincPolyDataFilter` (Slicer's defaults) and normals.\n")
     out.append("Slicer ÷ scansurf: the median of the runs' ratios (each run's two routes back to back) and their "
                "range; the totals are each route's median.\n")
-    out.append("| set | runs | scansurf s (without smoothing) | Slicer route s (rasterize / surfaces) | Slicer ÷ scansurf, "
-               "median (range) | without smoothing | scan conv. + classif. s | floor s | (scan+classif) ÷ floor | "
+    out.append("| set | runs | scansurf s (without smoothing and simplification) | Slicer route s (rasterize / surfaces) | "
+               "Slicer ÷ scansurf, median (range) | without smoothing and simplification | scan conv. + classif. s | floor s | (scan+classif) ÷ floor | "
                "peak RSS ÷ (volume+mesh) | peak RSS MiB ours / Slicer | triangles ours / Slicer |")
     out.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         o, s = r["ours"], r["slicer"]
         sc = o["scan conversion"] + o["classification"]
-        raw = o["total"] - o.get("smoothing", 0.0)
+        raw = raw_total(o)
         q = r["ratios"]
         out.append("| %s | %d | %.2f (%.2f) | %.2f (%.2f / %.2f) | **%.2f×** (%.2f–%.2f×) | %.2f× | %.3f | %.4f | %.0f× | %.2f× | %.0f / %.0f | %d / %d |" % (
             r["set"], r["runs"], median(r["our_totals"]), raw, median(r["slicer_totals"]), s["rasterize"], s["surfaces"],
@@ -103,11 +108,12 @@ def main():
 - On this machine the "GPU" stages (scan conversion, classification) run on lavapipe, Mesa's
   CPU implementation of Vulkan, sharing the same 2 cores; on a real GPU they are expected to
   shrink by orders of magnitude while the CPU stages stay.
-- scansurf's surfaces have more triangles than flying edges': the separating surface is
-  extracted over six tetrahedra per voxel cube (what makes it consistent between abutting
-  labels, with no ambiguous cases), and smoothing (150 sweeps' worth of constrained fairing,
-  run as 35 Jacobi sweeps on the CPU) costs in proportion to them.
-- The scansurf runs use the defaults of the command-line tool: smoothing on, layers for
+- The separating surface is extracted over six tetrahedra per voxel cube (what makes it
+  consistent between abutting labels, with no ambiguous cases), about three times flying
+  edges' triangles; smoothing (150 sweeps' worth of constrained fairing, run as 35 Jacobi
+  sweeps on the CPU) costs in proportion to them, and simplification then merges them into
+  fewer than flying edges gives (docs/method.md, "Simplification").
+- The scansurf runs use the defaults of the command-line tool: smoothing and simplification on, layers for
   overlapping structures, interpolation `auto` (off at these grids: the slices are 2-2.5 px
   apart), the labels kept on the device between scan conversion and classification, and
   freed memory kept for reuse (`keepFreedMemoryForReuse`, as the tool does at start).

@@ -3,9 +3,9 @@
 each other and against the contours' slab volume), triangles, and whether the topology stayed
 (closed, manifold, oriented, same genus and components). The contours' volume is the report's
 contour_volume, before any share given up to an incidental neighbour. Reads two JSON reports of the CLI, for
-example the defaults against --simplify:
+example --no-simplify against the defaults (simplified):
 
-  build/cli/scansurf SET.json -o A --report A.json && build/cli/scansurf SET.json -o B --simplify --report B.json
+  build/cli/scansurf SET.json -o A --no-simplify --report A.json && build/cli/scansurf SET.json -o B --report B.json
   tests/bench/report_diff.py A.json B.json [--rows N]
 """
 import argparse

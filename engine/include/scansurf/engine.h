@@ -69,7 +69,8 @@ struct BuildOptions {
   InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
   SmoothingOptions smoothing;
-  // Verified simplification after smoothing (stage "simplification"); off unless enabled.
+  // Verified simplification after smoothing (stage "simplification"); off unless enabled
+  // (recommended() enables it).
   SimplificationOptions simplification;
   // Isotropic remeshing after smoothing and simplification (stage "remeshing"); off unless enabled.
   RemeshOptions remeshing;
@@ -94,11 +95,12 @@ struct BuildOptions {
   std::function<void(const StageEvent& event)> onStageEvent;
 
   // What scansurf recommends and its command-line tool and Python package start from:
-  // smoothing on, interpolation kAuto with round caps, everything else as declared above (the
-  // library's own defaults leave smoothing and interpolation off).
+  // smoothing and simplification on, interpolation kAuto with round caps, everything else as
+  // declared above (the library's own defaults leave those three off).
   static BuildOptions recommended() {
     BuildOptions options;
     options.smoothing.enabled = true;
+    options.simplification.enabled = true;
     options.interpolation.factor = InterpolationOptions::kAuto;
     return options;
   }

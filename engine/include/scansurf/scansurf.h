@@ -3,9 +3,7 @@
 //
 //   auto contours = scansurf::readContours("contours.json");   // Result<ContourSet>
 //   auto engine = scansurf::Engine::create({});                 // Result<Engine>
-//   scansurf::BuildOptions options;
-//   options.smoothing.enabled = true;
-//   options.interpolation.factor = scansurf::InterpolationOptions::kAuto;  // thick slices
+//   auto options = scansurf::BuildOptions::recommended();      // the command line's defaults
 //   auto built = engine->build(*contours, options);             // Result<BuildResult>
 //   scansurf::writeScene("surfaces.glb", *contours, built->surfaces);
 //
