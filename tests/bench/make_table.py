@@ -111,8 +111,9 @@ def main():
 - The separating surface is extracted over six tetrahedra per voxel cube (what makes it
   consistent between abutting labels, with no ambiguous cases), about three times flying
   edges' triangles; smoothing (150 sweeps' worth of constrained fairing, run as 35 Jacobi
-  sweeps on the CPU) costs in proportion to them, and simplification then merges them into
-  fewer than flying edges gives (docs/method.md, "Simplification").
+  sweeps on the CPU) costs in proportion to them; simplification then merges them, to fewer
+  than flying edges gives on pelvis and head-neck (em-cells, whose every layer is a contour
+  plane whose vertices stay, keeps 2.5 times as many; docs/method.md, "Simplification").
 - The scansurf runs use the defaults of the command-line tool: smoothing and simplification on, layers for
   overlapping structures, interpolation `auto` (off at these grids: the slices are 2-2.5 px
   apart), the labels kept on the device between scan conversion and classification, and
