@@ -65,6 +65,22 @@ endif()
 foreach(bad 0.5 -0.1 nan)
   run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --snap ${bad})
 endforeach()
+# Simplification is on by default (issue 28): the default run reports it with edge length 2.5 and
+# has fewer triangles than --no-simplify, which reports it off and has no simplification figures.
+run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/unsimplified" --grid 96 64 -q --no-simplify
+             --report "${OUT}/unsimplified/report.json")
+file(READ "${OUT}/unsimplified/report.json" unsimplified_report)
+string(JSON unsimplified_on GET "${unsimplified_report}" parameters simplification)
+string(JSON unsimplified_triangles GET "${unsimplified_report}" multilabel_mesh triangles)
+string(JSON unsimplified_figures ERROR_VARIABLE no_figures GET "${unsimplified_report}" simplification)
+string(JSON simplified_on GET "${snapped_report}" parameters simplification)
+string(JSON simplified_edge GET "${snapped_report}" parameters simplify_edge_length)
+string(JSON simplified_after GET "${snapped_report}" simplification triangles_after)
+if(unsimplified_on OR NOT no_figures OR NOT simplified_on OR NOT simplified_edge MATCHES "^2\\.50*$"
+   OR NOT simplified_after EQUAL snapped_triangles OR NOT snapped_triangles LESS unsimplified_triangles)
+  message(FATAL_ERROR "simplification by default: on ${simplified_on}, edge ${simplified_edge}, "
+                      "${snapped_triangles} triangles against ${unsimplified_triangles} with --no-simplify (on ${unsimplified_on})")
+endif()
 # --no-keep-volume leaves the volumes as relaxation made them (other surfaces), and the report
 # says so.
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/relaxed" --grid 96 64 -q --no-keep-volume
