@@ -6,7 +6,7 @@ face's normal and the true sphere's at its centroid, the smallest and 5th-percen
 the vertices' mean and largest distance to the true sphere. --gap G and --pixel P (before the
 flags) draw the slices G mm apart and surface them at P mm pixels.
 
-  tests/bench/sphere_shape.py build/cli/scansurf [--gap G] [--pixel P] [FLAG...]      e.g. --simplify, --remesh
+  tests/bench/sphere_shape.py build/cli/scansurf [--gap G] [--pixel P] [FLAG...]      e.g. --no-simplify, --remesh
 """
 import json
 import math
