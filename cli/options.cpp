@@ -89,7 +89,7 @@ struct Flags {
   std::string overlaps = "layers";
   std::string overlapTolerance = "auto";
   bool noSmooth = false, noContourFit = false, noJunctions = false, noKeepVolumes = false, noDraco = false;
-  bool remesh = false, noCurvatureSizing = false, simplify = true;
+  bool remesh = false, noCurvatureSizing = false;
   std::string reference;
   std::string gltfFrame = "gltf";
   std::string maxMemory;
@@ -210,9 +210,9 @@ void addInterpolation(CLI::App& app, Flags& f) {
       ->capture_default_str();
 }
 
-void addSimplification(CLI::App& app, CliOptions& o, Flags& f) {
+void addSimplification(CLI::App& app, CliOptions& o) {
   SimplificationOptions& s = o.build.simplification;
-  app.add_flag("--simplify,!--no-simplify", f.simplify,
+  app.add_flag("--simplify,!--no-simplify", s.enabled,
                "merge the smoothed surfaces' triangles into fewer, better-shaped ones, every contour-plane cross-section "
                "and junction curve kept (default: on; on the benchmark sets it leaves about 0.7 of the triangles, under "
                "the 3D Slicer route's count, for about 1.3 times smoothing's time; --no-simplify skips it; see "
@@ -306,7 +306,6 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.smoothing.contourFit = !f.noContourFit;
   o.build.smoothing.junctions = !f.noJunctions;
   o.build.smoothing.keepVolumes = !f.noKeepVolumes;
-  o.build.simplification.enabled = f.simplify;
   o.build.remeshing.enabled = f.remesh;
   o.build.remeshing.curvatureSizing = !f.noCurvatureSizing;
   o.scene.draco = !f.noDraco;
@@ -330,7 +329,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   addGeneral(app, parsed.options, flags);
   addInterpolation(app, flags);
   addSmoothing(app, parsed.options, flags);
-  addSimplification(app, parsed.options, flags);
+  addSimplification(app, parsed.options);
   addRemeshing(app, parsed.options, flags);
   addDicom(app, parsed.options, flags);
   addObjects(app, parsed.options);

@@ -25,7 +25,7 @@ struct CliOptions {
   bool quiet = false;
   bool jsonProgress = false;
   EngineOptions engine;
-  BuildOptions build;  // smoothing on unless --no-smooth
+  BuildOptions build = BuildOptions::recommended();  // the flags below change it
   ReadOptions read;
   std::vector<std::string> formats;  // --format, before parsing into MeshFormat
   SceneOptions scene;

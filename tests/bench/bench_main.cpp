@@ -95,13 +95,13 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
     return 5;
   }
 
-  BuildOptions options;
-  options.smoothing.enabled = smooth;                   // as the command-line tool does by default
-  options.smoothing.snap = snap;                        // SmoothingOptions' default unless --snap
-  options.interpolation.factor = interpolate;           // kAuto, as the command-line tool does by default
-  options.simplification.enabled = smooth && simplify;  // on, as the command-line tool does by default (--no-simplify)
-  options.remeshing.enabled = smooth && remesh;         // off, as the command-line tool does by default (--remesh)
-  options.keepLabelVolume = false;                      // as the command-line tool: the labels stay on the device
+  BuildOptions options = BuildOptions::recommended();  // the command-line tool's defaults, less what was asked
+  options.smoothing.enabled = smooth;
+  options.smoothing.snap = snap;
+  options.interpolation.factor = interpolate;
+  options.simplification.enabled = smooth && simplify;
+  options.remeshing.enabled = smooth && remesh;
+  options.keepLabelVolume = false;  // as the command-line tool: the labels stay on the device
   BuildResult best;
   double bestTotal = 1e30;
   for (int r = 0; r < std::max(1, repeat); ++r) {
