@@ -32,7 +32,7 @@ find_package(pugixml REQUIRED CONFIG)
 find_path(SCANSURF_NIFTI_INCLUDE_DIR nifti1_io.h PATH_SUFFIXES nifti REQUIRED)
 include("${CMAKE_CURRENT_LIST_DIR}/NiftiTargets.cmake")
 set(SCANSURF_NIFTI_LIBRARIES scansurf_nifti::niftiio)
-# The CPU geometry's vectors (engine/geometry/vec3.h): GLM, header-only (libglm-dev).
+# The CPU geometry's vectors (engine/geometry/mesh/vec3.h): GLM, header-only (libglm-dev).
 find_path(SCANSURF_GLM_INCLUDE_DIR glm/vec3.hpp REQUIRED)
 if(SCANSURF_BUILD_TESTS)
   find_package(GTest REQUIRED)

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "core/memory.h"
-#include "geometry/footprint.h"
+#include "geometry/contours/footprint.h"
 
 namespace scansurf {
 namespace {

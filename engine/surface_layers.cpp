@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "geometry/remesh.h"
-#include "geometry/simplification.h"
-#include "geometry/snapping.h"
+#include "geometry/remesh/remesh.h"
+#include "geometry/shape/snapping.h"
+#include "geometry/simplification/simplification.h"
 
 namespace scansurf {
 

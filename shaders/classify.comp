@@ -14,7 +14,7 @@ layout(std430, binding = 0) readonly buffer Labels { uint words[]; } labels;  //
 layout(std430, binding = 1) buffer Counter { uint count; uint largestLabel; } counter;
 layout(std430, binding = 2) writeonly buffer Cases { CellCase records[]; } cases;
 
-// Corners of the six tetrahedra; same order as kCellTets in engine/geometry/cell_cases.h.
+// Corners of the six tetrahedra; same order as kCellTets in engine/geometry/extraction/cell_cases.h.
 const uint kTets[24] = uint[24](0, 1, 3, 7,  0, 1, 5, 7,  0, 2, 3, 7,  0, 2, 6, 7,  0, 4, 5, 7,  0, 4, 6, 7);
 
 uint labelAt(uint i, uint j, uint k) {

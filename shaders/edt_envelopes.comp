@@ -1,5 +1,5 @@
 #version 450
-// Shape-based interpolation, pass 2 of 4 (engine/geometry/interpolation_plan.h): the exact
+// Shape-based interpolation, pass 2 of 4 (engine/geometry/interpolation/interpolation_plan.h): the exact
 // squared distances of one column (to the rows' points) and of one row (to the columns'
 // points) of one distance field, through the lower envelope of parabolas (Felzenszwalb &
 // Huttenlocher 2012, in integers: crossings rounded down decide every integer sample).

@@ -1,5 +1,5 @@
 #version 450
-// Shape-based interpolation, pass 3 of 4 (engine/geometry/interpolation_plan.h): one column of
+// Shape-based interpolation, pass 3 of 4 (engine/geometry/interpolation/interpolation_plan.h): one column of
 // one distance field becomes signed fixed-point distances (the nearer of the two squared
 // distances, refined near the boundary by the marching-squares segments between the crossing
 // points; negative inside), and the field's largest depth.
@@ -20,7 +20,7 @@ int crossingOffset(DistanceField f, int cx, int cy, uint shift) {
   return (crossingAt(f.plane, f.x0 + cx, f.y0 + cy, shift) * push.unit + 128) / 256;
 }
 
-// As refinedDistance2 in engine/geometry/interpolation_reference.cpp.
+// As refinedDistance2 in engine/geometry/interpolation/interpolation_reference.cpp.
 int refinedDistance2(DistanceField f, int x, int y, int d2) {
   const int unit = push.unit;
   if (d2 >= kRefineBand * kRefineBand * unit * unit) return d2;

@@ -1,5 +1,5 @@
 #version 450
-// Shape-based interpolation, pass 1 of 4 (engine/geometry/interpolation_plan.h): along one
+// Shape-based interpolation, pass 1 of 4 (engine/geometry/interpolation/interpolation_plan.h): along one
 // row and one column of one distance field, the distance to the nearest point where a
 // contour crosses a grid edge between the field's label and another (its row's x edges, its
 // column's y edges); the first dimension of Felzenszwalb & Huttenlocher's transform, twice.

@@ -1,5 +1,5 @@
 #version 450
-// Shape-based interpolation, pass 4 of 4 (engine/geometry/interpolation_plan.h): the label of
+// Shape-based interpolation, pass 4 of 4 (engine/geometry/interpolation/interpolation_plan.h): the label of
 // every voxel of the layers m = 0 .. n of one pair of planes, from the distance fields of the
 // labels that may win in its tile, with its clearance (how far its value is from losing the
 // label) for placing surface vertices between voxels.
@@ -16,7 +16,7 @@ const int kFlatLidSlope = 256;
 
 // The entry's value at layer m of n, scaled by n (kFarAway: it cannot win here); `wins`
 // false: it only counts as runner-up (a flat cap beyond its lid). As Sampler::value in
-// engine/geometry/interpolation_reference.cpp.
+// engine/geometry/interpolation/interpolation_reference.cpp.
 int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
   wins = true;
   if (e.fieldA >= 0 && e.fieldB >= 0) {

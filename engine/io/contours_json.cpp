@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "io/atomic_file.h"
 
 namespace scansurf {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <map>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "io/dicom_common.h"
 #include "io/rtstruct_reader.h"
 

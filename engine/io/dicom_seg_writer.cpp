@@ -26,7 +26,7 @@
 #include <string>
 #include <utility>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "io/atomic_file.h"
 #include "io/dicom_common.h"
 #include "scansurf/palette.h"

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "io/atomic_file.h"
 #include "io/object_features.h"
 #include "io/rtstruct_reader.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/compact_mesh.h"
+#include "geometry/mesh/compact_mesh.h"
 #include "scansurf/contours.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"

@@ -7,8 +7,8 @@
 #include <map>
 #include <set>
 
-#include "geometry/polygon.h"
-#include "geometry/validate.h"
+#include "geometry/contours/polygon.h"
+#include "geometry/contours/validate.h"
 
 namespace scansurf {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "geometry/compact_mesh.h"
+#include "geometry/mesh/compact_mesh.h"
 #include "io/atomic_file.h"
 #include "io/ct_series.h"
 #include "io/dicom_seg_writer.h"

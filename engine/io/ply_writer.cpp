@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/text_fields.h"
-#include "geometry/compact_mesh.h"
+#include "geometry/mesh/compact_mesh.h"
 #include "io/atomic_file.h"
 #include "scansurf/version.h"
 

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "geometry/compact_mesh.h"
+#include "geometry/mesh/compact_mesh.h"
 #include "scansurf/result.h"
 #include "scansurf/surfaces.h"
 
@@ -14,7 +14,7 @@ namespace scansurf {
 // The file is replaced atomically. Errors: Errc::Io naming the path.
 Result<void> writeSurfacePly(const std::filesystem::path& path, const MultiLabelMesh& mesh, const FeatureSurface& surface,
                              const std::string& units = {});
-// The same from a surface already compacted (geometry/compact_mesh.h); `feature` names it in
+// The same from a surface already compacted (geometry/mesh/compact_mesh.h); `feature` names it in
 // the header.
 Result<void> writeSurfacePly(const std::filesystem::path& path, const CompactMesh& surface, int feature,
                              const std::string& units = {});

@@ -7,7 +7,7 @@
 
 #include "core/guard.h"
 #include "core/memory.h"
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "io/contours_json.h"
 #include "io/ct_series.h"
 #include "io/dicom_common.h"

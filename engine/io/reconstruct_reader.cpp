@@ -13,7 +13,7 @@
 #include <optional>
 #include <sstream>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "io/atomic_file.h"
 #include "io/object_features.h"
 

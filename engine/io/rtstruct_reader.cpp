@@ -23,8 +23,8 @@
 #include <span>
 #include <unordered_map>
 
-#include "geometry/polygon.h"
-#include "geometry/validate.h"
+#include "geometry/contours/polygon.h"
+#include "geometry/contours/validate.h"
 #include "io/dicom_common.h"
 
 namespace scansurf {

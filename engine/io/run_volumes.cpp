@@ -1,9 +1,9 @@
 // scansurf: the label volumes a run writes (see run_volumes.h), and labelImage (scansurf/outputs.h).
 #include "io/run_volumes.h"
 
-#include "geometry/label_layers.h"
-#include "geometry/overlaps.h"
-#include "geometry/own_slabs.h"
+#include "geometry/overlaps/label_layers.h"
+#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/own_slabs.h"
 #include "scansurf/outputs.h"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // scansurf: the label volumes a run writes, made from each feature's own region rasterized on
-// the CPU exactly as the device scan converted it (geometry/label_layers.h): every feature's
+// the CPU exactly as the device scan converted it (geometry/overlaps/label_layers.h): every feature's
 // mask in layers (NRRD / seg.nrrd, DICOM SEG) and the single partition (NIfTI), placed on the
 // reference CT's own lattice when the contour set has one, else on the grid.
 #pragma once

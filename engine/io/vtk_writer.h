@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/compact_mesh.h"
+#include "geometry/mesh/compact_mesh.h"
 #include "io/slicer_terminology.h"
 #include "scansurf/contours.h"
 #include "scansurf/result.h"

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "geometry/cell_cases.h"
+#include "geometry/extraction/cell_cases.h"
 #include "gpu/context.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/vulkan_interop.h"

@@ -9,8 +9,8 @@
 #include <optional>
 #include <span>
 
-#include "geometry/interpolated_volume.h"
-#include "geometry/interpolation_reference.h"
+#include "geometry/interpolation/interpolated_volume.h"
+#include "geometry/interpolation/interpolation_reference.h"
 #include "gpu/check.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"

@@ -1,14 +1,14 @@
 // scansurf passes: multi-label shape-based interpolation on the GPU (Grevera & Udupa 1996;
-// the rule in geometry/interpolation_plan.h). Per slab, three compute passes with no host
+// the rule in geometry/interpolation/interpolation_plan.h). Per slab, three compute passes with no host
 // round trip between them: the rows of every label's distance field, its columns (exact
 // Euclidean distances, Felzenszwalb & Huttenlocher 2012), then the labels of the interpolated
-// layers. Identical, voxel for voxel, to geometry/interpolation_reference.h.
+// layers. Identical, voxel for voxel, to geometry/interpolation/interpolation_reference.h.
 #pragma once
 
 #include <memory>
 #include <vector>
 
-#include "geometry/interpolated_volume.h"
+#include "geometry/interpolation/interpolated_volume.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
 
@@ -31,9 +31,9 @@ class Interpolator {
   ~Interpolator();
 
   // The volume on interpolatedGrid(volume.grid, factors) (see interpolated_volume.h);
-  // crossings: planeEdgeCrossings of the volume (geometry/edge_crossings.h). With device
+  // crossings: planeEdgeCrossings of the volume (geometry/extraction/edge_crossings.h). With device
   // words, the host gets the clearances only (the volume's labels stay empty). containers: as
-  // planInterpolationSlab's (geometry/interpolation_plan.h).
+  // planInterpolationSlab's (geometry/interpolation/interpolation_plan.h).
   Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
                                  const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device = {},
                                  const std::vector<bool>& containers = {});

@@ -10,7 +10,7 @@
 #include <span>
 #include <string>
 
-#include "geometry/vec3.h"
+#include "geometry/mesh/vec3.h"
 #include "gpu/check.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"

@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "geometry/raster_rules.h"
+#include "geometry/overlaps/raster_rules.h"
 #include "gpu/check.h"
 #include "gpu/commands.h"
 #include "gpu/pipeline.h"

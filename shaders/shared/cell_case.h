@@ -1,4 +1,4 @@
-// Shared by GLSL (classify.comp) and C++ (engine.h, engine/geometry/cell_cases.h): the
+// Shared by GLSL (classify.comp) and C++ (engine.h, engine/geometry/extraction/cell_cases.h): the
 // compact per-cell case record the tetrahedral classification emits for every cell that
 // holds a separating surface.
 //

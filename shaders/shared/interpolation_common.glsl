@@ -1,5 +1,5 @@
 // Shared by the interpolation compute shaders: the slab's buffers and integer helpers. The
-// arithmetic is the CPU reference's (engine/geometry/interpolation_reference.cpp) exactly.
+// arithmetic is the CPU reference's (engine/geometry/interpolation/interpolation_reference.cpp) exactly.
 #include "interpolation_types.h"
 
 layout(local_size_x_id = 0, local_size_y_id = 1, local_size_z = 1) in;

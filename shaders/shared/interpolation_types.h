@@ -1,5 +1,5 @@
 // Shared by GLSL (edt_rows.comp, edt_columns.comp, interpolate.comp) and C++
-// (geometry/interpolation_plan.h, passes/interpolation.cpp): the records that describe one
+// (geometry/interpolation/interpolation_plan.h, passes/interpolation.cpp): the records that describe one
 // slab of shape-based interpolation. All members are 32-bit ints (std430 and C++ agree).
 #ifndef SCANSURF_SHARED_INTERPOLATION_TYPES_H
 #define SCANSURF_SHARED_INTERPOLATION_TYPES_H
@@ -64,7 +64,7 @@ struct InterpolatePush {
   std::uint32_t tileSize, tilesX;
   std::int32_t unit;  // distances in 1/unit pixel
   std::int32_t far;   // farther than any distance on the grid
-  std::int32_t deep;  // deepDistance (geometry/interpolation_plan.h)
+  std::int32_t deep;  // deepDistance (geometry/interpolation/interpolation_plan.h)
 };
 static_assert(sizeof(InterpolatePush) == 52, "InterpolatePush must match the GLSL block");
 }  // namespace scansurf::shared

@@ -20,9 +20,9 @@
 #include <optional>
 
 #include "core/parallel.h"
-#include "geometry/assembly.h"
-#include "geometry/cell_cases.h"
-#include "geometry/smoothing.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/smoothing/smoothing.h"
 #include "io/contours_json.h"
 #include "scansurf/engine.h"
 #include "scansurf/nesting.h"

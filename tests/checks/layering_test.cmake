@@ -5,16 +5,34 @@
 file(MAKE_DIRECTORY "${WORK}")
 # module, header, whether it may include it
 set(cases
-  scansurf_geometry core/parallel.h yes
-  scansurf_geometry gpu/context.h no
-  scansurf_geometry passes/classification.h no
-  scansurf_io geometry/polygon.h yes
+  scansurf_contours core/parallel.h yes
+  scansurf_contours geometry/overlaps/overlaps.h no
+  scansurf_contours gpu/context.h no
+  scansurf_contours passes/classification.h no
+  scansurf_overlaps geometry/contours/polygon.h yes
+  scansurf_overlaps geometry/extraction/assembly.h no
+  scansurf_extraction geometry/overlaps/overlap_split.h yes
+  scansurf_extraction geometry/smoothing/contour_fit.h no
+  scansurf_smoothing geometry/extraction/assembly.h yes
+  scansurf_smoothing geometry/mesh/incident_triangles.h yes
+  scansurf_smoothing geometry/shape/cube_fans.h no
+  scansurf_shape geometry/smoothing/carrier_projection.h yes
+  scansurf_shape geometry/simplification/simplification.h no
+  scansurf_mesh geometry/contours/polygon.h no
+  scansurf_mesh geometry/smoothing/smoothing.h no
+  scansurf_remesh geometry/mesh/vec3.h yes
+  scansurf_remesh geometry/simplification/simplification.h no
+  scansurf_simplification geometry/remesh/remesh.h yes
+  scansurf_simplification geometry/shape/triangle_shape.h no
+  scansurf_interpolation geometry/contours/polygon.h no
+  scansurf_io geometry/contours/polygon.h yes
+  scansurf_io geometry/shape/triangle_shape.h yes
   scansurf_io gpu/resources.h no
   scansurf_io passes/preview.h no
-  scansurf_gpu geometry/polygon.h no
-  scansurf_passes geometry/polygon.h yes
+  scansurf_gpu geometry/contours/polygon.h no
+  scansurf_passes geometry/contours/polygon.h yes
   scansurf_passes io/atomic_file.h no
-  scansurf_core geometry/polygon.h no)
+  scansurf_core geometry/contours/polygon.h no)
 set(failures 0)
 set(glm "")
 if(NOT GLM STREQUAL "/usr/include")  # a compiler's own include directory must not be -isystem'd again

@@ -2,7 +2,7 @@
 #include <cstring>
 #include <random>
 
-#include "geometry/cell_cases.h"
+#include "geometry/extraction/cell_cases.h"
 #include "gpu/gpu_test_env.h"
 #include "gpu/resources.h"
 #include "passes/classification.h"

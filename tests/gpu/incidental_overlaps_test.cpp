@@ -7,8 +7,8 @@
 #include <map>
 #include <set>
 
-#include "geometry/label_layers.h"
-#include "geometry/overlaps.h"
+#include "geometry/overlaps/label_layers.h"
+#include "geometry/overlaps/overlaps.h"
 #include "gpu/gpu_test_env.h"
 #include "support/drawn_shapes.h"
 #include "support/intersections.h"

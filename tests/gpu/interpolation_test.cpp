@@ -9,9 +9,9 @@
 #include <numbers>
 #include <set>
 
-#include "geometry/edge_crossings.h"
-#include "geometry/interpolated_volume.h"
-#include "geometry/interpolation_reference.h"
+#include "geometry/extraction/edge_crossings.h"
+#include "geometry/interpolation/interpolated_volume.h"
+#include "geometry/interpolation/interpolation_reference.h"
 #include "gpu/gpu_test_env.h"
 #include "passes/classification.h"
 #include "passes/interpolation.h"

@@ -3,7 +3,7 @@
 // lattice keys, and leaves every feature surface closed and crossing-free.
 #include <algorithm>
 
-#include "geometry/remesh.h"
+#include "geometry/remesh/remesh.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"

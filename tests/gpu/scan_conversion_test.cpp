@@ -5,7 +5,7 @@
 #include <numeric>
 #include <random>
 
-#include "geometry/raster_rules.h"
+#include "geometry/overlaps/raster_rules.h"
 #include "gpu/gpu_test_env.h"
 #include "passes/classification.h"
 #include "passes/scan_conversion.h"

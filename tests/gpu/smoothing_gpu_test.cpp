@@ -3,9 +3,9 @@
 // with smoothing the unsmoothed build's mesh on the CPU.
 #include <algorithm>
 
-#include "geometry/smoothing.h"
-#include "geometry/triangle_shape.h"
-#include "geometry/volume_restoration.h"
+#include "geometry/shape/triangle_shape.h"
+#include "geometry/shape/volume_restoration.h"
+#include "geometry/smoothing/smoothing.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 #include "gpu/gpu_test_env.h"
 #include "io/contours_json.h"
 #include "scansurf/input.h"

@@ -1,5 +1,5 @@
 // scansurf tests: every crossing pair of a whole mesh, by the engine's exact triangle test
-// (geometry/triangle_intersection.h) over a uniform grid broad phase.
+// (geometry/mesh/triangle_intersection.h) over a uniform grid broad phase.
 #include "support/intersections.h"
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/triangle_intersection.h"
+#include "geometry/mesh/triangle_intersection.h"
 
 namespace scansurf::test {
 

@@ -4,7 +4,7 @@
 #include <climits>
 #include <cstdint>
 
-#include "geometry/raster_rules.h"
+#include "geometry/overlaps/raster_rules.h"
 
 namespace scansurf::test {
 namespace {

@@ -1,5 +1,5 @@
 // CPU reference of the GPU scan conversion (engine/passes/scan_conversion.cpp), bit for bit:
-// the same sub-pixel snapping (geometry/raster_rules.h), triangle fans from each contour's
+// the same sub-pixel snapping (geometry/overlaps/raster_rules.h), triangle fans from each contour's
 // first point, Vulkan's top-left tie-breaking rule at pixel centres, even-odd parity per
 // feature and slice, and the lowest nesting rank winning.
 #pragma once

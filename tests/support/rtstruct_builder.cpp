@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "geometry/validate.h"
+#include "geometry/contours/validate.h"
 
 namespace scansurf::test {
 

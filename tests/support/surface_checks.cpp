@@ -8,10 +8,10 @@
 #include <numbers>
 #include <set>
 
-#include "geometry/assembly.h"
-#include "geometry/cell_cases.h"
-#include "geometry/feature_surfaces.h"
-#include "geometry/smoothing.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/extraction/feature_surfaces.h"
+#include "geometry/smoothing/smoothing.h"
 #include "support/reference_rasterizer.h"
 
 namespace scansurf::test {

@@ -1,4 +1,4 @@
-#include "geometry/assembly.h"
+#include "geometry/extraction/assembly.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <set>
 #include <vector>
 
-#include "geometry/cell_cases.h"
-#include "geometry/feature_surfaces.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/extraction/feature_surfaces.h"
 #include "support/surface_checks.h"
 
 namespace scansurf {

@@ -1,4 +1,4 @@
-#include "geometry/cell_cases.h"
+#include "geometry/extraction/cell_cases.h"
 
 #include <gtest/gtest.h>
 

@@ -10,9 +10,9 @@
 #include <iterator>
 #include <numbers>
 
-#include "geometry/assembly.h"
-#include "geometry/cell_cases.h"
-#include "geometry/feature_surfaces.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/extraction/feature_surfaces.h"
 #include "io/imod_reader.h"
 #include "io/reconstruct_reader.h"
 #include "scansurf/grid.h"

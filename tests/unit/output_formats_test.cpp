@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/assembly.h"
-#include "geometry/cell_cases.h"
-#include "geometry/feature_surfaces.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/extraction/feature_surfaces.h"
 #include "io/draco_writer.h"
 #include "io/gltf_writer.h"
 #include "io/mesh_writers.h"

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "geometry/pixel_runs.h"
+#include "geometry/overlaps/pixel_runs.h"
 #include "support/reference_rasterizer.h"
 #include "support/shapes.h"
 

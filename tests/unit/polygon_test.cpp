@@ -1,11 +1,11 @@
 // Planar helpers and coverage: exact small cases and properties.
-#include "geometry/polygon.h"
+#include "geometry/contours/polygon.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "geometry/coverage.h"
+#include "geometry/contours/coverage.h"
 #include "support/shapes.h"
 
 namespace scansurf {

@@ -1,7 +1,7 @@
 // Remeshing of the separating-surface network (issue 11), on the CPU pipeline:
 // makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh ->
 // remeshMesh. Every shape the smoothing tests use, checked exactly after remeshing.
-#include "geometry/remesh.h"
+#include "geometry/remesh/remesh.h"
 
 #include <gtest/gtest.h>
 
@@ -15,11 +15,11 @@
 #include <set>
 #include <vector>
 
-#include "geometry/feature_surfaces.h"
-#include "geometry/remesh_network.h"
-#include "geometry/remesh_reference.h"
-#include "geometry/remesh_slabs.h"
-#include "geometry/smoothing.h"
+#include "geometry/extraction/feature_surfaces.h"
+#include "geometry/remesh/remesh_network.h"
+#include "geometry/remesh/remesh_reference.h"
+#include "geometry/remesh/remesh_slabs.h"
+#include "geometry/smoothing/smoothing.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"

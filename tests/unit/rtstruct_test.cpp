@@ -14,10 +14,10 @@
 #include <fstream>
 #include <limits>
 
-#include "geometry/assembly.h"
-#include "geometry/cell_cases.h"
-#include "geometry/feature_surfaces.h"
-#include "geometry/label_layers.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/extraction/feature_surfaces.h"
+#include "geometry/overlaps/label_layers.h"
 #include "io/ct_series.h"
 #include "io/dicom_nesting.h"
 #include "io/rtstruct_reader.h"

@@ -1,6 +1,6 @@
 // Constrained smoothing and contour-faithful vertices (issue 3), on the CPU pipeline:
 // makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh.
-#include "geometry/smoothing.h"
+#include "geometry/smoothing/smoothing.h"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 #include <set>
 #include <vector>
 
-#include "geometry/assembly.h"
-#include "geometry/cell_cases.h"
-#include "geometry/contour_fit.h"
-#include "geometry/feature_surfaces.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/cell_cases.h"
+#include "geometry/extraction/feature_surfaces.h"
+#include "geometry/smoothing/contour_fit.h"
 #include "scansurf/nesting.h"
 #include "support/intersections.h"
 #include "support/reference_rasterizer.h"

@@ -4,7 +4,7 @@
 // shapeTriangles -> restoreVolumes. Every shape the smoothing tests use,
 // checked exactly afterwards: both conventions' surfaces, crossings, carriers, shared interfaces,
 // angles and counts (printed, and held as bounds), accuracy against the analytic surfaces.
-#include "geometry/snapping.h"
+#include "geometry/shape/snapping.h"
 
 #include <gtest/gtest.h>
 
@@ -15,15 +15,15 @@
 #include <set>
 #include <vector>
 
-#include "geometry/assembly.h"
-#include "geometry/carrier_projection.h"
-#include "geometry/contour_layers.h"
-#include "geometry/cube_fans.h"
-#include "geometry/feature_surfaces.h"
-#include "geometry/quad_diagonals.h"
-#include "geometry/smoothing.h"
-#include "geometry/triangle_shape.h"
-#include "geometry/volume_restoration.h"
+#include "geometry/contours/contour_layers.h"
+#include "geometry/extraction/assembly.h"
+#include "geometry/extraction/feature_surfaces.h"
+#include "geometry/shape/cube_fans.h"
+#include "geometry/shape/quad_diagonals.h"
+#include "geometry/shape/triangle_shape.h"
+#include "geometry/shape/volume_restoration.h"
+#include "geometry/smoothing/carrier_projection.h"
+#include "geometry/smoothing/smoothing.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"

@@ -28,12 +28,12 @@ struct SmoothingOptions {
   bool keepVolumes = true;
   // Smallest angle, degrees, that placing, relaxing and restoring may leave in a triangle: a move
   // that would make a triangle sharper than this (and sharper than it was) is shortened, still
-  // inside the vertex's simplex (geometry/angle_guard.h). Off by default: shortening alone costs
+  // inside the vertex's simplex (geometry/smoothing/angle_guard.h). Off by default: shortening alone costs
   // accuracy (3 degrees: up to 8 % more mean distance; 15: up to twice; docs/method.md,
   // "Triangle shape"). 0: off.
   double minAngle = 0;
   // Vertices crowding a voxel centre merge into it after relaxation, before the volumes are
-  // restored (Raman & Wenger's snapping; geometry/snapping.h): every voxel centre that a vertex
+  // restored (Raman & Wenger's snapping; geometry/shape/snapping.h): every voxel centre that a vertex
   // on one of its lattice edges lies within this fraction of the edge from becomes a vertex,
   // where one label pair meets around it. Removes the slivers that sliding vertices make near
   // voxel centres, and their triangles. In [0, 0.45]; 0: off. Where the contour planes lie

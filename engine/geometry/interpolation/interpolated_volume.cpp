@@ -1,0 +1,82 @@
+// scansurf: interpolated label volumes slab by slab (see interpolated_volume.h).
+#include "geometry/interpolation/interpolated_volume.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace scansurf {
+namespace {
+
+// A slab from layer `first` as long as its plan stays within the budget (two layers at least):
+// as many planes as the estimate lets in, fewer if the plan turns out larger.
+InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census, int first, const std::vector<int>& factors,
+                           std::size_t slabBytes, const std::vector<bool>& containers) {
+  int planes = 0;
+  std::size_t estimate = 0;
+  while (first + planes < volume.grid.nz) {
+    const int k = first + planes;
+    estimate += estimatePlaneBytes(volume, census, k, k < volume.grid.nz - 1 ? factors[static_cast<std::size_t>(k)] : 1);
+    if (planes >= 2 && estimate > slabBytes) break;
+    ++planes;
+  }
+  for (;;) {
+    InterpolationSlab slab = planInterpolationSlab(volume, census, first, planes, factors, containers);
+    const std::size_t bytes = slab.deviceBytes(volume.grid);
+    if (bytes <= slabBytes || planes <= 2) return slab;
+    const double fit = static_cast<double>(slabBytes) / static_cast<double>(bytes);
+    planes = std::max(2, std::min(planes - 1, static_cast<int>(planes * fit * 0.9)));
+  }
+}
+
+}  // namespace
+
+// Labels of the layers between the pair's planes, and the clearance of all its layers.
+void storePair(const std::uint32_t* words, const shared::PairPlan& pair, std::size_t plane, int fineA, InterpolatedVolume& out) {
+  for (int m = 0; m < pair.layers; ++m) {
+    const std::uint32_t* in = words + plane * static_cast<std::size_t>(pair.firstLayer + m);
+    const std::size_t at = plane * static_cast<std::size_t>(fineA + m);
+    Label* labels = out.volume.labels.empty() ? nullptr : out.volume.labels.data() + at;
+    std::uint16_t* clearance = out.clearance.data() + at;
+    const bool interpolated = labels && m > 0 && m < pair.factor;
+    for (std::size_t i = 0; i < plane; ++i) {
+      if (interpolated) labels[i] = static_cast<Label>(in[i] & 0xFFFFu);
+      clearance[i] = static_cast<std::uint16_t>(in[i] >> 16);
+    }
+  }
+}
+
+Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
+                                             int threads, const SlabInterpolator& interpolate, bool withLabels,
+                                             const std::vector<bool>& containers) {
+  const Grid& g = volume.grid;
+  if (factors.size() + 1 != static_cast<std::size_t>(g.nz))
+    return makeError(Errc::InvalidArgument, "interpolation: one factor per gap between layers is needed");
+  InterpolatedVolume out;
+  LabelVolume& fine = out.volume;
+  fine.grid = interpolatedGrid(g, factors);
+  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  const std::vector<int> fineOf = fineLayerOfPlane(factors);
+  if (withLabels || !interpolates(factors)) {
+    fine.labels.assign(fine.grid.voxelCount(), kBackground);
+    for (int k = 0; k < g.nz; ++k)
+      std::memcpy(fine.labels.data() + plane * static_cast<std::size_t>(fineOf[static_cast<std::size_t>(k)]),
+                  volume.labels.data() + plane * static_cast<std::size_t>(k), plane * sizeof(Label));
+  }
+  if (!interpolates(factors)) return out;
+  out.clearance.assign(fine.grid.voxelCount(), 0);
+
+  const PlaneCensus census = takePlaneCensus(volume, threads);
+  for (int first = 0; first + 1 < g.nz;) {
+    const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes, containers);
+    if (slab.outputLayers > 0) {
+      SCANSURF_TRY(interpolate(slab, [&](const std::uint32_t* words) {
+        for (const shared::PairPlan& pair : slab.pairs)
+          storePair(words, pair, plane, fineOf[static_cast<std::size_t>(slab.firstPlane + pair.planeA)], out);
+      }));
+    }
+    first += slab.planes - 1;
+  }
+  return out;
+}
+
+}  // namespace scansurf

@@ -1,0 +1,33 @@
+// scansurf: a label volume with interpolated layers, made slab by slab (any volume size) by
+// an interpolator of one slab: the GPU passes or the CPU reference.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "geometry/interpolation/interpolation_plan.h"
+
+namespace scansurf {
+
+// The slab's output layers, InterpolationSlab::outputLayers of nx * ny words, each
+// label | clearance << 16, are handed to `store` (valid during that call).
+using SlabWords = std::function<void(const std::uint32_t* words)>;
+using SlabInterpolator = std::function<Result<void>(const InterpolationSlab& slab, const SlabWords& store)>;
+
+struct InterpolatedVolume {
+  // Its labels are empty when asked for the clearances only (the labels stayed on the device).
+  LabelVolume volume;
+  // Per voxel, how far (1/16 of the smaller pixel spacing) its interpolated value is from
+  // losing its label; a surface vertex between voxels p and q lies at c(p) / (c(p) + c(q)).
+  std::vector<std::uint16_t> clearance;
+};
+
+// The volume on interpolatedGrid(volume.grid, factors): the original layers as they are, the
+// others from `interpolate`, in slabs whose plan needs at most about slabBytes (at least two
+// layers each). Without `withLabels`, only the grid and the clearances. containers: as
+// planInterpolationSlab's.
+Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
+                                             int threads, const SlabInterpolator& interpolate, bool withLabels = true,
+                                             const std::vector<bool>& containers = {});
+
+}  // namespace scansurf
