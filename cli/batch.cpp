@@ -144,9 +144,9 @@ bool runOptionsParse(const BatchArgs& a, const Task& first) {
 
 // The error class of a run's exit code, as the Python package names it (scansurf.InvalidInput...).
 std::string categoryOf(int exitCode) {
-  static const char* const kNames[] = {"InvalidArgument", "InvalidInput",  "IoError",     "NoDevice",
-                                       "VulkanError",     "InternalError", "OutOfMemory", "ResourceLimit"};
-  if (exitCode >= 2 && exitCode <= 9) return kNames[exitCode - 2];
+  static const char* const kNames[] = {"InvalidArgument", "InvalidInput", "IoError",       "NoDevice",        "VulkanError",
+                                       "InternalError",   "OutOfMemory",  "ResourceLimit", "DefectiveSurface"};
+  if (exitCode >= 2 && exitCode <= 10) return kNames[exitCode - 2];
   return exitCode > 128 ? "Killed by signal " + std::to_string(exitCode - 128) : "Exit " + std::to_string(exitCode);
 }
 
@@ -184,7 +184,11 @@ Result<Child> spawnRun(const BatchArgs& a, const Task& t, std::size_t index, con
   Child c{-1, index, fs::path(a.output) / (".scansurf-batch-" + t.name + ".log"), std::chrono::steady_clock::now()};
   posix_spawn_file_actions_t files;
   posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, STDERR_FILENO, c.log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // A fresh file of our own: whatever a previous run (or anyone) left at that name, a link
+  // above all, is removed rather than followed, and the open refuses anything that appears there.
+  std::error_code gone;
+  fs::remove(c.log, gone);
+  posix_spawn_file_actions_addopen(&files, STDERR_FILENO, c.log.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
   posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
@@ -208,6 +212,8 @@ void finish(Task& t, const Child& c, int status, bool quiet, std::size_t done, s
   if (!quiet)
     std::printf("[%zu/%zu] %s: %s (%.1f s)%s%s\n", done, total, t.input.c_str(), t.status.c_str(), t.seconds,
                 t.error.empty() ? "" : ": ", printable(t.error).c_str());
+  else if (t.exitCode != 0)  // quiet keeps errors: a failed input is one
+    std::fprintf(stderr, "scansurf batch: %s failed: %s\n", printable(t.input).c_str(), printable(t.error).c_str());
   std::fflush(stdout);
 }
 

@@ -5,7 +5,8 @@
 //
 // Exit codes: 0 success; 2 bad command line or option; 3 invalid input file; 4 file I/O
 // error; 5 no usable Vulkan device; 6 Vulkan failure; 7 internal error; 8 out of memory;
-// 9 resource limit (refused before the work: more memory needed than allowed).
+// 9 resource limit (refused before the work: more memory needed than allowed); 10 a defective
+// surface (open, not manifold or not oriented: nothing written unless --keep-defective).
 #include <unistd.h>
 
 #include <chrono>
@@ -49,6 +50,8 @@ std::string inFlags(std::string message) {
       {"with an ROI pattern", "with --roi"},
       {"with an object pattern", "with --object"},
       {"turn interpolation off", "use --interpolate off"},
+      {"BuildOptions::audit.keepDefective keeps", "--keep-defective writes"},
+      {"(BuildOptions::gapFactor)", "(--long-gap)"},
       {"(a reference series)", "(--reference CT_DIR)"},
       {"(the reference is the folder of a CT series)", "(--reference takes the folder of a CT series)"}};
   for (const auto& [phrase, flag] : kPhrases)
@@ -121,9 +124,9 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
 // layer, the engine's (grid, nesting and the overlap analysis once).
 int plannedStages(const cli::CliOptions& o, int layers) {
   const BuildOptions& b = o.build;
-  const int cli = 3 + (!o.quiet || !o.report.empty()) + !o.preview.empty();  // read, device, write; statistics, preview
+  const int cli = 3 + !o.preview.empty();  // read, device, write; preview
   const int perLayer = 4 + (b.interpolation.factor != 1) + b.smoothing.enabled + b.simplification.enabled + b.remeshing.enabled;
-  return cli + 3 + layers * perLayer;
+  return cli + 4 + layers * perLayer;  // grid, nesting, overlap analysis and audit once
 }
 
 // Stage times of the CLI's own steps, beside the engine's.
@@ -273,13 +276,8 @@ int run(const cli::CliOptions& o) {
   if (!built) return fail(built.error());
   BuildResult& result = built->result;
 
-  // Each feature's statistics, once, for the report and the summary (when either is wanted).
-  std::vector<MeshStats> stats;
-  if (!o.quiet || !o.report.empty()) {
-    laps.begin("statistics");
-    stats = computeFeatureStats(result.surfaces, o.build.threads);
-    laps.lap("statistics");
-  }
+  // Each feature's statistics, from the build's audit, for the report and the summary.
+  std::vector<MeshStats> stats = result.audit.stats;
 
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
@@ -302,10 +300,13 @@ int run(const cli::CliOptions& o) {
   auto written = interruptible.commit();
   if (!written) return fail(written.error());
   std::fflush(stdout);  // warnings after what was already printed
-  for (const std::string& w : result.warnings) progress.warning(w);
-  progress.finish(0);
+  for (const std::string& w : result.warnings) progress.warning(inFlags(w));
+  const bool defective = result.audit.defective();
+  progress.finish(defective ? exitCode(Errc::DefectiveSurface) : 0);
   if (!o.quiet)
     cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
+  if (defective)
+    return fail({Errc::DefectiveSurface, "a surface is defective (see the warnings above); written as --keep-defective asks"});
   return 0;
 }
 

@@ -8,10 +8,13 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "scansurf/version.h"
 
@@ -151,6 +154,8 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
             return parseMemorySize(text) ? std::string() : "'" + text + "' is not a memory size such as 8G or 512M";
           },
           "SIZE"));
+  app.add_flag("--keep-defective", o.build.audit.keepDefective,
+               "write a surface the audit finds open, not manifold or not oriented (for debugging; still exit 10)");
   app.add_flag("-q,--quiet", o.quiet, "print errors and warnings only");
   app.add_flag("--json-progress", o.jsonProgress, "progress as JSON lines on stderr, for scripts");
 }
@@ -191,7 +196,12 @@ std::optional<int> parseInterpolation(const std::string& text) {
   return n;
 }
 
-void addInterpolation(CLI::App& app, Flags& f) {
+void addInterpolation(CLI::App& app, CliOptions& o, Flags& f) {
+  app.add_option("--long-gap", o.build.gapFactor,
+                 "a structure's consecutive planes more than F times its median spacing apart are capped on each side, "
+                 "not bridged (0: bridge every gap)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
   app.add_option("--interpolate", f.interpolate,
                  "layers between contour planes, by shape-based interpolation: auto (about one per in-plane pixel in "
                  "gaps of 3 pixels or more, the volume kept under 96 M voxels), off, or N (N-1 layers in every gap, "
@@ -317,6 +327,55 @@ void apply(const Flags& f, CliOptions& o) {
   o.build.threads = std::min(o.build.threads, cores);
 }
 
+// Edit distance between two option names (insertions, deletions, substitutions).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The option nearest an unknown "--name" (at most a third of its letters off), or "".
+std::string nearestOption(const CLI::App& app, const std::string& given) {
+  const std::string name = given.substr(0, given.find('='));
+  std::string best;
+  std::size_t bestDistance = std::max<std::size_t>(1, name.size() / 3) + 1;
+  for (const CLI::Option* option : app.get_options())
+    for (const std::string& longName : option->get_lnames()) {
+      const std::size_t d = editDistance(name, "--" + longName);
+      if (d < bestDistance) bestDistance = d, best = "--" + longName;
+    }
+  return best;
+}
+
+// A usage error a person can act on: an unknown option with the one meant, a missing input as
+// the I/O error it is (exit 4); CLI11's own message otherwise.
+int usageError(const CLI::App& app, const CLI::ParseError& e, const std::string& input) {
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    for (const std::string& arg : app.remaining())
+      if (arg.rfind("--", 0) == 0) {
+        const std::string meant = nearestOption(app, arg);
+        std::fprintf(stderr, "scansurf: error: unknown option %s%s%s (scansurf --help lists them)\n", arg.c_str(),
+                     meant.empty() ? "" : "; did you mean ", meant.c_str());
+        return 2;
+      }
+  }
+  if (dynamic_cast<const CLI::ValidationError*>(&e) && !input.empty() && std::string(e.what()).find(input) != std::string::npos) {
+    std::fprintf(stderr, "scansurf: error: cannot read '%s': no such file\n", input.c_str());
+    return 4;
+  }
+  const int code = app.exit(e);
+  return code == 0 ? 0 : 2;
+}
+
 }  // namespace
 
 ParsedCommandLine parseCommandLine(int argc, char** argv) {
@@ -327,7 +386,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   parsed.options.commandLine.assign(argv, argv + argc);
   Flags flags;
   addGeneral(app, parsed.options, flags);
-  addInterpolation(app, flags);
+  addInterpolation(app, parsed.options, flags);
   addSmoothing(app, parsed.options, flags);
   addSimplification(app, parsed.options);
   addRemeshing(app, parsed.options, flags);
@@ -337,8 +396,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    parsed.exitCode = code == 0 ? 0 : 2;
+    parsed.exitCode = usageError(app, e, parsed.options.input);
     return parsed;
   }
   apply(flags, parsed.options);

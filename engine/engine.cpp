@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 
 #include "core/guard.h"
 #include "core/memory.h"
 #include "core/parallel.h"
+#include "geometry/audit/surface_audit.h"
 #include "geometry/contours/contour_layers.h"
 #include "geometry/contours/coverage.h"
 #include "geometry/contours/footprint.h"
@@ -179,6 +181,23 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
   surfaces.features = extractFeatureSurfaces(surfaces.mesh, static_cast<int>(nesting.parent.size()), nesting, options.convention);
   clock.lap("feature surfaces");
   return surfaces;
+}
+
+// A long gap in a feature's planes is said: capped on each side, or (no layer of the grid
+// between the planes to cap on) bridged as before.
+void warnAboutLongGaps(const ContourSet& contours, const Grid& grid, double gapFactor, std::vector<std::string>& warnings) {
+  const auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return std::string(buffer);
+  };
+  for (const LongGap& g : longGaps(contours, grid, gapFactor))
+    warnings.push_back(describeFeature(contours, g.feature) + ": its planes z=" + text(g.below) + " and z=" + text(g.above) +
+                       " are " + text(g.above - g.below) + " apart, more than " + text(gapFactor) +
+                       " times its usual spacing of " + text(g.usual) +
+                       (g.capped ? ": each side is capped on its own, not bridged"
+                                 : ": no other plane lies between them, so the slab rule bridges them") +
+                       " (BuildOptions::gapFactor)");
 }
 
 // A feature without a surface deserves a word: it has no slices, is too small for the grid,
@@ -385,6 +404,39 @@ Result<void> checkFinite(const MultiLabelMesh& mesh) {
   return {};
 }
 
+// A voxel of the grid of contour planes, its layers' mean spacing deep: differences in volume
+// under it are the grid's, never a finding.
+double planeVoxelVolume(const Grid& grid) {
+  const double depth = grid.nz > 1 ? (grid.layerZ.back() - grid.layerZ.front()) / (grid.nz - 1) : 0;
+  return grid.spacingX * grid.spacingY * depth;
+}
+
+// The run's check of its own surfaces (audit.h): its findings become warnings; a defect fails
+// the build unless the options keep it. Topology is held to the contours where each feature
+// encloses its own region (Layers, Enclosing); volumes where smoothing restores them.
+Result<void> auditBuild(const ContourSet& contours, const Grid& grid, std::span<const FeatureRegion> regions,
+                        const BuildOptions& options, BuildResult& out) {
+  const bool own = options.convention == SurfaceConvention::Enclosing && options.overlaps == OverlapMode::Layers;
+  const bool volumes = own && options.smoothing.enabled && options.smoothing.keepVolumes;
+  const AuditInputs in{contours,
+                       out.surfaces,
+                       own ? regions : std::span<const FeatureRegion>{},
+                       volumes ? slabVolumes(out.overlaps) : std::vector<double>{},
+                       options.audit.volumeTolerance,
+                       planeVoxelVolume(grid),
+                       options.threads};
+  out.audit = auditSurfaces(in);
+  std::string defects;
+  for (const AuditFinding& f : out.audit.findings)
+    if (f.defect && !options.audit.keepDefective)
+      defects += (defects.empty() ? "" : "; ") + f.message;
+    else
+      out.warnings.push_back(f.message);
+  if (defects.empty()) return {};
+  return makeError(Errc::DefectiveSurface,
+                   defects + "; nothing is kept (BuildOptions::audit.keepDefective keeps a defective surface)");
+}
+
 // One entry per stage name, the times of every layer added up, in first-seen order.
 void mergeStageTimes(std::vector<StageTime>& timings) {
   std::vector<StageTime> merged;
@@ -515,7 +567,9 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     SCANSURF_TRY(checkMemoryBudget(input, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(input, grid);
     // Every feature holds its own slabs on the other features' planes (own_slabs.h).
-    const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
+    out.gapFactor = options.gapFactor;
+    warnAboutLongGaps(input, grid, options.gapFactor, out.warnings);
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.gapFactor);
     const ContourSet& contours = filled ? *filled : input;
     clock.lap("grid");
     clock.begin("nesting");
@@ -547,9 +601,12 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     } else {
       SCANSURF_TRY(buildLayers(*impl_, contours, grid, factors, regions, split, medial, options, out, clock));
     }
-    mergeStageTimes(out.timings);
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);
     SCANSURF_TRY(checkFinite(out.surfaces.mesh));
+    clock.begin("audit");
+    SCANSURF_TRY(auditBuild(contours, grid, regions, options, out));
+    clock.lap("audit");
+    mergeStageTimes(out.timings);
     return out;
   });
 }
@@ -560,7 +617,7 @@ Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, c
     SCANSURF_ASSIGN_OR_RETURN(const std::optional<ContourSet> copy, validatedCopyIfNeeded(givenContours));
     const ContourSet& input = copy ? *copy : givenContours;
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
-    const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.gapFactor);
     const ContourSet& contours = filled ? *filled : input;
     const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
     SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());

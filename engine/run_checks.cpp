@@ -76,6 +76,10 @@ Result<void> checkOptions(const BuildOptions& o) {
   const int f = o.interpolation.factor;
   if (f != InterpolationOptions::kAuto && (f < 1 || f > InterpolationOptions::kMaxFactor))
     return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
+  if (!(std::isfinite(o.gapFactor) && o.gapFactor >= 0))
+    return badOption("gapFactor", "0 (bridge every gap) or more", o.gapFactor);
+  if (!(o.audit.volumeTolerance > 0 && o.audit.volumeTolerance <= 1))
+    return badOption("audit.volumeTolerance", "in (0, 1]", o.audit.volumeTolerance);
   if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);
   const double tol = o.grid.sliceTolerance;
   if (!(std::isfinite(tol) && tol >= 0))

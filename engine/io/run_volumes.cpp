@@ -25,7 +25,7 @@ Result<RegularLabelVolume> onReference(const LabelVolume& volume, const GridRefe
 Result<RunVolumes> runVolumes(const ContourSet& input, const BuildResult& built, bool withPartition) {
   const Grid& grid = built.volume.grid;
   // The masks hold each feature's own slabs on the other features' planes, as the surfaces do.
-  const std::optional<ContourSet> filled = withOwnSlabs(input, grid);
+  const std::optional<ContourSet> filled = withOwnSlabs(input, grid, built.gapFactor);
   const ContourSet& contours = filled ? *filled : input;
   const std::size_t n = contours.features.size();
   if (built.overlaps.features.size() != n)

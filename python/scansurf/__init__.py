@@ -23,15 +23,16 @@ import weakref
 import numpy as np
 
 from . import _scansurf
-from ._errors import (Error, InternalError, InvalidArgument, InvalidInput, IoError, NoDevice,
-                      OutOfMemory, ResourceLimit, VulkanError)
+from ._errors import (DefectiveSurface, Error, InternalError, InvalidArgument, InvalidInput,
+                      IoError, NoDevice, OutOfMemory, ResourceLimit, VulkanError)
 from ._scansurf import ContourSet, Engine, devices
 
 __version__ = _scansurf.__version__
 
 __all__ = ["read", "contours", "build", "devices", "engine", "batch", "ContourSet", "Engine",
            "BuildResult", "Surface", "LabelVolume", "Error", "InvalidArgument", "InvalidInput",
-           "IoError", "NoDevice", "VulkanError", "InternalError", "OutOfMemory", "ResourceLimit"]
+           "IoError", "NoDevice", "VulkanError", "InternalError", "OutOfMemory", "ResourceLimit",
+           "DefectiveSurface"]
 
 
 def _is_dataset(obj):
@@ -285,12 +286,21 @@ class BuildResult:
         formats = [formats] if isinstance(formats, str) else list(formats)
         if scene_name is None:
             scene_name = _stem(self.contours.input)
+        _check_scene_name(scene_name)
         paths = self._core._write(os.fspath(out_dir), formats, scene_name, os.fspath(label_volume or ""),
                                   os.fspath(dicom_seg or ""), os.fspath(report or ""), bool(draco))
         return [os.fspath(p) for p in paths]
 
     def __repr__(self):
         return "<scansurf.BuildResult: %d surfaces on %s>" % (len(self.surfaces), self.device)
+
+
+def _check_scene_name(name):
+    """A scene's name becomes a file name in out_dir: never a path out of it."""
+    if (not isinstance(name, str) or not name or name in (".", "..") or "/" in name or "\\" in name
+            or "\0" in name):
+        raise InvalidArgument("scene_name %r must be a plain file name (no folder, '.', '..' or NUL): "
+                              "the scene files are written in out_dir" % (name,))
 
 
 def _stem(path):

@@ -28,6 +28,8 @@ InternalError = _category("InternalError", 6, RuntimeError, "A broken invariant:
 OutOfMemory = _category("OutOfMemory", 7, MemoryError, "A host or device allocation failed.")
 ResourceLimit = _category("ResourceLimit", 8, MemoryError,
                           "Refused before starting: the run would need more memory than allowed.")
+DefectiveSurface = _category("DefectiveSurface", 9, RuntimeError,
+                             "A surface came out open, not manifold or not oriented; nothing is kept.")
 
 __all__ = ["Error", "InvalidArgument", "InvalidInput", "IoError", "NoDevice", "VulkanError",
-           "InternalError", "OutOfMemory", "ResourceLimit"]
+           "InternalError", "OutOfMemory", "ResourceLimit", "DefectiveSurface"]

@@ -16,6 +16,7 @@ const char* className(Errc code) {
     case Errc::Internal: return "InternalError";
     case Errc::OutOfMemory: return "OutOfMemory";
     case Errc::ResourceLimit: return "ResourceLimit";
+    case Errc::DefectiveSurface: return "DefectiveSurface";
   }
   return "Error";
 }

@@ -16,6 +16,8 @@ namespace fs = std::filesystem;
 const MeshStats& PyResult::statsOf(int feature) {
   const std::lock_guard<std::mutex> lock(mutex);
   auto& slot = stats.at(static_cast<std::size_t>(feature));
+  if (!slot && static_cast<std::size_t>(feature) < built.audit.stats.size())
+    slot = built.audit.stats[static_cast<std::size_t>(feature)];
   if (!slot)
     slot = computeMeshStats(built.surfaces.mesh.positions, built.surfaces.features[static_cast<std::size_t>(feature)].triangles);
   return *slot;

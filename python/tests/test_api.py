@@ -181,6 +181,16 @@ def test_each_error_is_its_class(tmp_path, phantom):
     assert issubclass(scansurf.InvalidInput, ValueError) and issubclass(scansurf.IoError, OSError)
     assert issubclass(scansurf.OutOfMemory, MemoryError) and issubclass(scansurf.VulkanError, scansurf.Error)
     assert scansurf.InternalError.exit_code == 7 and scansurf.ResourceLimit.exit_code == 9
+    assert scansurf.DefectiveSurface.exit_code == 10 and issubclass(scansurf.DefectiveSurface, RuntimeError)
+
+
+def test_a_scene_name_never_leads_out_of_the_folder(tmp_path, phantom_result):
+    out = tmp_path / "a" / "b"
+    for name in ("../../x", "..", "sub/x", "x\\y", "x\0y", ""):
+        with pytest.raises(scansurf.InvalidArgument, match="scene_name"):
+            phantom_result.write(out, formats=("glb",), scene_name=name, report=None)
+    assert not (tmp_path / "x.glb").exists() and not out.exists()
+    assert phantom_result.write(out, formats=("glb",), scene_name="plan", report=None)
 
 
 def test_the_gil_is_released_while_building(phantom):

@@ -121,3 +121,15 @@ def test_a_folder_with_an_older_report_is_skipped_without_breaking_the_summary(t
                      "surface_volume": "", "triangles": "", "status": "done", "seconds": "0.0"}]
     again = scansurf.batch(paths[:1], tmp_path, client="serial", progress=False)
     assert again.inputs[0]["status"] == "skipped" and again[0]["roi"] == "Body"
+
+
+def test_the_command_line_batch_never_follows_a_link_at_its_log(tmp_path, cli):
+    inputs, out = tmp_path / "in", tmp_path / "out"
+    inputs.mkdir(), out.mkdir()
+    (inputs / "a.json").write_text('{"version":1,"features":"x"}')
+    victim = tmp_path / "v.txt"
+    victim.write_text("precious")
+    (out / ".scansurf-batch-a.log").symlink_to(victim)
+    run = subprocess.run([cli, "batch", str(inputs), "-o", str(out), "-q"], capture_output=True, text=True)
+    assert victim.read_text() == "precious"
+    assert run.returncode != 0 and "a.json failed" in run.stderr  # quiet still names a failed input

@@ -22,6 +22,20 @@ if(leftovers)
   message(FATAL_ERROR "temporary files left behind: ${leftovers}")
 endif()
 
+# The run's audit: every surface of the bundled example matches its contours (no finding), and
+# the summary's statistics are the audit's.
+if(last_output MATCHES "surface components where|genus [0-9]+ where|slab volume is|is open|not manifold")
+  message(FATAL_ERROR "the audit found fault with the bundled example:\n${last_output}")
+endif()
+
+# Usage errors a person can act on: an option misspelt names the one meant; a missing input is
+# an I/O error (exit 4) naming the file.
+run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --voxel-sise 1)
+expect_output("unknown option --voxel-sise; did you mean --voxel-size")
+run_scansurf(4 "${OUT}/no-such-input.json" -o "${OUT}/x")
+expect_output("cannot read '.*no-such-input.json': no such file")
+expect_nothing_left("${OUT}/x")
+
 # The partition convention.
 run_scansurf(0 "${EXAMPLES}/phantom.json" -o "${OUT}/partition" --grid 128 96 --convention partition -q)
 

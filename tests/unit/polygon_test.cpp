@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "geometry/contours/coverage.h"
+#include "geometry/contours/crossings.h"
 #include "support/shapes.h"
 
 namespace scansurf {
@@ -46,6 +48,45 @@ TEST(Polygon, RegionAreaSubtractsHoles) {
   EXPECT_EQ(regionArea(ring), 96);
   const std::vector<Contour> islandInHole{square(0, 0, 10, 10), square(2, 2, 8, 8), square(4, 4, 5, 5)};
   EXPECT_EQ(regionArea(islandInHole), 100 - 36 + 1);
+}
+
+TEST(Crossings, ASimpleContourDoesNotCrossItself) {
+  EXPECT_FALSE(firstSelfCrossing(square(0, 0, 2, 2)));
+  EXPECT_TRUE(crossingHeights(std::vector<Contour>{square(0, 0, 1, 1), square(2, 2, 3, 3)}).empty());
+}
+
+TEST(Crossings, ABowTieCrossesAtItsMiddleAndKeepsBothWings) {
+  const Contour bowTie{{{0, 0}, {2, 2}, {2, 0}, {0, 2}}};
+  const auto at = firstSelfCrossing(bowTie);
+  ASSERT_TRUE(at);
+  EXPECT_DOUBLE_EQ(at->x, 1);
+  EXPECT_DOUBLE_EQ(at->y, 1);
+  EXPECT_DOUBLE_EQ(signedArea(bowTie), 0);                        // the wings cancel in the shoelace sum
+  EXPECT_DOUBLE_EQ(regionArea(std::vector<Contour>{bowTie}), 2);  // even-odd: both wings
+}
+
+TEST(Crossings, OverlappingContoursOfOneSliceCancelWhereBothCover) {
+  const std::vector<Contour> two{square(0, 0, 2, 2), square(1, 1, 3, 3)};
+  EXPECT_EQ(crossingHeights(two).size(), 2u);
+  EXPECT_DOUBLE_EQ(regionArea(two), 6);  // 4 + 4, less the shared unit square twice
+}
+
+TEST(Crossings, AStarCountsWhatEvenOddFillingCovers) {
+  // A pentagram: its centre is covered twice and so is outside by the even-odd rule.
+  Contour spiral;
+  for (int k = 0; k < 5; ++k) {
+    const double a = M_PI / 2 + k * 4 * M_PI / 5;
+    spiral.points.push_back({2 + 2 * std::cos(a), 2 + 2 * std::sin(a)});
+  }
+  EXPECT_TRUE(firstSelfCrossing(spiral));
+  // Even-odd area by a fine raster of cell centres.
+  double raster = 0;
+  const int n = 800;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      if (insideRegion(std::vector<Contour>{spiral}, {4.0 * (i + 0.5) / n, 4.0 * (j + 0.5) / n})) raster += 16.0 / (n * n);
+  EXPECT_NEAR(evenOddArea(std::vector<Contour>{spiral}), raster, 0.02);
+  EXPECT_NEAR(regionArea(std::vector<Contour>{spiral}), raster, 0.02);
 }
 
 TEST(Polygon, InsideSquare) {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/contours/crossings.h"
+
 namespace scansurf {
 
 void Box2::add(Point2 p) {
@@ -55,6 +57,7 @@ double signedArea(const Contour& contour) {
 }
 
 double regionArea(std::span<const Contour> contours) {
+  if (!crossingHeights(contours).empty()) return evenOddArea(contours);
   double area = 0;
   for (std::size_t i = 0; i < contours.size(); ++i) {
     if (contours[i].points.empty()) continue;

@@ -53,9 +53,9 @@ Box2 boundingBox(const ContourSet& contours);
 // Shoelace area of the closed polygon: positive when counter-clockwise (y up).
 double signedArea(const Contour& contour);
 
-// Area of the even-odd region of a slice's contours, assuming they do not cross each other:
-// each contour adds its absolute area when it lies inside an even number of the others, else
-// subtracts it (a hole).
+// Area of the even-odd region of a slice's contours: where none crosses itself or another, each
+// contour adds its absolute area when it lies inside an even number of the others, else
+// subtracts it (a hole); otherwise evenOddArea (crossings.h).
 double regionArea(std::span<const Contour> contours);
 
 // x where edge a-b crosses the horizontal line at y. Computed from the edge's lower endpoint

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
+#include "geometry/contours/crossings.h"
 #include "scansurf/grid.h"
 #include "scansurf/input.h"
 #include "scansurf/label_volume.h"
@@ -78,6 +80,16 @@ void dropRepeatedContours(ContourSet& contours, int f, FeatureSlice& slice, int 
                                 "(two copies would cancel by the even-odd rule)");
   }
   slice.contours = std::move(kept);
+}
+
+// A contour that crosses itself is filled as the even-odd rule has it (a spiral or a figure
+// eight keeps only its odd-covered parts): said, with where, since it is rarely what was meant.
+void warnAboutSelfCrossings(ContourSet& contours, int f, const FeatureSlice& slice, int s) {
+  for (std::size_t c = 0; c < slice.contours.size(); ++c)
+    if (const std::optional<Point2> at = firstSelfCrossing(slice.contours[c]))
+      contours.warnings.push_back(describeSlice(contours, f, s, slice.z) + ": contour " + std::to_string(c) +
+                                  " crosses itself (near x " + formatNumber(at->x) + ", y " + formatNumber(at->y) +
+                                  "); its inside is what the even-odd rule encloses");
 }
 
 // The largest magnitude of the set's coordinates: differences below 1e-12 of it are rounding
@@ -222,8 +234,10 @@ Result<void> validateAndNormalize(ContourSet& contours) {
   for (int f = 0; f < featureCount; ++f) {
     mergeSlicesOfOnePlane(contours.features[static_cast<std::size_t>(f)]);
     Feature& feature = contours.features[static_cast<std::size_t>(f)];
-    for (int s = 0; s < static_cast<int>(feature.slices.size()); ++s)
+    for (int s = 0; s < static_cast<int>(feature.slices.size()); ++s) {
       dropRepeatedContours(contours, f, feature.slices[static_cast<std::size_t>(s)], s);
+      warnAboutSelfCrossings(contours, f, feature.slices[static_cast<std::size_t>(s)], s);
+    }
   }
 
   if (!contours.order.empty()) {

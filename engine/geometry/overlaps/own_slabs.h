@@ -3,19 +3,34 @@
 // contour on; left as background there it was cut into one piece per plane, and its surface
 // and volume depended on which other features were selected. The slab rule of its own planes
 // (each plane's region reaches half way to the feature's next plane) says what it holds there:
-// the nearer own plane's contours (ties: the lower plane).
+// the nearer own plane's contours (ties: the lower plane), except across a gap far longer than
+// the feature's usual spacing, which the slab rule would bridge with a vertical-walled lid.
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
 
 namespace scansurf {
 
+// Two consecutive planes of a feature farther apart than gapFactor times its median spacing:
+// a structure drawn with a part missing, or a stray contour far from the rest. The slab rule
+// does not bridge it: each side is capped on its own where the grid has layers between them.
+struct LongGap {
+  int feature = 0;
+  double below = 0, above = 0;  // the planes' z
+  double usual = 0;             // the feature's median plane spacing
+  bool capped = false;          // the grid has a layer between them, left empty
+};
+
+// Every feature's long gaps (gapFactor 0: none), in feature order, then by z.
+std::vector<LongGap> longGaps(const ContourSet& contours, const Grid& grid, double gapFactor);
+
 // The contour set with, for each feature, a slice on every layer of `grid` strictly between two
-// of its consecutive planes, holding the nearer plane's contours; nullopt when no feature
-// needs one (the set is used as it is).
-std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid);
+// of its consecutive planes, holding the nearer plane's contours, except across its long gaps
+// (longGaps); nullopt when no feature needs one (the set is used as it is).
+std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid, double gapFactor);
 
 }  // namespace scansurf

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scansurf/audit.h"
 #include "scansurf/contours.h"
 #include "scansurf/interpolation.h"
 #include "scansurf/label_volume.h"
@@ -48,10 +49,14 @@ struct BuildResult {
   // The device's sub-pixel precision of scan conversion (bits), with which the writers
   // rasterize each feature's own mask on the CPU exactly as the device did.
   int subPixelBits = 8;
-  int threads = 1;  // CPU threads the run used (BuildOptions::threads, 0 resolved)
+  int threads = 1;       // CPU threads the run used (BuildOptions::threads, 0 resolved)
+  double gapFactor = 0;  // BuildOptions::gapFactor as the build used it (the writers' masks follow it)
   // The budget check: estimated peak host memory, and the limit it was held to (bytes).
   std::uint64_t estimatedMemory = 0;
   std::uint64_t memoryLimit = 0;
+  // Each feature's statistics and what they were held to (scansurf/audit.h); its findings are
+  // among the warnings too.
+  SurfaceAudit audit;
   std::vector<std::string> warnings;  // e.g. contours too small to cover a pixel centre
   std::vector<StageTime> timings;
 };

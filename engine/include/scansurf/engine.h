@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "scansurf/audit.h"
 #include "scansurf/build_result.h"
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
@@ -65,6 +66,11 @@ struct BuildOptions {
   // allocated, build() estimates the label volume, mesh and device needs from the contours and
   // the grid, and refuses with Errc::ResourceLimit when they exceed this or the device's memory.
   std::uint64_t memoryLimit = 0;
+  // A feature's consecutive contour planes farther apart than this many times its median plane
+  // spacing are not bridged by the slab rule: each side is capped on its own where the grid
+  // has layers between them (other features' planes), and a warning names the gap. 0: every
+  // gap is bridged. Not negative.
+  double gapFactor = 2.0;
   // Interpolated layers between the contour planes (stage "interpolation"); off unless set.
   InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.
@@ -81,6 +87,8 @@ struct BuildOptions {
   // outputs rasterize their own volumes, so it passes false. Interpolation and the partition
   // mode's volume losses read the labels on the host, so they are kept there anyway.
   bool keepLabelVolume = true;
+  // The check of every surface against its contours after the build (scansurf/audit.h).
+  AuditOptions audit;
   // Called after each stage with its name and time (progress reports), on the calling thread.
   std::function<void(const std::string& stage, double seconds)> onStage;
   // Called as each stage begins and when it is done, on the calling thread: every stage begins

@@ -14,14 +14,15 @@ namespace scansurf {
 
 // Error categories; the command-line tool maps each to an exit code (docs/limits.md).
 enum class Errc {
-  InvalidArgument = 1,  // an option or parameter out of range
-  InvalidInput = 2,     // the input file is malformed or inconsistent
-  Io = 3,               // a file could not be read or written
-  NoDevice = 4,         // no usable Vulkan device
-  Vulkan = 5,           // a Vulkan call failed
-  Internal = 6,         // a broken invariant: a bug in scansurf
-  OutOfMemory = 7,      // a host or device allocation failed; the message names what and how much
-  ResourceLimit = 8,    // refused before starting: the run would need more memory than allowed
+  InvalidArgument = 1,   // an option or parameter out of range
+  InvalidInput = 2,      // the input file is malformed or inconsistent
+  Io = 3,                // a file could not be read or written
+  NoDevice = 4,          // no usable Vulkan device
+  Vulkan = 5,            // a Vulkan call failed
+  Internal = 6,          // a broken invariant: a bug in scansurf
+  OutOfMemory = 7,       // a host or device allocation failed; the message names what and how much
+  ResourceLimit = 8,     // refused before starting: the run would need more memory than allowed
+  DefectiveSurface = 9,  // a surface came out open, not manifold or not oriented (scansurf/audit.h)
 };
 
 // A short lower-case name of the category ("invalid argument", "out of memory", ...).
@@ -35,6 +36,7 @@ inline const char* errcName(Errc code) noexcept {
     case Errc::Internal: return "internal error";
     case Errc::OutOfMemory: return "out of memory";
     case Errc::ResourceLimit: return "resource limit";
+    case Errc::DefectiveSurface: return "defective surface";
   }
   return "error";
 }

@@ -10,6 +10,7 @@
 // Nothing throws across this API: every fallible call returns Result<T> (scansurf/result.h).
 #pragma once
 
+#include "scansurf/audit.h"
 #include "scansurf/build_result.h"
 #include "scansurf/contours.h"
 #include "scansurf/device.h"
