@@ -81,7 +81,7 @@ struct Engine::Impl : EngineState {};
 
 namespace {
 
-// Times each stage into `out` and reports it through options.onStage and onStageEvent: begin
+// Times each stage into `out` and reports it through options.onStageEvent: begin
 // announces a stage, lap ends it (stages follow each other: a stage's time runs from the
 // previous lap).
 class StageClock {
@@ -94,7 +94,6 @@ class StageClock {
   void lap(const char* stage) {
     const auto now = std::chrono::steady_clock::now();
     out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
-    if (options_.onStage) options_.onStage(out_.back().stage, out_.back().seconds);
     if (options_.onStageEvent) options_.onStageEvent({stage, true, out_.back().seconds, layer_, layers_});
     start_ = now;
   }

@@ -1,9 +1,8 @@
 // scansurf: an allocator for the big working arrays of a CPU stage (smoothing): arrays of
 // 32 MiB and more are 2 MiB aligned and asked to be backed by transparent huge pages
 // (madvise(MADV_HUGEPAGE), Linux; a hint, ignored where the kernel does not give them), so the
-// first touch of every 2 MiB is one page fault instead of 512. On the benchmark VM a fault
-// costs ~25 us: touching 256 MiB of fresh memory takes 1.6 s of CPU with 4 KiB pages and 0.8 s
-// with huge pages, and 0.02 s once faulted in (docs/benchmarks.md).
+// first touch of every 2 MiB is one page fault instead of 512: first touches of fresh memory,
+// not the work on it, dominate such arrays' cost with 4 KiB pages.
 #pragma once
 
 #include <cstddef>

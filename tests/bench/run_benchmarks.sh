@@ -50,8 +50,6 @@ for set in "${sets[@]}"; do
   done
 done
 
-# The hand-measured changes (their own commands, machine, date, commit) survive a rerun.
-changes=$(sed -n '/^## Measured changes/,$p' docs/benchmarks.md 2> /dev/null || true)
 "$py" tests/bench/make_table.py "$results" "$(git rev-parse --short HEAD)" > docs/benchmarks.md
 
 # Where the time goes: a perf profile of scansurf on pelvis (when perf works on this machine).
@@ -67,5 +65,4 @@ if command -v perf > /dev/null && [ -f "$work/pelvis.json" ] && perf stat -e tas
     echo '```'
   } >> docs/benchmarks.md
 fi
-[ -z "$changes" ] || printf '\n%s\n' "$changes" >> docs/benchmarks.md
 cat docs/benchmarks.md

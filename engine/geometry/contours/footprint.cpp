@@ -38,8 +38,8 @@ double featureCrossings(const Feature& feature, const Grid& grid) {
 // Per estimated vertex, at the peak (smoothing): positions as floats and doubles, lattice key,
 // carrier and role, neighbour lists, about two triangles with their label pairs, and each
 // triangle again in the two feature surfaces it bounds.
-// Measured peaks: 185 MB for 443 k vertices (phantom), 770 MB for 3.3 M (pelvis), each with
-// the Vulkan driver's own ~100 MB (kBaseline).
+// Set above the measured peaks per vertex, plus the Vulkan driver's own memory (kBaseline);
+// docs/limits.md gives the figures.
 constexpr double kBytesPerVertex = 300;
 constexpr double kBaseline = 128.0 * (1 << 20);
 // Vertices per crossing, measured (tests/unit/footprint_test.cpp) on the test shapes at 1 and

@@ -18,8 +18,7 @@ struct Footprint {
 
 // The separating surface crosses the grid where a contour crosses pixel boundaries on its
 // layer and where a feature's area changes between layers (caps included); vertices scale with
-// those crossings. Calibrated on the bench sets and the phantom (docs/benchmarks.md), on the
-// generous side: the peak counts the label volume, the classification records, the mesh with
+// those crossings. Calibrated on measured peaks (docs/limits.md), on the generous side: the peak counts the label volume, the classification records, the mesh with
 // its smoothing state and the feature surfaces.
 // With interpolation the surfaced volume has `surfacedLayers` layers instead of grid.nz: its
 // labels count too, and the side walls gain vertices in proportion.

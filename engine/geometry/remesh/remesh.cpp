@@ -48,17 +48,16 @@ constexpr double kTurnCos = 0.5;       // least cosine between a triangle's norm
 // average, all of them together by d; 2 settles the test shapes in 4 passes as 1.5 did in 8.
 constexpr double kFitRelaxation = 2.0;
 constexpr int kFitPasses = 4;
-// The default edge length, in in-plane voxels: at 1.15 the benchmark sets get fewer triangles
-// than flying edges + windowed sinc (pelvis 0.96x, 1.31x at 1) while the analytic
-// shapes stay within 10 % of smoothing's volume error (sphere -0.403 % against -0.371 %; at
-// 1.2 and beyond, with contour planes two pixels apart, one row of free vertices no longer fits
-// between them and the chords from plane to plane lose volume that centring cannot restore).
+// The default edge length, in in-plane voxels: about as many triangles as flying edges +
+// windowed sinc while the analytic shapes keep smoothing's volume error; beyond it, with
+// contour planes two pixels apart, one row of free vertices no longer fits between them and the
+// chords from plane to plane lose volume that centring cannot restore.
 constexpr double kDefaultLength = 1.15;
 // ... and at least this fraction of the contour planes' median gap. Between the planes the
 // surface is an interpolation with no detail at the pixel scale, and flying edges on the slice
-// lattice makes triangles as tall as the gap: at 0.45 mm pixels and 2.5 mm slices (head-neck)
-// 1.15 pixels gave 1.86x the Slicer route's triangles and 0.3 gaps 1.06x. Three rows of free
-// vertices still fit between two planes, so centring keeps the volume.
+// lattice makes triangles as tall as the gap: with pixels far finer than the gap, a length in
+// pixels alone would give far more triangles than it. Three rows of free vertices still fit
+// between two planes, so centring keeps the volume.
 constexpr double kPlaneGapFraction = 0.33;
 // Graded sizes around short feature edges (gradeSizes): the target drops to kFeatureGrade
 // times such an edge and grows back by kGradeSlope per unit of distance.

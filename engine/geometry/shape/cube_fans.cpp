@@ -1,4 +1,4 @@
-// Re-triangulating the cubes' fans (issue 28). In a cube whose separating surface carries two
+// Re-triangulating the cubes' fans. In a cube whose separating surface carries two
 // labels, the Freudenthal cut puts a vertex on each cut cube edge and face diagonal and one on
 // the body diagonal, and fans the surface around that last one; marching cubes (Lorensen &
 // Cline 1987) triangulates the same rim with no inner vertex. Where the surface is flat over a
@@ -46,7 +46,7 @@ constexpr std::size_t kMostTriangles = 96;  // so does a region with more triang
 constexpr std::size_t kMostVertices = kMostTriangles + 1;  // a disk has at most F + 1 vertices
 constexpr std::uint32_t kDead = UINT32_MAX;                // a triangle slot left empty
 // A new triangle may be sharper than the sharpest it replaces only if its smallest angle is at
-// least 15 degrees (issue 28's smallest angle): sharpness(), its squared cosine, at most this.
+// least 15 degrees (the smallest angle the triangle shape aims at): sharpness(), its squared cosine, at most this.
 constexpr double kFair = 0.9330127018922194;
 
 using Key = std::uint64_t;

@@ -1,4 +1,4 @@
-// scansurf: fewer triangles where a separating surface crosses voxel cubes as fans (issue 28).
+// scansurf: fewer triangles where a separating surface crosses voxel cubes as fans.
 // The Freudenthal cut gives a flat wall about eight triangles per cube, around a vertex on the
 // cube's body diagonal; marching cubes gives two. Where a cube's (or a box of cubes') surface is
 // one label pair's disk, the vertices inside go and the disk's rim is triangulated again: a

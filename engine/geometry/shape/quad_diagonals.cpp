@@ -1,4 +1,4 @@
-// The better diagonal of each tetrahedron's surface quad (issue 28). Why the surfaces still never
+// The better diagonal of each tetrahedron's surface quad. Why the surfaces still never
 // cross (smoothing.cpp's argument): a (2+2) tetrahedron's quad joins points inside four of its
 // edges, two on each face that its labels split; either diagonal joins points of the two
 // remaining, opposite edges, so both triangulations lie in the tetrahedron and put the same

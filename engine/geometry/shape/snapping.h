@@ -1,4 +1,4 @@
-// scansurf: smoothed surface vertices that crowd a lattice point merge into it (issue 28), after
+// scansurf: smoothed surface vertices that crowd a lattice point merge into it, after
 // Raman & Wenger, "Quality isosurface mesh generation using an extended marching cubes lookup
 // table" (EuroVis 2008): the slivers of the separating surfaces are triangles with two or three
 // vertices close to one voxel centre, and moving those vertices onto the centre removes them.

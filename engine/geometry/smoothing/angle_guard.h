@@ -1,6 +1,6 @@
 // scansurf: moves that keep triangles well shaped. Placing vertices on crossings and relaxing
-// them makes slivers (the bundled example's assembled barycentres have no angle under 17
-// degrees; placed and smoothed, 6 % of the triangles had one under 5 and the least was 0.5).
+// them makes slivers (assembled barycentres are well shaped; placed and smoothed, a few per
+// cent of the triangles get an angle under 5 degrees).
 // The guard shortens each vertex's move, on the segment from where it was, until no triangle's
 // smallest angle is below min(limit, what it was before the move).
 #pragma once

@@ -37,8 +37,8 @@
 // point is worse than its 150th sweep (the tension shrinks and the fairing extrapolates caps:
 // after 1200 sweeps the torus of smoothing_test.cpp loses 4 % of its volume and lies up to
 // 0.96 mm off, against 0.77 % and 0.25 mm after 150), and about a third of the vertices never
-// settle (on pelvis they keep moving by up to 0.14 voxel a sweep, 0.6 on the sweeps that
-// refresh the slide slopes), so no residual can say when to stop. The amount of smoothing is
+// settle (they keep moving by a tenth of a voxel a sweep and more on the sweeps that refresh
+// the slide slopes), so no residual can say when to stop. The amount of smoothing is
 // the option's sweep count, read as a diffusion time: we integrate that time with
 // Runge-Kutta-Legendre super-steps
 // (RKL1 of Meyer, Balsara and Aslam, "A stabilized Runge-Kutta-Legendre method for explicit
@@ -50,8 +50,8 @@
 // s stages cover about s^2 / 2 sweeps of smoothing. Every stage ends in the carrier projection
 // as a plain sweep does, so positions stay inside their carriers and the argument above holds
 // unchanged; mu_j + nu_j = 1, so an edge vertex's stage stays on its edge's line. The 150
-// sweeps of the default run as 5 super-steps of 7 stages (35 sweeps); no accuracy figure of
-// smoothing_test.cpp gets worse by more than 2 % (docs/benchmarks.md).
+// sweeps of the default run as 5 super-steps of 7 stages (35 sweeps), with the accuracy of
+// plain sweeps (smoothing_test.cpp holds it).
 #include "geometry/smoothing/smoothing.h"
 
 #include <algorithm>

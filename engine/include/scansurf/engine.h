@@ -89,8 +89,6 @@ struct BuildOptions {
   bool keepLabelVolume = true;
   // The check of every surface against its contours after the build (scansurf/audit.h).
   AuditOptions audit;
-  // Called after each stage with its name and time (progress reports), on the calling thread.
-  std::function<void(const std::string& stage, double seconds)> onStage;
   // Called as each stage begins and when it is done, on the calling thread: every stage begins
   // and ends once per surface layer, labelled with its layer when the build has several.
   struct StageEvent {

@@ -10,16 +10,15 @@ namespace scansurf {
 
 struct SimplificationOptions {
   // Off in the library's own defaults, on in BuildOptions::recommended() (what the command-line
-  // tool and the Python package start from): from the cubes' fans' triangles it leaves about 0.7
-  // on the benchmark sets, under the Slicer route's count, for about 1.3 times smoothing's time
-  // (docs/method.md, "Simplification"). Runs after smoothing, before remeshing.
+  // tool and the Python package start from): it merges the cubes' fans' triangles into fewer,
+  // better-shaped ones (docs/method.md, "Simplification" has the figures). Runs after
+  // smoothing, before remeshing.
   bool enabled = false;
   // How far a collapse may move the surface, in in-plane voxels (the quadric error bound).
   double tolerance = 0.05;
   // Collapses stop once a patch is down to triangles of about this edge length, in in-plane
-  // voxels: flat parts become triangles of about two voxels, not long slivers. 2.5 rather than
-  // 2 takes pelvis from 1.03 to 0.98 times the Slicer route's triangles, the analytic sphere's
-  // normals and distances no worse at four grids (docs/method.md).
+  // voxels: flat parts become triangles of about two voxels, not long slivers (docs/method.md
+  // gives the counts and the analytic sphere's normals at this length).
   double edgeLength = 2.5;
   // New triangles keep at least the lesser of this smallest angle (degrees) and the one of the
   // triangles they replace: collapses never make triangles sharper below it.
