@@ -13,6 +13,7 @@
 #include <cstring>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -358,7 +359,7 @@ std::string nearestOption(const CLI::App& app, const std::string& given) {
 
 // A usage error a person can act on: an unknown option with the one meant, a missing input as
 // the I/O error it is (exit 4); CLI11's own message otherwise.
-int usageError(const CLI::App& app, const CLI::ParseError& e, const std::string& input) {
+int usageError(const CLI::App& app, const CLI::ParseError& e) {
   if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
     for (const std::string& arg : app.remaining())
       if (arg.rfind("--", 0) == 0) {
@@ -368,8 +369,11 @@ int usageError(const CLI::App& app, const CLI::ParseError& e, const std::string&
         return 2;
       }
   }
-  if (dynamic_cast<const CLI::ValidationError*>(&e) && !input.empty() && std::string(e.what()).find(input) != std::string::npos) {
-    std::fprintf(stderr, "scansurf: error: cannot read '%s': no such file\n", input.c_str());
+  // CLI11 refuses a missing input before assigning it: the path is in its message.
+  static constexpr std::string_view kMissing = "File does not exist: ";
+  const std::string what = e.what();
+  if (const auto at = what.find(kMissing); dynamic_cast<const CLI::ValidationError*>(&e) && at != std::string::npos) {
+    std::fprintf(stderr, "scansurf: error: cannot read '%s': no such file\n", what.substr(at + kMissing.size()).c_str());
     return 4;
   }
   const int code = app.exit(e);
@@ -396,7 +400,7 @@ ParsedCommandLine parseCommandLine(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    parsed.exitCode = usageError(app, e, parsed.options.input);
+    parsed.exitCode = usageError(app, e);
     return parsed;
   }
   apply(flags, parsed.options);

@@ -66,6 +66,15 @@ Result<void> Buffer::invalidate() const {
   return {};
 }
 
+Result<void> Buffer::flush() const {
+  if (coherent_ || !mapped_) return {};
+  VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+  range.memory = memory_.get();
+  range.size = VK_WHOLE_SIZE;
+  SCANSURF_VK_TRY(vkFlushMappedMemoryRanges(device_, 1, &range));
+  return {};
+}
+
 Result<Image> Image::create(const Context& ctx, VkFormat format, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
                             VkImageUsageFlags usage, VkImageAspectFlags aspect) {
   Image img;

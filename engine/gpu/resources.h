@@ -27,6 +27,8 @@ class Buffer {
   void* mapped() const { return mapped_; }
   // Makes device writes visible to the host on non-coherent memory (call after the wait).
   Result<void> invalidate() const;
+  // Makes host writes visible to the device on non-coherent memory (call before the submit).
+  Result<void> flush() const;
 
  private:
   Owned<VkDeviceMemory> memory_;  // declared first: released after the buffer

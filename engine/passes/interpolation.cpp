@@ -191,7 +191,8 @@ void recordPlanesCopy(VkCommandBuffer cmd, const gpu::Buffer& devicePlanes, cons
 }
 
 // The slab's words into the device volume of words (its output layers are consecutive fine
-// layers), ahead of the host's readback.
+// layers), once the host has read and amended them (host writes before a submit are visible
+// to it).
 void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::Buffer& words, VkDeviceSize offset,
                      VkDeviceSize bytes) {
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -311,14 +312,18 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
                   static_cast<std::uint32_t>(slab.pairs[p].layers));
   }
   const gpu::Buffer& output = buffers.buffers[kOutput];
-  if (device.words)
-    recordWordsCopy(cmd, output, *device.words, device.wordsOffset, plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   SCANSURF_TRY(second ? second->submitAndWait() : commands.submitAndWait());
   SCANSURF_TRY(output.invalidate());
-  store(static_cast<const std::uint32_t*>(output.mapped()));
-  return {};
+  store(static_cast<std::uint32_t*>(output.mapped()));
+  if (!device.words) return {};
+  // The words as the host left them (invented islands gone) go to the device volume.
+  SCANSURF_TRY(output.flush());
+  SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands copy, gpu::OneShotCommands::begin(ctx));
+  recordWordsCopy(copy.cmd(), output, *device.words, device.wordsOffset,
+                  plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
+  return copy.submitAndWait();
 }
 
 Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,

@@ -242,7 +242,7 @@ TEST_F(SurfacesTest, EveryStageBeginsAndEndsOncePerLayer) {
   auto built = engine_->build(set, options);
   ASSERT_TRUE(built) << built.error().message;
   ASSERT_EQ(built->overlaps.layers, 2);
-  ASSERT_EQ(events.size(), 2 * (3 + 2 * 5)) << "grid, nesting, overlap analysis; per layer scan conversion, "
+  ASSERT_EQ(events.size(), 2 * (4 + 2 * 5)) << "grid, nesting, overlap analysis, audit; per layer scan conversion, "
                                                "classification, assembly, smoothing, feature surfaces";
   std::vector<std::string> layered;
   for (std::size_t i = 0; i + 1 < events.size(); i += 2) {
@@ -258,6 +258,7 @@ TEST_F(SurfacesTest, EveryStageBeginsAndEndsOncePerLayer) {
   EXPECT_EQ(layered.front(), "0 scan conversion");
   EXPECT_EQ(layered.back(), "1 feature surfaces");
   EXPECT_EQ(events.front().stage, "grid");
+  EXPECT_EQ(events.back().stage, "audit");
 }
 
 // A feature left without a surface is reported by name, never dropped in silence.

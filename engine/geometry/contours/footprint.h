@@ -18,12 +18,11 @@ struct Footprint {
 
 // The separating surface crosses the grid where a contour crosses pixel boundaries on its
 // layer and where a feature's area changes between layers (caps included); vertices scale with
-// those crossings. Calibrated on measured peaks (docs/limits.md), on the generous side: the peak counts the label volume, the classification records, the mesh with
-// its smoothing state and the feature surfaces.
-// With interpolation the surfaced volume has `surfacedLayers` layers instead of grid.nz: its
-// labels count too, and the side walls gain vertices in proportion.
-// With remeshing to edges of `remeshLength` (input units; 0 = no remeshing), its network and
-// the remeshed mesh count too: at edges under half a voxel the mesh grows as 1 / length^2.
+// those crossings. Calibrated on measured peaks (docs/limits.md), on the generous side: the peak counts the label volume, the
+// classification records, the mesh with its smoothing state and the feature surfaces. With interpolation the surfaced volume has
+// `surfacedLayers` layers instead of grid.nz: its labels count too, and the side walls gain vertices in proportion. With
+// remeshing to edges of `remeshLength` (input units; 0 = no remeshing), its network and the remeshed mesh count too: at edges
+// under half a voxel the mesh grows as 1 / length^2.
 Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int surfacedLayers = 0, double remeshLength = 0);
 
 }  // namespace scansurf

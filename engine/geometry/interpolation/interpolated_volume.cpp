@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "geometry/interpolation/invented_islands.h"
+
 namespace scansurf {
 namespace {
 
@@ -26,6 +28,21 @@ InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census,
     const double fit = static_cast<double>(slabBytes) / static_cast<double>(bytes);
     planes = std::max(2, std::min(planes - 1, static_cast<int>(planes * fit * 0.9)));
   }
+}
+
+// A voxel given another label by removeInventedIslands gets a clearance of one pixel: the
+// surface between it and a neighbour of another label then lies near that neighbour.
+constexpr std::uint16_t kIslandClearance = 16;
+
+// removeInventedIslands on one pair's layers of the slab's words, until nothing changes (a
+// part inside a part that went may go next).
+void removeIslandsOfPair(std::uint32_t* words, const LabelVolume& volume, const shared::PairPlan& pair, int planeB) {
+  const Grid& g = volume.grid;
+  const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  std::uint32_t* layers = words + plane * static_cast<std::size_t>(pair.firstLayer);
+  const Label* upper = volume.labels.data() + plane * static_cast<std::size_t>(planeB);
+  for (int round = 0; round < 4; ++round)
+    if (removeInventedIslands(layers, upper, g.nx, g.ny, pair.factor, kIslandClearance) == 0) return;
 }
 
 }  // namespace
@@ -69,7 +86,9 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
   for (int first = 0; first + 1 < g.nz;) {
     const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes, containers);
     if (slab.outputLayers > 0) {
-      SCANSURF_TRY(interpolate(slab, [&](const std::uint32_t* words) {
+      SCANSURF_TRY(interpolate(slab, [&](std::uint32_t* words) {
+        for (const shared::PairPlan& pair : slab.pairs)
+          removeIslandsOfPair(words, volume, pair, slab.firstPlane + pair.planeA + 1);
         for (const shared::PairPlan& pair : slab.pairs)
           storePair(words, pair, plane, fineOf[static_cast<std::size_t>(slab.firstPlane + pair.planeA)], out);
       }));
