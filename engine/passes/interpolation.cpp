@@ -318,7 +318,7 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   SCANSURF_TRY(output.invalidate());
   store(static_cast<std::uint32_t*>(output.mapped()));
   if (!device.words) return {};
-  // The words as the host left them (invented islands gone) go to the device volume.
+  // The words as the host left them (the slab rule's topology kept) go to the device volume.
   SCANSURF_TRY(output.flush());
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands copy, gpu::OneShotCommands::begin(ctx));
   recordWordsCopy(copy.cmd(), output, *device.words, device.wordsOffset,

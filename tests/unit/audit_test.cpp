@@ -78,6 +78,12 @@ TEST(ContourTopology, ALayerTheListSkipsDoesNotPartThem) {
   expectTopology(contourTopology(region), 1, 1, 0, 0);
 }
 
+TEST(ContourTopology, AStructureThatMovedFurtherThanItsWidthIsOneTube) {
+  // Consecutive layers share no pixel: interpolation follows the centroid shift, one tube.
+  expectTopology(contourTopology(regionOf({{"##......", "##......"}, {"......##", "......##"}, {"......##", "......##"}})), 1, 1,
+                 0, 0);
+}
+
 TEST(ContourTopology, NoPixelsNoSurface) { EXPECT_TRUE(contourTopology(FeatureRegion{}).empty()); }
 
 // An octahedron (closed, genus 0) as feature 0 of a surface set.

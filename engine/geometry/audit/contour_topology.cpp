@@ -13,7 +13,9 @@
 #include "geometry/audit/contour_topology.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -152,11 +154,49 @@ long euler6(const RunBox& box) {
   return chi;
 }
 
+// Pixel-weighted centroid of a layer's runs, in pixels.
+std::pair<double, double> centroid(const std::vector<PixelRun>& runs) {
+  double area = 0, x = 0, y = 0;
+  for (const PixelRun& r : runs) {
+    const double n = r.end - r.begin;
+    area += n, x += n * 0.5 * (r.begin + r.end - 1), y += n * r.row;
+  }
+  return {x / area, y / area};
+}
+
+// Where a layer shares no pixel with the one below, interpolation moves the structure along
+// its centroid shift (one tube, interpolation_plan.h): the layers from there up are moved back
+// by that shift, so that stacking them joins what the interpolation joins.
+FeatureRegion aligned(const FeatureRegion& region) {
+  FeatureRegion out = region;
+  int dx = 0, dy = 0;
+  for (std::size_t l = 1; l < out.runs.size(); ++l) {
+    const std::vector<PixelRun>& below = region.runs[l - 1];
+    const std::vector<PixelRun>& here = region.runs[l];
+    if (!below.empty() && !here.empty() && sharedPixels(below, here) == 0) {
+      const auto [ax, ay] = centroid(below);
+      const auto [bx, by] = centroid(here);
+      dx += static_cast<int>(std::lround(bx - ax)), dy += static_cast<int>(std::lround(by - ay));
+    }
+    for (PixelRun& r : out.runs[l]) r.row -= dy, r.begin -= dx, r.end -= dx;
+  }
+  out.minRow = out.minColumn = std::numeric_limits<int>::max();
+  out.maxRow = out.maxColumn = std::numeric_limits<int>::min();
+  for (const std::vector<PixelRun>& layer : out.runs)
+    for (const PixelRun& r : layer) {
+      out.minRow = std::min(out.minRow, r.row), out.maxRow = std::max(out.maxRow, r.row);
+      out.minColumn = std::min(out.minColumn, r.begin), out.maxColumn = std::max(out.maxColumn, r.end - 1);
+    }
+  return out;
+}
+
 }  // namespace
 
-TopologyRange contourTopology(const FeatureRegion& region) {
+TopologyRange contourTopology(const FeatureRegion& given) {
   TopologyRange range;
-  if (region.maxRow < region.minRow || region.layers.empty()) return range;
+  if (given.maxRow < given.minRow || given.layers.empty()) return range;
+  const FeatureRegion region = aligned(given);
+  if (region.maxRow < region.minRow) return range;
   const RunBox set = foreground(region);
   const RunBox rest = complement(set);
   // 6-adjacent set, 26-adjacent complement.

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "geometry/interpolation/invented_islands.h"
+#include "geometry/interpolation/kept_topology.h"
 
 namespace scansurf {
 namespace {
@@ -30,19 +30,17 @@ InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census,
   }
 }
 
-// A voxel given another label by removeInventedIslands gets a clearance of one pixel: the
-// surface between it and a neighbour of another label then lies near that neighbour.
-constexpr std::uint16_t kIslandClearance = 16;
+// A voxel left at the slab rule's label gets a clearance of one pixel: the surface between it
+// and a neighbour of another label then lies near that neighbour.
+constexpr std::uint16_t kKeptClearance = 16;
 
-// removeInventedIslands on one pair's layers of the slab's words, until nothing changes (a
-// part inside a part that went may go next).
-void removeIslandsOfPair(std::uint32_t* words, const LabelVolume& volume, const shared::PairPlan& pair, int planeB) {
+// keepSlabTopology on one pair's layers of the slab's words.
+void keepTopologyOfPair(std::uint32_t* words, const LabelVolume& volume, const shared::PairPlan& pair, int planeA) {
   const Grid& g = volume.grid;
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   std::uint32_t* layers = words + plane * static_cast<std::size_t>(pair.firstLayer);
-  const Label* upper = volume.labels.data() + plane * static_cast<std::size_t>(planeB);
-  for (int round = 0; round < 4; ++round)
-    if (removeInventedIslands(layers, upper, g.nx, g.ny, pair.factor, kIslandClearance) == 0) return;
+  const Label* lower = volume.labels.data() + plane * static_cast<std::size_t>(planeA);
+  keepSlabTopology(layers, lower, lower + plane, g.nx, g.ny, pair.factor, kKeptClearance);
 }
 
 }  // namespace
@@ -87,8 +85,7 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
     const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes, containers);
     if (slab.outputLayers > 0) {
       SCANSURF_TRY(interpolate(slab, [&](std::uint32_t* words) {
-        for (const shared::PairPlan& pair : slab.pairs)
-          removeIslandsOfPair(words, volume, pair, slab.firstPlane + pair.planeA + 1);
+        for (const shared::PairPlan& pair : slab.pairs) keepTopologyOfPair(words, volume, pair, slab.firstPlane + pair.planeA);
         for (const shared::PairPlan& pair : slab.pairs)
           storePair(words, pair, plane, fineOf[static_cast<std::size_t>(slab.firstPlane + pair.planeA)], out);
       }));

@@ -11,7 +11,7 @@ namespace scansurf {
 
 // The slab's output layers, InterpolationSlab::outputLayers of nx * ny words, each
 // label | clearance << 16, are handed to `store` (valid during that call), which may rewrite
-// them: what it leaves is what the interpolator keeps (invented_islands.h).
+// them: what it leaves is what the interpolator keeps (kept_topology.h).
 using SlabWords = std::function<void(std::uint32_t* words)>;
 using SlabInterpolator = std::function<Result<void>(const InterpolationSlab& slab, const SlabWords& store)>;
 
@@ -24,8 +24,8 @@ struct InterpolatedVolume {
 };
 
 // The volume on interpolatedGrid(volume.grid, factors): the original layers as they are, the
-// others from `interpolate` less any part of a label that reaches neither plane of its gap
-// (removeInventedIslands), in slabs whose plan needs at most about slabBytes (at least two
+// others from `interpolate` with the topology of the slab rule kept in every gap
+// (keepSlabTopology), in slabs whose plan needs at most about slabBytes (at least two
 // layers each). Without `withLabels`, only the grid and the clearances. containers: as
 // planInterpolationSlab's.
 Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
