@@ -14,6 +14,7 @@
 #include "io/imod_reader.h"
 #include "io/reconstruct_reader.h"
 #include "io/rtstruct_reader.h"
+#include "io/slicer_reader.h"
 #include "scansurf/input.h"
 
 namespace scansurf {
@@ -71,7 +72,8 @@ Result<ContourSet> readStructureSet(const std::filesystem::path& path, const Rea
 
 constexpr const char* kSupportedFormats =
     "scansurf contour-set JSON; DICOM RT Structure Set (with or without the Part 10 header); Reconstruct series "
-    "(XML .ser or section file NAME.<number>); IMOD binary model (.mod)";
+    "(XML .ser or section file NAME.<number>); IMOD binary model (.mod); 3D Slicer planar-contour segmentation "
+    "(.seg.vtm or a segment's .vtp)";
 
 // The first bytes of a file, printable, for messages.
 std::string describeStart(const std::filesystem::path& path) {
@@ -173,6 +175,7 @@ Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions&
       model.contours.frame = CoordinateFrame::Specimen;
       return withFiles(std::move(model.contours), path);
     }
+    case InputFormat::SlicerSegmentation: return readSlicerSegmentation(path);
     default: return withFiles(readContoursJson(path), path);
   }
 }
@@ -185,6 +188,7 @@ const char* inputFormatName(InputFormat format) noexcept {
     case InputFormat::RtStruct: return "DICOM RTSTRUCT";
     case InputFormat::ReconstructSeries: return "Reconstruct series";
     case InputFormat::ImodModel: return "IMOD model";
+    case InputFormat::SlicerSegmentation: return "3D Slicer segmentation";
     case InputFormat::Unknown: break;
   }
   return "unrecognised file";
@@ -193,6 +197,7 @@ const char* inputFormatName(InputFormat format) noexcept {
 InputFormat detectInputFormat(const std::filesystem::path& path) {
   if (hasDicomPreamble(path)) return InputFormat::RtStruct;
   if (hasImodMagic(path)) return InputFormat::ImodModel;
+  if (looksLikeVtkXml(path)) return InputFormat::SlicerSegmentation;
   if (looksLikeReconstructXml(path)) return InputFormat::ReconstructSeries;
   std::ifstream in(path, std::ios::binary);
   char c = 0;

@@ -15,11 +15,12 @@
 namespace scansurf {
 
 enum class InputFormat {
-  ContoursJson,       // scansurf's contour-set JSON
-  RtStruct,           // DICOM RT Structure Set, with or without the Part 10 file header
-  ReconstructSeries,  // Reconstruct XML: a series file (.ser) or one of its section files
-  ImodModel,          // IMOD binary model (.mod)
-  Unknown,            // none of these (or an empty or unreadable file)
+  ContoursJson,        // scansurf's contour-set JSON
+  RtStruct,            // DICOM RT Structure Set, with or without the Part 10 file header
+  ReconstructSeries,   // Reconstruct XML: a series file (.ser) or one of its section files
+  ImodModel,           // IMOD binary model (.mod)
+  SlicerSegmentation,  // 3D Slicer planar-contour segmentation (.seg.vtm, or one segment's .vtp)
+  Unknown,             // none of these (or an empty or unreadable file)
 };
 
 // A short name of the format ("DICOM RTSTRUCT", "IMOD model", ...).
