@@ -34,11 +34,13 @@ std::string withoutSpace(const char* text) {
   return out;
 }
 
-std::uint64_t headerWord(const std::string& bytes, std::size_t i, bool wide) {
+// Word i of a header, little-endian whatever the host (the caller checked the size). Not
+// inlined: GCC 12 then takes the SSO buffer of a filled string for uninitialized.
+[[gnu::noinline]] std::uint64_t headerWord(const std::string& bytes, std::size_t i, bool wide) {
   const std::size_t width = wide ? 8 : 4;
+  const auto* at = reinterpret_cast<const unsigned char*>(bytes.data()) + width * i;
   std::uint64_t v = 0;
-  for (std::size_t b = 0; b < width; ++b)  // little-endian, whatever the host
-    v |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[width * i + b])) << (8 * b);
+  for (std::size_t b = 0; b < width; ++b) v |= static_cast<std::uint64_t>(at[b]) << (8 * b);
   return v;
 }
 
