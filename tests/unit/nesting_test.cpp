@@ -77,6 +77,22 @@ TEST(Nesting, HoleIsOutside) {
   EXPECT_EQ(n.parent, (std::vector<int>{-1, -1, 0}));
 }
 
+TEST(Nesting, AFeatureFillingAHoleAlongItsOutlineIsOutside) {
+  // Drawn on the ring's hole outline: every point on the ring's boundary, its region the hole.
+  Feature ring{"ring", std::nullopt, {}};
+  ring.slices.push_back(FeatureSlice{0, {square(0, 0, 10), square(0, 0, 5)}});
+  Feature hole = squareFeature("hole", 0, 0, 5, {0});
+  Feature alongTheOutside = squareFeature("inside along the outer outline", 0, 0, 10, {0});
+  const Nesting n = computeNesting(setOf({ring, hole}));
+  EXPECT_EQ(n.parent, (std::vector<int>{-1, -1}));
+  // A feature drawn along the outer outline, its region the ring's and the hole's, is not
+  // inside the ring either; one drawn inside along the outline is (the ring holds its side).
+  Feature band{"band", std::nullopt, {}};
+  band.slices.push_back(FeatureSlice{0, {square(0, 0, 10), square(0, 0, 8)}});
+  EXPECT_EQ(computeNesting(setOf({ring, band})).parent, (std::vector<int>{-1, 0}));
+  EXPECT_EQ(computeNesting(setOf({ring, alongTheOutside})).parent[0], 1);
+}
+
 TEST(Nesting, IdenticalFeaturesDoNotCycle) {
   const Nesting n =
       computeNesting(setOf({squareFeature("a", 0, 0, 3), squareFeature("b", 0, 0, 3), squareFeature("c", 0, 0, 3)}));

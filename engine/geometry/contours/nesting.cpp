@@ -46,6 +46,25 @@ int sliceAt(const FeatureInfo& info, double z) {
   return -1;
 }
 
+// Whether, beside each edge of contour c, the inner region's side lies in `outer`: a contour
+// drawn on the outline of a hole of the outer region (an organ in an opening of a structure
+// drawn around it) has every point on that outline, yet its region is the hole, outside.
+bool insideAlongEdges(const std::vector<Contour>& innerRegion, const Contour& c, const std::vector<Contour>& outer) {
+  const std::size_t n = c.points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 a = c.points[i], b = c.points[(i + 1) % n];
+    const double dx = b.x - a.x, dy = b.y - a.y, length = std::hypot(dx, dy);
+    if (!(length > 0)) continue;
+    const double step = 1e-3 * length;
+    const Point2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+    Point2 side{mid.x - step * dy / length, mid.y + step * dx / length};
+    if (!insideRegion(innerRegion, side)) side = {mid.x + step * dy / length, mid.y - step * dx / length};
+    if (!insideRegion(innerRegion, side)) continue;  // a sliver thinner than the step: no side to test
+    if (!insideRegion(outer, side)) return false;
+  }
+  return true;
+}
+
 // Whether every contour point of `inner` lies in `outer`'s region on every slice of inner.
 // Points on the outer boundary count as inside, so a feature drawn along its container's edge,
 // or identical to it, is contained.
@@ -64,9 +83,11 @@ bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature&
   }
   for (std::size_t s = 0; s < inner.slices.size(); ++s) {
     const auto& region = outer.slices[sliceAt(outerInfo, inner.slices[s].z)].contours;
-    for (const Contour& c : inner.slices[s].contours)
+    for (const Contour& c : inner.slices[s].contours) {
       for (const Point2& p : c.points)
         if (!insideRegion(region, p) && !onBoundary(region, p, boundaryTolerance)) return false;
+      if (!insideAlongEdges(inner.slices[s].contours, c, region)) return false;
+    }
   }
   return true;
 }
