@@ -41,6 +41,7 @@ std::string inFlags(std::string message) {
       {"option smoothing.strength ", "option --smooth-strength "},
       {"option smoothing.iterations ", "option --smooth-iterations "},
       {"option threads ", "option --threads "},
+      {"option grid.gapFactor ", "option --long-gap "},
       {"option interpolation.factor ", "option --interpolate "}};
   for (const auto& [field, flag] : kFlags)
     if (message.rfind(field, 0) == 0) return flag + message.substr(std::char_traits<char>::length(field));
@@ -51,7 +52,7 @@ std::string inFlags(std::string message) {
       {"with an object pattern", "with --object"},
       {"turn interpolation off", "use --interpolate off"},
       {"BuildOptions::audit.keepDefective keeps", "--keep-defective writes"},
-      {"(BuildOptions::gapFactor)", "(--long-gap)"},
+      {"(GridOptions::gapFactor)", "(--long-gap)"},
       {"(a reference series)", "(--reference CT_DIR)"},
       {"(the reference is the folder of a CT series)", "(--reference takes the folder of a CT series)"}};
   for (const auto& [phrase, flag] : kPhrases)
@@ -125,7 +126,8 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
 int plannedStages(const cli::CliOptions& o, int layers) {
   const BuildOptions& b = o.build;
   const int cli = 3 + !o.preview.empty();  // read, device, write; preview
-  const int perLayer = 4 + (b.interpolation.factor != 1) + b.smoothing.enabled + b.simplification.enabled + b.remeshing.enabled;
+  const int perLayer =
+      4 + (b.interpolation.factor != 1) + 2 * b.smoothing.enabled + b.simplification.enabled + b.remeshing.enabled;
   return cli + 4 + layers * perLayer;  // grid, nesting, overlap analysis and audit once
 }
 

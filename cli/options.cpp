@@ -198,7 +198,7 @@ std::optional<int> parseInterpolation(const std::string& text) {
 }
 
 void addInterpolation(CLI::App& app, CliOptions& o, Flags& f) {
-  app.add_option("--long-gap", o.build.gapFactor,
+  app.add_option("--long-gap", o.build.grid.gapFactor,
                  "a structure's consecutive planes more than F times its median spacing apart are capped on each side, "
                  "not bridged (0: bridge every gap)")
       ->check(CLI::Range(0.0, 1000.0))

@@ -151,7 +151,7 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
                 volumeFlag(s.volume, v.contour).c_str());
   }
   printOverlaps(set, built.overlaps);
-  if (const SnappingReport& r = built.surfaces.snapping; r.ran)
+  if (const TriangleShapeReport& r = built.surfaces.triangleShape; r.ran)
     std::printf(
         "triangle shape: %zu of %zu crowded voxel centres snapped, %zu vertices merged into them, %zu triangles gone; "
         "%zu quads re-split; %zu cubes and blocks re-triangulated from their rims, %zu vertices and %zu triangles fewer "

@@ -12,29 +12,29 @@
 #include "core/memory.h"
 #include "core/parallel.h"
 #include "geometry/audit/surface_audit.h"
-#include "geometry/contours/contour_layers.h"
-#include "geometry/contours/coverage.h"
-#include "geometry/contours/footprint.h"
 #include "geometry/contours/validate.h"
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/edge_crossings.h"
 #include "geometry/extraction/feature_surfaces.h"
+#include "geometry/grid/contour_layers.h"
+#include "geometry/grid/coverage.h"
+#include "geometry/grid/footprint.h"
 #include "geometry/interpolation/interpolated_volume.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "geometry/overlaps/overlap_split.h"
-#include "geometry/overlaps/overlaps.h"
 #include "geometry/overlaps/own_slabs.h"
-#include "geometry/remesh/remesh.h"
+#include "geometry/remesh/remesh_mesh.h"
 #include "geometry/shape/snapping.h"
 #include "geometry/shape/triangle_shape.h"
 #include "geometry/shape/volume_restoration.h"
-#include "geometry/simplification/simplification.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/simplification/simplify_mesh.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "gpu/commands.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "passes/classification.h"
-#include "passes/interpolation.h"
-#include "passes/preview.h"
+#include "passes/interpolator.h"
+#include "passes/preview_renderer.h"
 #include "passes/scan_conversion.h"
 #include "run_checks.h"
 #include "scansurf/input.h"
@@ -43,7 +43,8 @@
 
 namespace scansurf {
 
-// The device and the passes made on it (each on first use): the engine's whole state.
+// The device and the passes made on it (each on first use): the engine's whole state. The
+// getters name the pass they give (made when first asked for).
 struct EngineState {
   std::unique_ptr<gpu::Context> context;
   std::unique_ptr<passes::ScanConverter> scanConverter;  // created on first use
@@ -51,25 +52,25 @@ struct EngineState {
   std::unique_ptr<passes::Interpolator> interpolator;
   std::unique_ptr<passes::PreviewRenderer> previewRenderer;
 
-  Result<passes::ScanConverter*> scanner() {
+  Result<passes::ScanConverter*> scanConverterPass() {
     if (!scanConverter) {
       SCANSURF_ASSIGN_OR_RETURN(scanConverter, passes::ScanConverter::create(*context));
     }
     return scanConverter.get();
   }
-  Result<passes::Interpolator*> interpolate() {
+  Result<passes::Interpolator*> interpolatorPass() {
     if (!interpolator) {
       SCANSURF_ASSIGN_OR_RETURN(interpolator, passes::Interpolator::create(*context));
     }
     return interpolator.get();
   }
-  Result<passes::Classifier*> classify() {
+  Result<passes::Classifier*> classifierPass() {
     if (!classifier) {
       SCANSURF_ASSIGN_OR_RETURN(classifier, passes::Classifier::create(*context));
     }
     return classifier.get();
   }
-  Result<passes::PreviewRenderer*> preview() {
+  Result<passes::PreviewRenderer*> previewPass() {
     if (!previewRenderer) {
       SCANSURF_ASSIGN_OR_RETURN(previewRenderer, passes::PreviewRenderer::create(*context));
     }
@@ -141,10 +142,26 @@ SurfaceTargets slabTargets(const ContourSet* contours, const Grid& grid) {
   return targets;
 }
 
-// Classification records to feature surfaces: assembly, smoothing, feature extraction.
-Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const Nesting& nesting, const BuildOptions& options,
-                           const ContourSet* contours, StageClock& clock, std::span<const std::uint16_t> clearance = {},
-                           const SurfaceTargets& targets = {}) {
+// What every stage of one surfacing pass reads: the engine, the contours (null for a bare
+// label volume), the nesting, the options, the clock and what the surfaces are held to.
+struct SurfacingRun {
+  EngineState& impl;
+  const ContourSet* contours;
+  const Nesting& nesting;
+  const BuildOptions& options;
+  StageClock& clock;
+  SurfaceTargets targets;
+};
+
+// Classification records to feature surfaces: assembly, smoothing, triangle shape,
+// simplification, remeshing, feature extraction.
+Surfaces surfacesFromCells(const SurfacingRun& run, std::vector<CellCase> cells, const Grid& grid,
+                           std::span<const std::uint16_t> clearance = {}) {
+  const BuildOptions& options = run.options;
+  const ContourSet* contours = run.contours;
+  const Nesting& nesting = run.nesting;
+  const SurfaceTargets& targets = run.targets;
+  StageClock& clock = run.clock;
   Surfaces surfaces;
   surfaces.convention = options.convention;
   clock.begin("assembly");
@@ -156,15 +173,17 @@ Surfaces surfacesFromCells(std::vector<CellCase> cells, const Grid& grid, const 
     clock.begin("smoothing");
     SmoothingReport smoothed =
         smoothMesh(surfaces.mesh, grid, contours, options.smoothing, options.threads, clearance, targets.medial);
+    clock.lap("smoothing");
+    clock.begin("triangle shape");
     // Simplification, when asked, starts from the fans' triangles: it merges the vertices the
     // boxes' rims keep (docs/method.md, "Simplification").
     const double snap = snapFractionFor(grid, planes, options.smoothing.snap);
     const ShapedTriangles shaped = shapeTriangles(surfaces.mesh, grid, snap, smoothed.onSheet, true, options.threads);
-    surfaces.snapping = shaped.report;
+    surfaces.triangleShape = shaped.report;
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,
                      options.threads, &shaped.disks);
-    clock.lap("smoothing");
+    clock.lap("triangle shape");
   }
   if (options.simplification.enabled) {
     clock.begin("simplification");
@@ -196,7 +215,7 @@ void warnAboutLongGaps(const ContourSet& contours, const Grid& grid, double gapF
                        " times its usual spacing of " + text(g.usual) +
                        (g.capped ? ": each side is capped on its own, not bridged"
                                  : ": no other plane lies between them, so the slab rule bridges them") +
-                       " (BuildOptions::gapFactor)");
+                       " (GridOptions::gapFactor)");
 }
 
 // A feature without a surface deserves a word: it has no slices, is too small for the grid,
@@ -211,13 +230,12 @@ void warnAboutEmptySurfaces(const ContourSet& contours, const Surfaces& surfaces
 // Classification and the CPU stages for one label volume, on the host (LabelVolume) or
 // already on the device (DeviceLabelVolume).
 template <typename Volume>
-Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const ContourSet* contours, const Nesting& nesting,
-                                  const BuildOptions& options, StageClock& clock, const SurfaceTargets& targets) {
-  clock.begin("classification");
-  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+Result<Surfaces> surfacesOfVolume(const SurfacingRun& run, const Volume& volume) {
+  run.clock.begin("classification");
+  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, run.impl.classifierPass());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(volume));
-  clock.lap("classification");
-  return surfacesFromCells(std::move(cells), volume.grid, nesting, options, contours, clock, {}, targets);
+  run.clock.lap("classification");
+  return surfacesFromCells(run, std::move(cells), volume.grid);
 }
 
 // Classification of labels in one of scansurf's own device buffers, bound in place; the buffer
@@ -226,7 +244,7 @@ Result<Surfaces> surfacesOfVolume(EngineState& impl, const Volume& volume, const
 Result<std::vector<CellCase>> classifyOwnBuffer(EngineState& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
                                                 bool upperIsData, StageClock& clock) {
   clock.begin("classification");
-  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
+  SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classifierPass());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->runInPlace(DeviceLabelVolume{buffer.handle(), 0, bits, grid},
                                                                                 buffer.size(), upperIsData));
   buffer = gpu::Buffer{};
@@ -254,15 +272,18 @@ std::vector<bool> containerLabels(const Nesting& nesting) {
 // device labels when there are some; the interpolated labels stay on the device for
 // classification (as label | clearance words), and the host gets the clearances, which
 // smoothing needs.
-Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& planes,
-                                      std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
-                                      const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                      StageClock& clock, const SurfaceTargets& targets) {
+Result<Surfaces> interpolatedSurfaces(const SurfacingRun& run, const LabelVolume& planes,
+                                      std::optional<passes::ScanConverter::DeviceLabels> device,
+                                      const std::vector<int>& factors) {
+  EngineState& impl = run.impl;
+  const ContourSet* contours = run.contours;
+  const BuildOptions& options = run.options;
+  StageClock& clock = run.clock;
   clock.begin("interpolation");
-  SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolate());
+  SCANSURF_ASSIGN_OR_RETURN(passes::Interpolator * interpolator, impl.interpolatorPass());
   // Without the contours, every boundary crosses its grid edge in the middle.
   const std::vector<std::uint16_t> crossings =
-      contours ? planeEdgeCrossings(planes, *contours, options.threads, targets.medial)
+      contours ? planeEdgeCrossings(planes, *contours, options.threads, run.targets.medial)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
   SCANSURF_ASSIGN_OR_RETURN(
@@ -271,31 +292,22 @@ Result<Surfaces> interpolatedSurfaces(EngineState& impl, const LabelVolume& plan
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Device));
   SCANSURF_ASSIGN_OR_RETURN(InterpolatedVolume fine,
                             interpolator->run(planes, crossings, factors, options.interpolation.caps, options.threads,
-                                              {device ? &device->buffer : nullptr, &words}, containerLabels(nesting)));
+                                              {device ? &device->buffer : nullptr, &words}, containerLabels(run.nesting)));
   device.reset();
   clock.lap("interpolation");
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, clock));
-  return surfacesFromCells(std::move(cells), fineGrid, nesting, options, contours, clock, fine.clearance, targets);
+  return surfacesFromCells(run, std::move(cells), fineGrid, fine.clearance);
 }
 
 // Surfaces of a scan-converted volume of contour planes: interpolated first when asked, else
 // classified from the device labels when there are some (bound in place, no upload).
-Result<Surfaces> surfacesOfPlanes(EngineState& impl, const LabelVolume& planes,
-                                  std::optional<passes::ScanConverter::DeviceLabels> device, const ContourSet* contours,
-                                  const Nesting& nesting, const BuildOptions& options, const std::vector<int>& factors,
-                                  StageClock& clock, const SurfaceTargets& targets = {}) {
-  if (interpolates(factors))
-    return interpolatedSurfaces(impl, planes, std::move(device), contours, nesting, options, factors, clock, targets);
-  if (!device) {
-    clock.begin("classification");
-    SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classify());
-    SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->run(planes));
-    clock.lap("classification");
-    return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, targets);
-  }
+Result<Surfaces> surfacesOfPlanes(const SurfacingRun& run, const LabelVolume& planes,
+                                  std::optional<passes::ScanConverter::DeviceLabels> device, const std::vector<int>& factors) {
+  if (interpolates(factors)) return interpolatedSurfaces(run, planes, std::move(device), factors);
+  if (!device) return surfacesOfVolume(run, planes);
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
-                            classifyOwnBuffer(impl, std::move(device->buffer), device->grid, 16, false, clock));
-  return surfacesFromCells(std::move(cells), planes.grid, nesting, options, contours, clock, {}, targets);
+                            classifyOwnBuffer(run.impl, std::move(device->buffer), device->grid, 16, false, run.clock));
+  return surfacesFromCells(run, std::move(cells), planes.grid);
 }
 
 // Scan conversion for the surfaces: the labels stay on the device for the next GPU pass, and
@@ -327,16 +339,28 @@ Result<void> patchDeviceLabels(const gpu::Context& ctx, const gpu::Buffer& label
   return commands.submitAndWait();
 }
 
+// One layer's scan conversion: its contours on its grid (part of the whole grid), in nesting
+// order, and the medial split to write in; its labels go to the host when toHost or when
+// interpolating.
+struct LayerScan {
+  const ContourSet& contours;
+  const Grid& wholeGrid;
+  const Grid& grid;
+  const std::vector<int>& order;
+  bool interpolating = false;
+  bool toHost = false;
+  const std::vector<LabelOverride>& split;
+};
+
 // Scan conversion of one layer with the medial split of its incidental overlaps written in
 // (overlap_split.h), on the device and in the host copy when there is one.
-Result<passes::ScanConverter::DeviceLabels> scanAndSplit(EngineState& impl, const ContourSet& contours, const Grid& wholeGrid,
-                                                         const Grid& grid, const std::vector<int>& order, bool interpolating,
-                                                         bool toHost, const std::vector<LabelOverride>& split,
-                                                         LabelVolume& planes) {
-  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanner());
-  SCANSURF_ASSIGN_OR_RETURN(auto device, scanPlanes(*scanner, contours, grid, order, interpolating, toHost, planes));
-  if (split.empty()) return device;
-  const std::vector<std::pair<std::size_t, Label>> patch = overridesOnGrid(grid, wholeGrid, split);
+Result<passes::ScanConverter::DeviceLabels> scanAndSplit(EngineState& impl, const LayerScan& scan, LabelVolume& planes) {
+  const Grid& grid = scan.grid;
+  SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl.scanConverterPass());
+  SCANSURF_ASSIGN_OR_RETURN(auto device,
+                            scanPlanes(*scanner, scan.contours, grid, scan.order, scan.interpolating, scan.toHost, planes));
+  if (scan.split.empty()) return device;
+  const std::vector<std::pair<std::size_t, Label>> patch = overridesOnGrid(grid, scan.wholeGrid, scan.split);
   if (patch.empty()) return device;
   SCANSURF_TRY(patchDeviceLabels(*impl.context, device.buffer, patch));
   if (!planes.labels.empty())
@@ -356,10 +380,22 @@ InterpolationSummary summarizeInterpolation(const Grid& grid, const std::vector<
   return s;
 }
 
+// What the build knows once the overlaps are analysed: the contours (own slabs filled), the
+// grid and its interpolation factors, each feature's region, each layer's medial split.
+struct AnalysedInput {
+  const ContourSet& contours;
+  const Grid& grid;
+  const std::vector<int>& factors;
+  const std::vector<FeatureRegion>& regions;
+  const std::vector<std::vector<LabelOverride>>& split;
+  const MedialCrossings& medial;
+};
+
 // Layers mode with partial overlaps: each layer scan converted and surfaced on its own.
-Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Grid& grid, const std::vector<int>& factors,
-                         const std::vector<FeatureRegion>& regions, const std::vector<std::vector<LabelOverride>>& split,
-                         const MedialCrossings& medial, const BuildOptions& options, BuildResult& out, StageClock& clock) {
+Result<void> buildLayers(EngineState& impl, const AnalysedInput& in, const BuildOptions& options, BuildResult& out,
+                         StageClock& clock) {
+  const ContourSet& contours = in.contours;
+  const Grid& grid = in.grid;
   out.surfaces.convention = options.convention;
   out.surfaces.features.resize(contours.features.size());
   for (std::size_t f = 0; f < contours.features.size(); ++f) out.surfaces.features[f].feature = static_cast<int>(f);
@@ -367,15 +403,20 @@ Result<void> buildLayers(EngineState& impl, const ContourSet& contours, const Gr
     clock.setLayer(layer, out.overlaps.layers);
     clock.begin("scan conversion");
     const ContourSet subset = layerContours(contours, out.overlaps, layer);
-    const Grid sub = layerGrid(grid, regions, out.overlaps, layer);
-    const std::vector<int> subFactors = factorsOf(sub, grid, factors);
+    const Grid sub = layerGrid(grid, in.regions, out.overlaps, layer);
+    const std::vector<int> subFactors = factorsOf(sub, grid, in.factors);
     LabelVolume volume;
-    SCANSURF_ASSIGN_OR_RETURN(
-        auto device, scanAndSplit(impl, subset, grid, sub, out.nesting.order, interpolates(subFactors),
-                                  layer == 0 && options.keepLabelVolume, split[static_cast<std::size_t>(layer)], volume));
+    const LayerScan scan{subset,
+                         grid,
+                         sub,
+                         out.nesting.order,
+                         interpolates(subFactors),
+                         layer == 0 && options.keepLabelVolume,
+                         in.split[static_cast<std::size_t>(layer)]};
+    SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(impl, scan, volume));
     clock.lap("scan conversion");
-    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(impl, volume, std::move(device), &subset, out.nesting, options,
-                                                                  subFactors, clock, {&medial, slabVolumes(out.overlaps)}));
+    const SurfacingRun run{impl, &subset, out.nesting, options, clock, {&in.medial, slabVolumes(out.overlaps)}};
+    SCANSURF_ASSIGN_OR_RETURN(Surfaces surfaces, surfacesOfPlanes(run, volume, std::move(device), subFactors));
     appendLayer(out.surfaces, std::move(surfaces), out.overlaps, layer);
     if (layer == 0) out.volume = std::move(volume);
   }
@@ -523,7 +564,7 @@ Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nestin
                                         const BuildOptions& options) {
   return guarded("scan conversion on " + describeGrid(grid), [&]() -> Result<LabelVolume> {
     SCANSURF_TRY(checkOptions(options));
-    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
+    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanConverterPass());
     return scanner->run(contours, grid, nesting.order);
   });
 }
@@ -531,21 +572,22 @@ Result<LabelVolume> Engine::scanConvert(const ContourSet& contours, const Nestin
 Result<Surfaces> Engine::extract(const LabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
-    return surfacesOfPlanes(*impl_, volume, std::nullopt, contours, nesting, options,
-                            interpolationFactors(volume.grid, options.interpolation), clock, slabTargets(contours, volume.grid));
+    const SurfacingRun run{*impl_, contours, nesting, options, clock, slabTargets(contours, volume.grid)};
+    return surfacesOfPlanes(run, volume, std::nullopt, interpolationFactors(volume.grid, options.interpolation));
   });
 }
 
 Result<Surfaces> Engine::extract(const DeviceLabelVolume& volume, const Nesting& nesting, const BuildOptions& options,
                                  const ContourSet* contours) {
   return extractFrom(volume.grid, nesting, options, [&](StageClock& clock) {
-    return surfacesOfVolume(*impl_, volume, contours, nesting, options, clock, slabTargets(contours, volume.grid));
+    const SurfacingRun run{*impl_, contours, nesting, options, clock, slabTargets(contours, volume.grid)};
+    return surfacesOfVolume(run, volume);
   });
 }
 
 Result<PreviewImage> Engine::renderPreview(const Surfaces& surfaces, const PreviewOptions& options) {
   return guarded("rendering the preview", [&]() -> Result<PreviewImage> {
-    SCANSURF_ASSIGN_OR_RETURN(passes::PreviewRenderer * renderer, impl_->preview());
+    SCANSURF_ASSIGN_OR_RETURN(passes::PreviewRenderer * renderer, impl_->previewPass());
     return renderer->render(surfaces, options);
   });
 }
@@ -566,16 +608,16 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     SCANSURF_TRY(checkMemoryBudget(input, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));
     out.warnings = findUncoveredContours(input, grid);
     // Every feature holds its own slabs on the other features' planes (own_slabs.h).
-    out.gapFactor = options.gapFactor;
-    warnAboutLongGaps(input, grid, options.gapFactor, out.warnings);
-    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.gapFactor);
+    out.gapFactor = options.grid.gapFactor;
+    warnAboutLongGaps(input, grid, options.grid.gapFactor, out.warnings);
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.grid.gapFactor);
     const ContourSet& contours = filled ? *filled : input;
     clock.lap("grid");
     clock.begin("nesting");
     out.nesting = computeNesting(contours, options.grid.sliceTolerance);
     clock.lap("nesting");
     clock.begin("overlap analysis");
-    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
+    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanConverterPass());
     out.subPixelBits = scanner->subPixelBits();
     out.threads = options.threads > 0 ? options.threads : defaultThreadCount();
     const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, out.subPixelBits, options.threads);
@@ -588,17 +630,18 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     if (options.overlaps == OverlapMode::Partition || out.overlaps.layers == 1) {
       clock.begin("scan conversion");
       const bool toHost = options.keepLabelVolume || options.overlaps == OverlapMode::Partition;  // losses need them
-      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, contours, grid, grid, out.nesting.order, interpolates(factors),
-                                                          toHost, split.empty() ? kNoSplit : split[0], out.volume));
+      const LayerScan scan{
+          contours, grid, grid, out.nesting.order, interpolates(factors), toHost, split.empty() ? kNoSplit : split[0]};
+      SCANSURF_ASSIGN_OR_RETURN(auto device, scanAndSplit(*impl_, scan, out.volume));
       clock.lap("scan conversion");
-      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(*impl_, out.volume, std::move(device), &contours, out.nesting,
-                                                               options, factors, clock, {&medial, slabVolumes(out.overlaps)}));
+      const SurfacingRun run{*impl_, &contours, out.nesting, options, clock, {&medial, slabVolumes(out.overlaps)}};
+      SCANSURF_ASSIGN_OR_RETURN(out.surfaces, surfacesOfPlanes(run, out.volume, std::move(device), factors));
       if (options.overlaps == OverlapMode::Partition) {
         out.overlaps.losses = volumeLosses(regions, out.volume, out.nesting);
         warnAboutLosses(contours, out.overlaps, out.warnings);
       }
     } else {
-      SCANSURF_TRY(buildLayers(*impl_, contours, grid, factors, regions, split, medial, options, out, clock));
+      SCANSURF_TRY(buildLayers(*impl_, {contours, grid, factors, regions, split, medial}, options, out, clock));
     }
     warnAboutEmptySurfaces(contours, out.surfaces, out.warnings);
     SCANSURF_TRY(checkFinite(out.surfaces.mesh));
@@ -616,10 +659,10 @@ Result<OverlapReport> Engine::analyzeOverlaps(const ContourSet& givenContours, c
     SCANSURF_ASSIGN_OR_RETURN(const std::optional<ContourSet> copy, validatedCopyIfNeeded(givenContours));
     const ContourSet& input = copy ? *copy : givenContours;
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
-    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.gapFactor);
+    const std::optional<ContourSet> filled = withOwnSlabs(input, grid, options.grid.gapFactor);
     const ContourSet& contours = filled ? *filled : input;
     const Nesting nesting = computeNesting(contours, options.grid.sliceTolerance);
-    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanner());
+    SCANSURF_ASSIGN_OR_RETURN(passes::ScanConverter * scanner, impl_->scanConverterPass());
     const std::vector<FeatureRegion> regions = rasterizeFeatures(contours, grid, scanner->subPixelBits(), options.threads);
     std::vector<std::vector<LabelOverride>> split;
     return overlapAnalysis(contours, grid, nesting, regions, options, split);

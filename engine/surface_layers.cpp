@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "geometry/remesh/remesh.h"
+#include "geometry/remesh/remesh_mesh.h"
 #include "geometry/shape/snapping.h"
-#include "geometry/simplification/simplification.h"
+#include "geometry/simplification/simplify_mesh.h"
 
 namespace scansurf {
 
@@ -37,7 +37,7 @@ void appendLayer(Surfaces& into, Surfaces&& layer, const OverlapReport& report, 
   into.mesh.labels.insert(into.mesh.labels.end(), layer.mesh.labels.begin(), layer.mesh.labels.end());
   accumulate(into.remeshing, layer.remeshing);
   accumulate(into.simplification, layer.simplification);
-  accumulate(into.snapping, layer.snapping);
+  accumulate(into.triangleShape, layer.triangleShape);
   for (std::size_t f = 0; f < layer.features.size(); ++f) {
     if (report.features[f].layer != index) continue;
     std::vector<std::uint32_t>& to = into.features[f].triangles;

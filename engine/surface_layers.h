@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
 #include "scansurf/surfaces.h"

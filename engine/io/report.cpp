@@ -123,7 +123,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   r.remeshing = built.surfaces.remeshing;
   r.simplification = built.surfaces.simplification;
-  r.snapping = built.surfaces.snapping;
+  r.triangleShape = built.surfaces.triangleShape;
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
   r.warnings = built.warnings;
   return r;
@@ -161,7 +161,7 @@ nlohmann::ordered_json simplificationJson(const SimplificationReport& r) {
 }
 
 // Snapping's figures: the voxel centres that became vertices, what vanished, the quads flipped.
-nlohmann::ordered_json snappingJson(const SnappingReport& r) {
+nlohmann::ordered_json triangleShapeJson(const TriangleShapeReport& r) {
   return {{"fraction", r.fraction},
           {"candidates", r.candidates},
           {"points", r.points},
@@ -312,7 +312,7 @@ std::string reportJson(const RunReport& report) {
   j["multilabel_mesh"] = {{"vertices", report.meshVertices}, {"triangles", report.meshTriangles}};
   j["features"] = featuresJson(report);
   j["overlaps"] = overlapsSectionJson(report);
-  if (report.snapping.ran) j["snapping"] = snappingJson(report.snapping);
+  if (report.triangleShape.ran) j["triangle_shape"] = triangleShapeJson(report.triangleShape);
   if (report.simplification.ran) j["simplification"] = simplificationJson(report.simplification);
   if (report.remeshing.ran) j["remeshing"] = remeshingJson(report.remeshing);
   double total = 0;

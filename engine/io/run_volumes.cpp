@@ -2,7 +2,7 @@
 #include "io/run_volumes.h"
 
 #include "geometry/overlaps/label_layers.h"
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "geometry/overlaps/own_slabs.h"
 #include "scansurf/outputs.h"
 

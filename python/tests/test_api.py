@@ -112,8 +112,8 @@ def test_snap_merges_vertices_crowding_voxel_centres(phantom):
     plain = scansurf.build(phantom, voxel_size=2.0, snap=0)
     assert snapped.report["parameters"]["snap"] == 0.05 and plain.report["parameters"]["snap"] == 0
     assert snapped.report["multilabel_mesh"]["triangles"] < plain.report["multilabel_mesh"]["triangles"]
-    assert snapped.report["snapping"]["points"] > 0 and plain.report["snapping"]["points"] == 0
-    assert snapped.report["snapping"]["cube_fans"] > 0 and plain.report["snapping"]["cube_fans"] > 0
+    assert snapped.report["triangle_shape"]["points"] > 0 and plain.report["triangle_shape"]["points"] == 0
+    assert snapped.report["triangle_shape"]["cube_fans"] > 0 and plain.report["triangle_shape"]["cube_fans"] > 0
     for name, surface in snapped.surfaces.items():
         assert surface.closed and surface.volume == pytest.approx(plain.surfaces[name].volume, rel=0.001), name
     with pytest.raises(scansurf.InvalidArgument, match="option snap"):

@@ -1,5 +1,5 @@
 // Shared by GLSL (edt_rows.comp, edt_columns.comp, interpolate.comp) and C++
-// (geometry/interpolation/interpolation_plan.h, passes/interpolation.cpp): the records that describe one
+// (geometry/interpolation/interpolation_plan.h, passes/interpolator.cpp): the records that describe one
 // slab of shape-based interpolation. All members are 32-bit ints (std430 and C++ agree).
 #ifndef SCANSURF_SHARED_INTERPOLATION_TYPES_H
 #define SCANSURF_SHARED_INTERPOLATION_TYPES_H

@@ -1,4 +1,4 @@
-// Shared by GLSL (preview.vert, preview.frag) and C++ (passes/preview.cpp): the push
+// Shared by GLSL (preview.vert, preview.frag) and C++ (passes/preview_renderer.cpp): the push
 // constants of the preview pipelines.
 #ifndef SCANSURF_SHARED_PREVIEW_PUSH_H
 #define SCANSURF_SHARED_PREVIEW_PUSH_H

@@ -20,7 +20,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "geometry/remesh/remesh.h"
+#include "geometry/remesh/remesh_mesh.h"
 
 namespace {
 

@@ -22,7 +22,7 @@
 #include "core/parallel.h"
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/cell_cases.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "io/contours_json.h"
 #include "scansurf/engine.h"
 #include "scansurf/nesting.h"

@@ -6,9 +6,12 @@ file(MAKE_DIRECTORY "${WORK}")
 # module, header, whether it may include it
 set(cases
   scansurf_contours core/parallel.h yes
-  scansurf_contours geometry/overlaps/overlaps.h no
+  scansurf_contours geometry/overlaps/overlap_analysis.h no
   scansurf_contours gpu/context.h no
   scansurf_contours passes/classification.h no
+  scansurf_grid geometry/contours/polygon.h yes
+  scansurf_grid geometry/overlaps/overlap_analysis.h no
+  scansurf_contours geometry/grid/footprint.h no
   scansurf_overlaps geometry/contours/polygon.h yes
   scansurf_overlaps geometry/extraction/assembly.h no
   scansurf_extraction geometry/overlaps/overlap_split.h yes
@@ -17,18 +20,18 @@ set(cases
   scansurf_smoothing geometry/mesh/incident_triangles.h yes
   scansurf_smoothing geometry/shape/cube_fans.h no
   scansurf_shape geometry/smoothing/carrier_projection.h yes
-  scansurf_shape geometry/simplification/simplification.h no
+  scansurf_shape geometry/simplification/simplify_mesh.h no
   scansurf_mesh geometry/contours/polygon.h no
-  scansurf_mesh geometry/smoothing/smoothing.h no
+  scansurf_mesh geometry/smoothing/smooth_mesh.h no
   scansurf_remesh geometry/mesh/vec3.h yes
-  scansurf_remesh geometry/simplification/simplification.h no
-  scansurf_simplification geometry/remesh/remesh.h yes
+  scansurf_remesh geometry/simplification/simplify_mesh.h no
+  scansurf_simplification geometry/remesh/remesh_mesh.h yes
   scansurf_simplification geometry/shape/triangle_shape.h no
   scansurf_interpolation geometry/contours/polygon.h no
   scansurf_io geometry/contours/polygon.h yes
   scansurf_io geometry/shape/triangle_shape.h yes
   scansurf_io gpu/resources.h no
-  scansurf_io passes/preview.h no
+  scansurf_io passes/preview_renderer.h no
   scansurf_gpu geometry/contours/polygon.h no
   scansurf_passes geometry/contours/polygon.h yes
   scansurf_passes io/atomic_file.h no

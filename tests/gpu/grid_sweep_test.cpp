@@ -71,7 +71,9 @@ class GridSweepTest : public EngineTest {
     const std::string where = c.name + " at " + (voxelSize > 0 ? std::to_string(voxelSize) + " mm pixels" : "the default grid");
     auto built = engine_->build(c.contours, options);
     ASSERT_TRUE(built) << where << ": " << built.error().message;
-    for (const AuditFinding& f : built->audit.findings) ADD_FAILURE() << where << ": " << f.message;
+    for (const AuditFinding& f : built->audit.findings) {
+      ADD_FAILURE() << where << ": " << f.message;
+    }
     const SurfaceAudit& audit = built->audit;
     for (std::size_t f = 0; f < audit.stats.size(); ++f) {
       if (audit.stats[f].triangles == 0) continue;
@@ -81,8 +83,9 @@ class GridSweepTest : public EngineTest {
       // pixels across; none for a structure of under 10 voxels, which no grid resolves.
       const double voxel = built->volume.grid.spacingX * built->volume.grid.spacingY * c.gap;
       const double tolerance = voxelSize > c.gap ? 0.03 : 0.01;
-      if (f < audit.targetVolumes.size() && audit.targetVolumes[f] > 10 * voxel)
+      if (f < audit.targetVolumes.size() && audit.targetVolumes[f] > 10 * voxel) {
         EXPECT_NEAR(audit.stats[f].volume / audit.targetVolumes[f], 1.0, tolerance) << where << ", feature " << f;
+      }
     }
     const IntersectionReport crossings = findCrossings(built->surfaces.mesh.positions, built->surfaces.mesh.triangles);
     EXPECT_EQ(crossings.crossings, 0u) << where;

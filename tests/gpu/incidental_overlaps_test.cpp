@@ -8,7 +8,7 @@
 #include <set>
 
 #include "geometry/overlaps/label_layers.h"
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "gpu/gpu_test_env.h"
 #include "support/drawn_shapes.h"
 #include "support/intersections.h"
@@ -401,8 +401,8 @@ TEST_F(BuildOptionsTest, SimplificationThroughBuildKeepsEverySurface) {
   // Simplification starts from the default's mesh, the cubes' fans included, and ends with
   // fewer triangles.
   EXPECT_EQ(r.trianglesBefore, plain->surfaces.mesh.triangleCount());
-  EXPECT_EQ(simplified->surfaces.snapping.cubeFans, plain->surfaces.snapping.cubeFans);
-  EXPECT_GT(simplified->surfaces.snapping.cubeFans, 0u);
+  EXPECT_EQ(simplified->surfaces.triangleShape.cubeFans, plain->surfaces.triangleShape.cubeFans);
+  EXPECT_GT(simplified->surfaces.triangleShape.cubeFans, 0u);
   EXPECT_EQ(r.trianglesAfter, simplified->surfaces.mesh.triangleCount());
   EXPECT_LT(r.trianglesAfter, r.trianglesBefore * 4 / 5);
   EXPECT_LT(r.trianglesAfter, plain->surfaces.mesh.triangleCount());

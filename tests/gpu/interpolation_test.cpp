@@ -14,7 +14,7 @@
 #include "geometry/interpolation/interpolation_reference.h"
 #include "gpu/gpu_test_env.h"
 #include "passes/classification.h"
-#include "passes/interpolation.h"
+#include "passes/interpolator.h"
 #include "passes/scan_conversion.h"
 #include "scansurf/nesting.h"
 #include "support/shapes.h"
@@ -587,7 +587,7 @@ TEST_F(InterpolatedShapesTest, SimplifyTakesThePatchesThatMeetAVertexTwice) {
 TEST_F(InterpolatedShapesTest, SimplifyStartsFromTheFans) {
   auto built = engine_->build(sphereOfSphereShapePy(), simplifiedAtCliDefaults());
   ASSERT_TRUE(built) << built.error().message;
-  EXPECT_GT(built->surfaces.snapping.cubeFans, 0u);
+  EXPECT_GT(built->surfaces.triangleShape.cubeFans, 0u);
   std::printf("[ figure   ] sphere r20, 1 mm / 3 mm, --simplify after the fans: %zu triangles\n",
               built->surfaces.simplification.trianglesAfter);
   EXPECT_LT(built->surfaces.simplification.trianglesAfter, 15000u);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"

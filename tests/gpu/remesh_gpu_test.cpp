@@ -3,7 +3,7 @@
 // lattice keys, and leaves every feature surface closed and crossing-free.
 #include <algorithm>
 
-#include "geometry/remesh/remesh.h"
+#include "geometry/remesh/remesh_mesh.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -56,7 +56,7 @@ TEST_F(RemeshBuildTest, BuildRemeshesThePhantomAfterSmoothing) {
   const std::vector<std::string> s = stages(*remeshed);
   const auto at = [&](const char* name) { return std::find(s.begin(), s.end(), name) - s.begin(); };
   EXPECT_EQ(std::count(s.begin(), s.end(), "remeshing"), 1);
-  EXPECT_EQ(at("remeshing"), at("smoothing") + 1);
+  EXPECT_EQ(at("remeshing"), at("triangle shape") + 1);
   const std::vector<std::string> before = stages(*smooth);
   EXPECT_EQ(std::count(before.begin(), before.end(), "remeshing"), 0);
   EXPECT_FALSE(smooth->surfaces.remeshing.ran);

@@ -5,7 +5,7 @@
 
 #include "geometry/shape/triangle_shape.h"
 #include "geometry/shape/volume_restoration.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "gpu/gpu_test_env.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -43,16 +43,16 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   const Grid& grid = raw->volume.grid;
   SmoothingReport relaxed = smoothMesh(expected, grid, &set, options.smoothing);
   const ShapedTriangles shaped = shapeTriangles(expected, grid, options.smoothing.snap, relaxed.onSheet);
-  const SnappingReport& snapped = shaped.report;
+  const TriangleShapeReport& snapped = shaped.report;
   EXPECT_GT(snapped.points, 0u);
   EXPECT_GT(snapped.quadsFlipped, 0u);
   EXPECT_GT(snapped.cubeFans, 0u);
-  EXPECT_FALSE(raw->surfaces.snapping.ran);
-  EXPECT_TRUE(smooth->surfaces.snapping.ran);
-  EXPECT_EQ(smooth->surfaces.snapping.points, snapped.points);
-  EXPECT_EQ(smooth->surfaces.snapping.removedTriangles, snapped.removedTriangles);
-  EXPECT_EQ(smooth->surfaces.snapping.cubeFans, snapped.cubeFans);
-  EXPECT_EQ(smooth->surfaces.snapping.fanVerticesRemoved, snapped.fanVerticesRemoved);
+  EXPECT_FALSE(raw->surfaces.triangleShape.ran);
+  EXPECT_TRUE(smooth->surfaces.triangleShape.ran);
+  EXPECT_EQ(smooth->surfaces.triangleShape.points, snapped.points);
+  EXPECT_EQ(smooth->surfaces.triangleShape.removedTriangles, snapped.removedTriangles);
+  EXPECT_EQ(smooth->surfaces.triangleShape.cubeFans, snapped.cubeFans);
+  EXPECT_EQ(smooth->surfaces.triangleShape.fanVerticesRemoved, snapped.fanVerticesRemoved);
   EXPECT_EQ(a.triangleCount() - snapped.removedTriangles - 2 * snapped.fanVerticesRemoved, b.triangleCount());
   std::vector<double> targets;
   for (const FeatureVolumes& f : raw->overlaps.features) targets.push_back(f.contour);

@@ -242,8 +242,8 @@ TEST_F(SurfacesTest, EveryStageBeginsAndEndsOncePerLayer) {
   auto built = engine_->build(set, options);
   ASSERT_TRUE(built) << built.error().message;
   ASSERT_EQ(built->overlaps.layers, 2);
-  ASSERT_EQ(events.size(), 2 * (4 + 2 * 5)) << "grid, nesting, overlap analysis, audit; per layer scan conversion, "
-                                               "classification, assembly, smoothing, feature surfaces";
+  ASSERT_EQ(events.size(), 2 * (4 + 2 * 6)) << "grid, nesting, overlap analysis, audit; per layer scan conversion, "
+                                               "classification, assembly, smoothing, triangle shape, feature surfaces";
   std::vector<std::string> layered;
   for (std::size_t i = 0; i + 1 < events.size(); i += 2) {
     EXPECT_FALSE(events[i].done) << events[i].stage;

@@ -11,7 +11,7 @@
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/cell_cases.h"
 #include "geometry/extraction/feature_surfaces.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "support/reference_rasterizer.h"
 
 namespace scansurf::test {

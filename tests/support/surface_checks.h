@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
 #include "scansurf/nesting.h"

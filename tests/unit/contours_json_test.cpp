@@ -8,8 +8,8 @@
 #include <fstream>
 #include <limits>
 
-#include "geometry/contours/coverage.h"
 #include "geometry/contours/validate.h"
+#include "geometry/grid/coverage.h"
 #include "scansurf/grid.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/nesting.h"

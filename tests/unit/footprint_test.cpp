@@ -3,10 +3,10 @@
 // and it grows as a finer grid does.
 #include <gtest/gtest.h>
 
-#include "geometry/contours/footprint.h"
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/cell_cases.h"
 #include "geometry/extraction/feature_surfaces.h"
+#include "geometry/grid/footprint.h"
 #include "scansurf/grid.h"
 #include "scansurf/nesting.h"
 #include "support/reference_rasterizer.h"

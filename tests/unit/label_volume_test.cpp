@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "scansurf/engine.h"
 #include "scansurf/input.h"
 #include "scansurf/nesting.h"

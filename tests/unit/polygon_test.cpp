@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "geometry/contours/coverage.h"
 #include "geometry/contours/crossings.h"
+#include "geometry/grid/coverage.h"
 #include "support/shapes.h"
 
 namespace scansurf {

@@ -1,7 +1,7 @@
 // Remeshing of the separating-surface network (issue 11), on the CPU pipeline:
 // makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh ->
 // remeshMesh. Every shape the smoothing tests use, checked exactly after remeshing.
-#include "geometry/remesh/remesh.h"
+#include "geometry/remesh/remesh_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@
 #include "geometry/remesh/remesh_network.h"
 #include "geometry/remesh/remesh_reference.h"
 #include "geometry/remesh/remesh_slabs.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"

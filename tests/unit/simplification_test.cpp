@@ -2,7 +2,7 @@
 // makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh ->
 // simplifyMesh. Every shape the smoothing tests use, checked exactly afterwards; the collapses
 // and the patch checks on small hand-made patches.
-#include "geometry/simplification/simplification.h"
+#include "geometry/simplification/simplify_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +17,13 @@
 #include <set>
 #include <vector>
 
-#include "geometry/contours/contour_layers.h"
 #include "geometry/extraction/feature_surfaces.h"
+#include "geometry/grid/contour_layers.h"
 #include "geometry/mesh/crossing_search.h"
 #include "geometry/mesh/triangle_intersection.h"
 #include "geometry/simplification/edge_collapse.h"
 #include "geometry/simplification/patch_checks.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"

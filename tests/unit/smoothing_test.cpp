@@ -1,6 +1,6 @@
 // Constrained smoothing and contour-faithful vertices (issue 3), on the CPU pipeline:
 // makeGrid -> referenceScanConvert -> classifyCellsReference -> assembleMesh -> smoothMesh.
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 
 #include <gtest/gtest.h>
 

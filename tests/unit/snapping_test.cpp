@@ -15,15 +15,15 @@
 #include <set>
 #include <vector>
 
-#include "geometry/contours/contour_layers.h"
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/feature_surfaces.h"
+#include "geometry/grid/contour_layers.h"
 #include "geometry/shape/cube_fans.h"
 #include "geometry/shape/quad_diagonals.h"
 #include "geometry/shape/triangle_shape.h"
 #include "geometry/shape/volume_restoration.h"
 #include "geometry/smoothing/carrier_projection.h"
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
 #include "support/surface_checks.h"
@@ -34,7 +34,7 @@ namespace {
 constexpr double kDefaultSnap = SmoothingOptions{}.snap;
 
 struct Snapped {
-  SnappingReport report;
+  TriangleShapeReport report;
   std::size_t flips = 0;
   std::size_t heldBack = 0;  // restoration moves undone to keep a cube's disk unfolded
 };
@@ -203,7 +203,7 @@ TEST(Snapping, ZeroChangesNothing) {
   smoothWithDefaults(b);
   const MultiLabelMesh before = b.mesh;
   std::vector<bool> onSheet(b.mesh.vertexCount(), true);
-  const SnappingReport r = snapToLattice(b.mesh, b.grid, 0, onSheet);
+  const TriangleShapeReport r = snapToLattice(b.mesh, b.grid, 0, onSheet);
   EXPECT_EQ(r.points, 0u);
   EXPECT_EQ(b.mesh.positions, before.positions);
   EXPECT_EQ(b.mesh.triangles, before.triangles);

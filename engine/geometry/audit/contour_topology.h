@@ -9,7 +9,7 @@
 // answer is a range spanning both pairs; where no voxel touches another that way, one figure.
 #pragma once
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 
 namespace scansurf {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "scansurf/audit.h"
 #include "scansurf/contours.h"
 

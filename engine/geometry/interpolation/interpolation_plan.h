@@ -1,6 +1,6 @@
 // scansurf: the plan of multi-label shape-based interpolation between the layers of a label
 // volume (Raya & Udupa 1990; Herman, Zheng & Bucholtz 1992; Grevera & Udupa 1996), shared by
-// the GPU passes (passes/interpolation.cpp) and the CPU reference (interpolation_reference.h).
+// the GPU passes (passes/interpolator.cpp) and the CPU reference (interpolation_reference.h).
 //
 // The rule, for a voxel at x on layer m of n between grid layers A and B (t = m/n):
 //  - every label L present on A or B has a signed distance field on each plane where it is

@@ -1,4 +1,4 @@
-// scansurf: the CPU reference of the interpolation passes (passes/interpolation.cpp): the same
+// scansurf: the CPU reference of the interpolation passes (passes/interpolator.cpp): the same
 // integer arithmetic, one pixel at a time, for the tests to compare with voxel for voxel.
 #pragma once
 

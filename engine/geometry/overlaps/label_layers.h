@@ -1,4 +1,4 @@
-// scansurf: label volumes made from each feature's own region (overlaps.h), for the files
+// scansurf: label volumes made from each feature's own region (overlap_analysis.h), for the files
 // that hold them: every feature's mask in layers (no two features of a layer share a voxel:
 // 3D Slicer's layered segmentation), the single partition (one label per voxel, inner features
 // first, equal to the GPU's), and their placement on a reference image lattice (the CT).
@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/result.h"
 

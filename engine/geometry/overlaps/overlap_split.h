@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/overlaps/overlaps.h"
+#include "geometry/overlaps/overlap_analysis.h"
 
 namespace scansurf {
 

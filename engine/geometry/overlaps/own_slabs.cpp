@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "geometry/contours/plane_gaps.h"
+
 namespace scansurf {
 namespace {
 
@@ -16,11 +18,9 @@ std::vector<std::pair<int, const FeatureSlice*>> planesOf(const Feature& feature
 }
 
 double medianGap(const std::vector<std::pair<int, const FeatureSlice*>>& planes) {
-  std::vector<double> gaps;
-  for (std::size_t i = 1; i < planes.size(); ++i) gaps.push_back(planes[i].second->z - planes[i - 1].second->z);
-  if (gaps.empty()) return 0;
-  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-  return gaps[gaps.size() / 2];
+  std::vector<double> z;
+  for (const auto& [k, slice] : planes) z.push_back(slice->z);
+  return medianPlaneGap(z);
 }
 
 bool isLong(double gap, double usual, double gapFactor) { return gapFactor > 0 && usual > 0 && gap > gapFactor * usual; }

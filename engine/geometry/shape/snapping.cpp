@@ -301,7 +301,7 @@ void snapClass(const MultiLabelMesh& mesh, const Stars& stars, const std::vector
 // neighbours can both snap: the most crowded first (four bands of the fraction, halving), each
 // band one parity class after another. The result does not depend on the thread count.
 SnapState choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std::vector<EdgeCorners>& corners, double fraction,
-                       SnappingReport& report, int threads) {
+                       TriangleShapeReport& report, int threads) {
   SnapState state;
   state.pointOf.assign(mesh.vertexCount(), SnapState::kKept);
   state.collapsed.assign(mesh.triangleCount(), 0);
@@ -321,7 +321,7 @@ SnapState choosePoints(const MultiLabelMesh& mesh, const Stars& stars, const std
 // collapsed dropped, in order; in parallel chunks, each writing after the ones before it.
 void remapTriangles(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& pointOf,
                     const std::vector<std::uint32_t>& newIndex, const std::vector<std::uint32_t>& newPoint, MultiLabelMesh& out,
-                    SnappingReport& report, int threads) {
+                    TriangleShapeReport& report, int threads) {
   const std::size_t count = mesh.triangleCount();
   const auto mapped = [&](std::size_t t, int c) {
     const std::uint32_t v = mesh.triangles[3 * t + c];
@@ -354,7 +354,7 @@ void remapTriangles(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>
 // Rebuilds the mesh with each snapped point's merged vertices replaced by one vertex at it,
 // vertices in key order, the triangles that collapsed dropped.
 void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& state, std::vector<bool>& onSheet,
-                     SnappingReport& report, int threads) {
+                     TriangleShapeReport& report, int threads) {
   const std::size_t count = mesh.vertexCount();
   std::vector<std::uint32_t> byKey(state.points.size());  // the points in key order
   for (std::uint32_t i = 0; i < byKey.size(); ++i) byKey[i] = i;
@@ -388,8 +388,9 @@ void mergeIntoPoints(MultiLabelMesh& mesh, const Grid& grid, const SnapState& st
 
 }  // namespace
 
-SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet, int threads) {
-  SnappingReport report;
+TriangleShapeReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
+                                  int threads) {
+  TriangleShapeReport report;
   report.ran = true;
   report.fraction = fraction;
   if (!(fraction > 0) || mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
@@ -417,7 +418,7 @@ double snapFractionFor(const Grid& grid, const std::vector<bool>& contourLayers,
   return fraction * std::min(1.0, gaps[gaps.size() / 2] / (2 * pixel));
 }
 
-void accumulate(SnappingReport& into, const SnappingReport& layer) {
+void accumulate(TriangleShapeReport& into, const TriangleShapeReport& layer) {
   into.ran = into.ran || layer.ran;
   into.fraction = std::max(into.fraction, layer.fraction);
   into.candidates += layer.candidates, into.points += layer.points, into.mergedVertices += layer.mergedVertices;

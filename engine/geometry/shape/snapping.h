@@ -21,8 +21,8 @@ namespace scansurf {
 // mesh.keys stays sorted (p's key is 12 p); onSheet (SmoothingReport) follows the vertices,
 // false at snapped points. Deterministic for any thread count (0 = all). fraction 0: nothing.
 // The report's quadsFlipped and seconds are chooseQuadDiagonals' and the caller's to fill.
-SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
-                             int threads = 0);
+TriangleShapeReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double fraction, std::vector<bool>& onSheet,
+                                  int threads = 0);
 
 // The fraction snapping uses on this grid: `fraction` where the contour planes lie at least two
 // pixels apart, less in proportion where they lie closer (their median gap). Snapping moves a
@@ -33,6 +33,6 @@ SnappingReport snapToLattice(MultiLabelMesh& mesh, const Grid& grid, double frac
 double snapFractionFor(const Grid& grid, const std::vector<bool>& contourLayers, double fraction);
 
 // Another layer's report added in (surface_layers.cpp).
-void accumulate(SnappingReport& into, const SnappingReport& layer);
+void accumulate(TriangleShapeReport& into, const TriangleShapeReport& layer);
 
 }  // namespace scansurf

@@ -13,8 +13,8 @@
 namespace scansurf {
 
 struct ShapedTriangles {
-  SnappingReport report;  // all three steps, timed
-  CubeDisks disks;        // for restoreVolumes, which must keep them unfolded
+  TriangleShapeReport report;  // all three steps, timed
+  CubeDisks disks;             // for restoreVolumes, which must keep them unfolded
 };
 
 // The three steps in order on the relaxed mesh (keys intact); onSheet follows the vertices.

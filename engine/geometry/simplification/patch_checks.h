@@ -1,4 +1,4 @@
-// scansurf: whether a simplified surface patch may replace the original (simplification.h).
+// scansurf: whether a simplified surface patch may replace the original (simplify_mesh.h).
 #pragma once
 
 #include <cstdint>

@@ -50,7 +50,7 @@ struct BuildResult {
   // rasterize each feature's own mask on the CPU exactly as the device did.
   int subPixelBits = 8;
   int threads = 1;       // CPU threads the run used (BuildOptions::threads, 0 resolved)
-  double gapFactor = 0;  // BuildOptions::gapFactor as the build used it (the writers' masks follow it)
+  double gapFactor = 0;  // GridOptions::gapFactor as the build used it (the writers' masks follow it)
   // The budget check: estimated peak host memory, and the limit it was held to (bytes).
   std::uint64_t estimatedMemory = 0;
   std::uint64_t memoryLimit = 0;

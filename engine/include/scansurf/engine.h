@@ -66,11 +66,6 @@ struct BuildOptions {
   // allocated, build() estimates the label volume, mesh and device needs from the contours and
   // the grid, and refuses with Errc::ResourceLimit when they exceed this or the device's memory.
   std::uint64_t memoryLimit = 0;
-  // A feature's consecutive contour planes farther apart than this many times its median plane
-  // spacing are not bridged by the slab rule: each side is capped on its own where the grid
-  // has layers between them (other features' planes), and a warning names the gap. 0: every
-  // gap is bridged. Not negative.
-  double gapFactor = 2.0;
   // Interpolated layers between the contour planes (stage "interpolation"); off unless set.
   InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.

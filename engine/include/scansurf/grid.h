@@ -30,6 +30,11 @@ struct GridOptions {
   // them. Every contour slice must lie on a reference slice (within sliceTolerance); reference
   // slices between contour planes belong to the nearer plane (nearestLayer).
   std::optional<GridReference> reference;
+  // A feature's consecutive contour planes farther apart than this many times its median plane
+  // spacing are not bridged by the slab rule: each side is capped on its own, the grid getting
+  // a layer a usual spacing beyond each (docs/input-format.md, "Long gaps"), and a warning
+  // names the gap. 0: every gap is bridged. Not negative.
+  double gapFactor = 2.0;
 };
 
 // A regular in-plane grid stacked over the slice planes.

@@ -84,7 +84,7 @@ struct RunReport {
   std::vector<Overlap> partialOverlaps;
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
   SimplificationReport simplification;                  // BuildResult::surfaces.simplification
-  SnappingReport snapping;                              // BuildResult::surfaces.snapping
+  TriangleShapeReport triangleShape;                    // BuildResult::surfaces.triangleShape
   RemeshReport remeshing;                               // BuildResult::surfaces.remeshing
   std::vector<std::string> warnings;
   std::vector<std::string> outputs;

@@ -38,14 +38,14 @@ struct SmoothingOptions {
   // where one label pair meets around it. Removes the slivers that sliding vertices make near
   // voxel centres, and their triangles. In [0, 0.45]; 0: off. Where the contour planes lie
   // closer than two pixels it is used scaled down in proportion (else it would cost more than a
-  // tenth of the surfaces' accuracy there); SnappingReport::fraction says what was used.
+  // tenth of the surfaces' accuracy there); TriangleShapeReport::fraction says what was used.
   double snap = 0.05;
 };
 
 // What snapping, the quads' diagonals and the cubes' fans did (docs/method.md, "Triangle
 // shape"); ran = false
 // when smoothing did not run. With several layers, the layers' sums.
-struct SnappingReport {
+struct TriangleShapeReport {
   bool ran = false;
   double fraction = 0;                 // the fraction used (SmoothingOptions::snap, scaled for thin slices)
   std::size_t candidates = 0;          // voxel centres some vertex came within the fraction of

@@ -57,8 +57,9 @@ struct Surfaces {
   // What simplification did (ran = false when it did not run); with several layers, summed
   // and the largest error.
   SimplificationReport simplification;
-  // What snapping did (ran = false when smoothing did not run).
-  SnappingReport snapping;
+  // What the triangle-shape stage did: snapping, quad diagonals, cube fans (ran = false when
+  // smoothing did not run).
+  TriangleShapeReport triangleShape;
 };
 
 // Topological and metric properties of a triangle mesh.

@@ -1,7 +1,7 @@
 // scansurf: overlap analysis and layer assignment: each feature's own region as the GPU draws
 // it, shared and touching pairs, volumes three ways, and the fewest layers (DSatur, Brélaz
-// 1979, exact for small components); see overlaps.h.
-#include "geometry/overlaps/overlaps.h"
+// 1979, exact for small components); see overlap_analysis.h.
+#include "geometry/overlaps/overlap_analysis.h"
 
 #include <algorithm>
 #include <functional>

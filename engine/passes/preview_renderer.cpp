@@ -1,6 +1,6 @@
 // scansurf passes: the offscreen preview, rendered with Vulkan graphics pipelines and read
-// back supersampled; see preview.h.
-#include "passes/preview.h"
+// back supersampled; see preview_renderer.h.
+#include "passes/preview_renderer.h"
 
 #include <algorithm>
 #include <array>

@@ -1,7 +1,7 @@
 // scansurf: coverage of contours by pixel centres (see coverage.h). Each candidate row is
 // intersected with the contour once, so a large contour costs O(edges) per row and usually
 // stops at its first row.
-#include "geometry/contours/coverage.h"
+#include "geometry/grid/coverage.h"
 
 #include <algorithm>
 #include <cmath>

@@ -21,7 +21,7 @@
 // label pair (in-plane edges: a twentieth of the cross-section). Large networks are remeshed
 // slab by slab, the slabs of a phase in parallel (remesh_slabs.h); each slab serially, so
 // the result is the same for any thread count.
-#include "geometry/remesh/remesh.h"
+#include "geometry/remesh/remesh_mesh.h"
 
 #include <algorithm>
 #include <atomic>

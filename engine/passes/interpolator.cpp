@@ -1,6 +1,6 @@
 // scansurf passes: shape-based interpolation between the contour planes on the GPU (Grevera &
-// Udupa 1996; exact distances after Felzenszwalb & Huttenlocher 2012); see interpolation.h.
-#include "passes/interpolation.h"
+// Udupa 1996; exact distances after Felzenszwalb & Huttenlocher 2012); see interpolator.h.
+#include "passes/interpolator.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-// scansurf: verified simplification (see simplification.h). The collapses are quadric-error
+// scansurf: verified simplification (see simplify_mesh.h). The collapses are quadric-error
 // half-edge collapses (Garland & Heckbert, "Surface simplification using quadric error
 // metrics", SIGGRAPH 1997; geometry/simplification/edge_collapse.h); what this file adds is the cut into
 // patches that keeps every feature line, and the checks that decide whether a patch's result
@@ -11,7 +11,7 @@
 // Not meshoptimizer's meshopt_simplify (Debian 12 ships 0.18): it cannot keep chosen vertices
 // (only the whole border) nor let a caller refuse a collapse, and its results fail these checks
 // in about half the patches (degenerate and turned triangles, folds onto the contour planes).
-#include "geometry/simplification/simplification.h"
+#include "geometry/simplification/simplify_mesh.h"
 
 #include <algorithm>
 #include <bit>
@@ -21,7 +21,7 @@
 #include "core/parallel.h"
 #include "geometry/mesh/crossing_search.h"
 #include "geometry/mesh/vertex_roles.h"
-#include "geometry/remesh/remesh.h"  // computeAngleFigures
+#include "geometry/remesh/remesh_mesh.h"  // computeAngleFigures
 #include "geometry/simplification/edge_collapse.h"
 #include "geometry/simplification/patch_checks.h"
 

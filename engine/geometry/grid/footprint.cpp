@@ -1,5 +1,5 @@
 // scansurf: memory estimate of a build (see footprint.h).
-#include "geometry/contours/footprint.h"
+#include "geometry/grid/footprint.h"
 
 #include <algorithm>
 #include <cmath>

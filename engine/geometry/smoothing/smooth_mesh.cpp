@@ -52,7 +52,7 @@
 // unchanged; mu_j + nu_j = 1, so an edge vertex's stage stays on its edge's line. The 150
 // sweeps of the default run as 5 super-steps of 7 stages (35 sweeps), with the accuracy of
 // plain sweeps (smoothing_test.cpp holds it).
-#include "geometry/smoothing/smoothing.h"
+#include "geometry/smoothing/smooth_mesh.h"
 
 #include <algorithm>
 #include <array>

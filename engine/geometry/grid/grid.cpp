@@ -7,9 +7,10 @@
 #include <optional>
 #include <string>
 
-#include "geometry/contours/contour_layers.h"
+#include "geometry/contours/plane_gaps.h"
 #include "geometry/contours/polygon.h"
 #include "geometry/contours/validate.h"
+#include "geometry/grid/contour_layers.h"
 #include "scansurf/grid.h"
 
 namespace scansurf {
@@ -111,11 +112,20 @@ Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
   return axis;
 }
 
+// The contour planes and the long gaps' cap layers (plane_gaps.h), sorted, one per plane.
+std::vector<double> withCapLayers(std::vector<double> planes, const std::vector<double>& caps, double tol) {
+  for (double z : caps)
+    if (std::none_of(planes.begin(), planes.end(), [&](double p) { return std::abs(p - z) <= tol; })) planes.push_back(z);
+  std::sort(planes.begin(), planes.end());
+  return planes;
+}
+
 // The reference slices that hold contours, at the reference's own z; an error naming the
 // first slice that lies on none. Slices between contour planes are not layers: they lie
 // between two planes, and what lies there is the between-slice model's (the slab rule, or
 // interpolated layers), never background (a 1 mm CT under contours drawn every 2 mm).
-Result<std::vector<double>> contourPlanesOn(const ContourSet& contours, const GridReference& ref, double tol) {
+Result<std::vector<double>> contourPlanesOn(const ContourSet& contours, const GridReference& ref, double tol,
+                                            const std::vector<double>& caps) {
   Grid probe;
   probe.layerZ = ref.sliceZ;
   std::vector<char> used(ref.sliceZ.size(), 0);
@@ -127,6 +137,7 @@ Result<std::vector<double>> contourPlanesOn(const ContourSet& contours, const Gr
                                                  " is not on a slice of the reference grid");
       used[static_cast<std::size_t>(k)] = 1;
     }
+  for (double z : caps) used[static_cast<std::size_t>(nearestLayer(probe, z))] = 1;  // long gaps' cap layers
   std::vector<double> planes;
   for (std::size_t k = 0; k < used.size(); ++k)
     if (used[k]) planes.push_back(ref.sliceZ[k]);
@@ -146,7 +157,7 @@ double referenceGapAt(const GridReference& ref, double z) {
 // The reference lattice extended by whole pixels so that one background pixel lies beyond
 // both the reference and the contours on each side; layers are the reference slices that hold
 // contours plus one below and above at the neighbouring spacing.
-Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& ref, double tol) {
+Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& ref, double tol, const std::vector<double>& caps) {
   if (!(ref.spacingX > 0) || !(ref.spacingY > 0) || !std::isfinite(ref.spacingX) || !std::isfinite(ref.spacingY) ||
       !std::isfinite(ref.originX) || !std::isfinite(ref.originY))
     return badOption("reference grid: spacing must be positive and origin finite");
@@ -154,7 +165,7 @@ Result<Grid> gridOnReference(const ContourSet& contours, const GridReference& re
   for (std::size_t k = 0; k < ref.sliceZ.size(); ++k)
     if (!std::isfinite(ref.sliceZ[k]) || (k > 0 && !(ref.sliceZ[k] > ref.sliceZ[k - 1])))
       return badOption("reference grid: slice positions must be finite and strictly increasing");
-  SCANSURF_ASSIGN_OR_RETURN(const std::vector<double> planes, contourPlanesOn(contours, ref, tol));
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<double> planes, contourPlanesOn(contours, ref, tol, caps));
   const Box2 box = boundingBox(contours);
   if (box.empty()) return makeError(Errc::InvalidInput, contours.source + ": no contour points");
   // Pixel indices relative to the reference: the whole reference (-1 .. n) and the contours.
@@ -180,6 +191,8 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
   if (!std::isfinite(options.sliceTolerance) || options.sliceTolerance < 0)
     return badOption("slice tolerance must be finite and not negative");
   const double tol = sliceToleranceOf(contours, options.sliceTolerance);
+  if (!std::isfinite(options.gapFactor) || options.gapFactor < 0) return badOption("the long-gap factor must be 0 or more");
+  const std::vector<double> caps = capLayers(contours, options.gapFactor, tol);
   if (!std::isfinite(options.voxelSize) || options.voxelSize < 0)
     return badOption("voxel size must be positive and finite, got " + formatNumber(options.voxelSize));
   if (options.nx < 0 || options.ny < 0) return badOption("nx and ny must not be negative");
@@ -189,12 +202,12 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
   if (haveCounts && (options.nx == 0 || options.ny == 0)) return badOption("set both nx and ny");
   if (options.reference) {
     if (haveSize || haveCounts) return badOption("set either a reference grid or a voxel size / nx and ny, not both");
-    return gridOnReference(contours, *options.reference, tol);
+    return gridOnReference(contours, *options.reference, tol, caps);
   }
   // The lattice the contours were drawn on, unless the options choose a grid of their own.
-  if (contours.reference && !haveSize && !haveCounts) return gridOnReference(contours, *contours.reference, tol);
+  if (contours.reference && !haveSize && !haveCounts) return gridOnReference(contours, *contours.reference, tol, caps);
 
-  const std::vector<double> planes = contourPlanes(contours, tol);
+  const std::vector<double> planes = withCapLayers(contourPlanes(contours, tol), caps, tol);
   if (planes.empty()) return makeError(Errc::InvalidInput, contours.source + ": no slices to build a grid from");
 
   const Box2 box = boundingBox(contours);
