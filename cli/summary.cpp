@@ -37,11 +37,11 @@ std::string volumeFlag(double surface, double contour) {
   return text;
 }
 
-// "; in 6 slabs and 5 bands" when remeshing split the work, else nothing.
-std::string slabsNote(const RemeshReport& r) {
+// "; in 6 chunks and 5 bands" when remeshing split the work, else nothing.
+std::string chunksNote(const RemeshReport& r) {
   if (r.bands == 0) return "";  // remeshed whole (each layer, with overlaps as layers)
   char note[64];
-  std::snprintf(note, sizeof note, "; in %zu slabs and %zu bands", r.slabs, r.bands);
+  std::snprintf(note, sizeof note, "; in %zu chunks and %zu bands", r.chunks, r.bands);
   return note;
 }
 
@@ -170,7 +170,7 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
         "%.1f, mean %.1f -> %.1f; at most %.3g %s from the smoothed surface%s\n",
         r.edgeLength, printable(set.units).c_str(), r.trianglesBefore, r.trianglesAfter, r.anglesBefore.min, r.anglesAfter.min,
         r.anglesBefore.p5, r.anglesAfter.p5, r.anglesBefore.mean, r.anglesAfter.mean, r.maxDistance, printable(set.units).c_str(),
-        slabsNote(r).c_str());
+        chunksNote(r).c_str());
   double total = 0;
   std::printf("time:");
   for (const StageTime& t : facts.timings) {

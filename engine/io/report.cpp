@@ -142,7 +142,7 @@ nlohmann::ordered_json remeshingJson(const RemeshReport& r) {
           {"smallest_angle_before", anglesJson(r.anglesBefore)},
           {"smallest_angle_after", anglesJson(r.anglesAfter)},
           {"max_distance", r.maxDistance},
-          {"slabs", r.slabs},
+          {"chunks", r.chunks},
           {"bands", r.bands},
           {"operations",
            {{"splits", r.splits}, {"collapses", r.collapses}, {"flips", r.flips}, {"moves", r.moves}, {"refused", r.rejected}}}};

@@ -1,5 +1,5 @@
 // scansurf passes: tetrahedral classification on the GPU (Nielson & Franke 1997; Lee et al.,
-// "Scanline Surfacing", §3.5): slab by slab, a compute shader writes a CellCase per cell that
+// "Scanline Surfacing", §3.5): batch by batch, a compute shader writes a CellCase per cell that
 // holds a separating surface; see classification.h.
 #include "passes/classification.h"
 
@@ -29,14 +29,14 @@ struct Classifier::State {
   gpu::Owned<VkPipeline> pipeline;
   gpu::Owned<VkDescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  std::size_t slabBudget = std::size_t{64} << 20;
-  int lastSlabs = 0;
+  std::size_t batchBudget = std::size_t{64} << 20;
+  int lastBatches = 0;
 };
 
 Classifier::Classifier(std::unique_ptr<State> state) : state_(std::move(state)) {}
 Classifier::~Classifier() = default;
-void Classifier::setSlabBudget(std::size_t bytes) { state_->slabBudget = bytes; }
-int Classifier::lastSlabCount() const { return state_->lastSlabs; }
+void Classifier::setBatchBudget(std::size_t bytes) { state_->batchBudget = bytes; }
+int Classifier::lastBatchCount() const { return state_->lastBatches; }
 
 Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) {
   auto s = std::make_unique<State>();
@@ -55,14 +55,14 @@ Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) 
   return std::unique_ptr<Classifier>(new Classifier(std::move(s)));
 }
 
-// Where the labels come from: the host (copied into a mapped upload buffer per slab) or a
-// buffer on the device (copied on the device per slab).
+// Where the labels come from: the host (copied into a mapped upload buffer per batch) or a
+// buffer on the device (copied on the device per batch).
 struct Classifier::Source {
   const Grid& grid;
   const LabelVolume* host = nullptr;
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceSize offset = 0;
-  VkDeviceSize size = 0;  // of `buffer` when known: slabs are then bound in place
+  VkDeviceSize size = 0;  // of `buffer` when known: batches are then bound in place
   std::uint32_t bits = 16;
   bool upperIsData = false;  // 32-bit words: the label is the lower half
 
@@ -72,37 +72,37 @@ struct Classifier::Source {
 
 namespace {
 
-// How the volume is cut into slabs of cell layers that fit one storage buffer.
-struct SlabPlan {
+// How the volume is cut into batches of cell layers that fit one storage buffer.
+struct BatchPlan {
   std::size_t layerBytes = 0;
   int totalCellLayers = 0;
-  int slabCellLayers = 0;
+  int batchCellLayers = 0;
   std::size_t maxRecords = 0;
 };
 
-// Labels bound in place start up to one offset alignment before the slab's first.
-Result<SlabPlan> planSlabs(const gpu::Context& ctx, const Grid& grid, std::size_t layerBytes, std::size_t slabBudget,
-                           bool inPlace) {
+// Labels bound in place start up to one offset alignment before the batch's first.
+Result<BatchPlan> planBatches(const gpu::Context& ctx, const Grid& grid, std::size_t layerBytes, std::size_t batchBudget,
+                              bool inPlace) {
   if (cellCount(grid) > 0xFFFFFFFFull)
     return makeError(Errc::InvalidArgument, "classification: more than 2^32 cells; use a coarser grid");
   const std::size_t maxRange =
       ctx.limits().maxStorageBufferRange - (inPlace ? std::max<std::size_t>(4, ctx.limits().minStorageBufferOffsetAlignment) : 0);
-  const std::size_t labelBudget = std::min(slabBudget, maxRange);
+  const std::size_t labelBudget = std::min(batchBudget, maxRange);
   if (2 * layerBytes + 4 > labelBudget)
     return makeError(Errc::InvalidArgument, "classification: two layers of " + std::to_string(grid.nx) + " x " +
                                                 std::to_string(grid.ny) + " labels exceed the storage buffer limit");
-  SlabPlan plan;
+  BatchPlan plan;
   plan.layerBytes = layerBytes;
   plan.totalCellLayers = grid.nz - 1;
-  plan.slabCellLayers = std::max(1, std::min(plan.totalCellLayers, static_cast<int>((labelBudget - 4) / layerBytes) - 1));
+  plan.batchCellLayers = std::max(1, std::min(plan.totalCellLayers, static_cast<int>((labelBudget - 4) / layerBytes) - 1));
   plan.maxRecords = maxRange / sizeof(CellCase);
   return plan;
 }
 
-// In place: binds the slab's labels (layers first .. first + layers) of the source buffer,
+// In place: binds the batch's labels (layers first .. first + layers) of the source buffer,
 // from the aligned offset at or before them; returns how many labels precede them there.
-std::uint32_t bindSlabInPlace(const gpu::Context& ctx, VkDescriptorSet set, const Classifier::Source& source, int first,
-                              int layers) {
+std::uint32_t bindBatchInPlace(const gpu::Context& ctx, VkDescriptorSet set, const Classifier::Source& source, int first,
+                               int layers) {
   const VkDeviceSize align = std::max<VkDeviceSize>(4, ctx.limits().minStorageBufferOffsetAlignment);
   const VkDeviceSize start = source.offset + source.layerBytes() * static_cast<VkDeviceSize>(first);
   const VkDeviceSize bound = start / align * align;
@@ -111,20 +111,20 @@ std::uint32_t bindSlabInPlace(const gpu::Context& ctx, VkDescriptorSet set, cons
   return static_cast<std::uint32_t>((start - bound) / (source.bits / 8));
 }
 
-// The buffer a slab's labels are copied into: mapped for host labels, on the device for a
-// device buffer copied slab by slab; none (an empty Buffer) when bound in place.
-Result<gpu::Buffer> createSlabBuffer(const gpu::Context& ctx, const Classifier::Source& source, const SlabPlan& plan) {
+// The buffer a batch's labels are copied into: mapped for host labels, on the device for a
+// device buffer copied batch by batch; none (an empty Buffer) when bound in place.
+Result<gpu::Buffer> createBatchBuffer(const gpu::Context& ctx, const Classifier::Source& source, const BatchPlan& plan) {
   if (source.inPlace()) return gpu::Buffer{};
-  const VkDeviceSize bytes = (plan.layerBytes * static_cast<std::size_t>(plan.slabCellLayers + 1) + 3) / 4 * 4;
+  const VkDeviceSize bytes = (plan.layerBytes * static_cast<std::size_t>(plan.batchCellLayers + 1) + 3) / 4 * 4;
   if (source.host) return gpu::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
   return gpu::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              gpu::MemoryDomain::Device);
 }
 
-// Host labels: written straight into the mapped slab buffer before recording.
+// Host labels: written straight into the mapped batch buffer before recording.
 // Device labels: a copy recorded ahead of the dispatch (the first after a barrier on every
 // earlier write to the application's buffer).
-void fillSlab(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::Buffer& labels, int firstLayer, int layers) {
+void fillBatch(VkCommandBuffer cmd, const Classifier::Source& source, const gpu::Buffer& labels, int firstLayer, int layers) {
   const std::size_t bytes = source.layerBytes() * static_cast<std::size_t>(layers + 1);
   const std::size_t start = source.layerBytes() * static_cast<std::size_t>(firstLayer);
   if (source.host) {
@@ -186,10 +186,10 @@ Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& vo
   return classify(source);
 }
 
-void Classifier::recordSlab(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter,
-                            int first, int layers, std::size_t capacity, std::uint32_t labelOffset) const {
+void Classifier::recordBatch(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter,
+                             int first, int layers, std::size_t capacity, std::uint32_t labelOffset) const {
   const Grid& grid = source.grid;
-  fillSlab(cmd, source, labels, first, layers);
+  fillBatch(cmd, source, labels, first, layers);
   vkCmdFillBuffer(cmd, counter.handle(), 0, 8, 0);
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
@@ -215,22 +215,22 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
   const Grid& grid = source.grid;
   if (grid.nx < 2 || grid.ny < 2 || grid.nz < 2) return std::vector<CellCase>{};
   const bool inPlace = source.inPlace();
-  SCANSURF_ASSIGN_OR_RETURN(const SlabPlan plan, planSlabs(ctx, grid, source.layerBytes(), state_->slabBudget, inPlace));
-  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels, createSlabBuffer(ctx, source, plan));
+  SCANSURF_ASSIGN_OR_RETURN(const BatchPlan plan, planBatches(ctx, grid, source.layerBytes(), state_->batchBudget, inPlace));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer labels, createBatchBuffer(ctx, source, plan));
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer counter,
                             gpu::Buffer::create(ctx, 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                                 gpu::MemoryDomain::Readback));
   // Start with room for a surface through a few percent of the cells; grow on overflow.
-  const std::size_t slabCells = static_cast<std::size_t>(grid.nx - 1) * static_cast<std::size_t>(grid.ny - 1) *
-                                static_cast<std::size_t>(plan.slabCellLayers);
-  std::size_t capacity = std::clamp<std::size_t>(slabCells / 16, 4096, plan.maxRecords);
+  const std::size_t batchCells = static_cast<std::size_t>(grid.nx - 1) * static_cast<std::size_t>(grid.ny - 1) *
+                                 static_cast<std::size_t>(plan.batchCellLayers);
+  std::size_t capacity = std::clamp<std::size_t>(batchCells / 16, 4096, plan.maxRecords);
   gpu::Buffer cases;
   bool casesBound = false;
 
   std::vector<CellCase> result;
-  state_->lastSlabs = 0;
+  state_->lastBatches = 0;
   int first = 0;
-  int layers = plan.slabCellLayers;
+  int layers = plan.batchCellLayers;
   while (first < plan.totalCellLayers) {
     layers = std::min(layers, plan.totalCellLayers - first);
     if (!casesBound) {
@@ -241,9 +241,9 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
       gpu::bindStorageBuffer(ctx, state_->set, 2, cases.handle());
       casesBound = true;
     }
-    const std::uint32_t labelOffset = inPlace ? bindSlabInPlace(ctx, state_->set, source, first, layers) : 0;
+    const std::uint32_t labelOffset = inPlace ? bindBatchInPlace(ctx, state_->set, source, first, layers) : 0;
     SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
-    recordSlab(commands.cmd(), source, labels, counter, first, layers, capacity, labelOffset);
+    recordBatch(commands.cmd(), source, labels, counter, first, layers, capacity, labelOffset);
     SCANSURF_TRY(commands.submitAndWait());
     SCANSURF_TRY(counter.invalidate());
     std::uint32_t counts[2] = {0, 0};
@@ -255,7 +255,7 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     const std::uint32_t count = counts[0];
 
     if (count > capacity) {
-      // Too many records for the buffer: grow it, or halve the slab when at the limit.
+      // Too many records for the buffer: grow it, or halve the batch when at the limit.
       if (capacity < plan.maxRecords) {
         capacity = std::min<std::size_t>(plan.maxRecords, static_cast<std::size_t>(count) + count / 4);
         casesBound = false;
@@ -270,7 +270,7 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     const auto* records = static_cast<const CellCase*>(cases.mapped());
     result.insert(result.end(), records, records + count);
     first += layers;
-    ++state_->lastSlabs;
+    ++state_->lastBatches;
   }
   // The atomic append leaves records in any order; sort for deterministic assembly.
   std::sort(result.begin(), result.end(), [](const CellCase& a, const CellCase& b) { return a.cell < b.cell; });

@@ -1,6 +1,6 @@
 // scansurf passes: tetrahedral classification on the GPU (Nielson & Franke 1997). A compute
 // shader visits every cell of the label volume and appends a compact CellCase record for
-// each cell that holds a separating surface. The volume is processed in slabs of layers so
+// each cell that holds a separating surface. The volume is processed in batches of layers so
 // no buffer exceeds maxStorageBufferRange (128 MiB on lavapipe), whatever the volume's size.
 #pragma once
 
@@ -27,26 +27,26 @@ class Classifier {
   // classifyCellsReference(volume).
   Result<std::vector<CellCase>> run(const LabelVolume& volume);
   // The same from labels already in a buffer on this device (16- or 32-bit, x fastest; see
-  // DeviceLabelVolume in scansurf/vulkan_interop.h): each slab is copied on the device, never
+  // DeviceLabelVolume in scansurf/vulkan_interop.h): each batch is copied on the device, never
   // through the host. A 32-bit label above 65535 is Errc::InvalidInput.
   Result<std::vector<CellCase>> run(const DeviceLabelVolume& volume);
-  // The same with the buffer's size known (scansurf's own buffers): each slab's labels are
-  // bound in place, with no copy and no slab buffer. upperIsData: 32-bit words whose upper
+  // The same with the buffer's size known (scansurf's own buffers): each batch's labels are
+  // bound in place, with no copy and no batch buffer. upperIsData: 32-bit words whose upper
   // 16 bits are other data (the interpolation's words, label | clearance << 16).
   Result<std::vector<CellCase>> runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData = false);
 
-  // Bytes of labels one slab may upload; smaller forces more slabs (tests use it).
-  void setSlabBudget(std::size_t bytes);
-  int lastSlabCount() const;
+  // Bytes of labels one batch may upload; smaller forces more batches (tests use it).
+  void setBatchBudget(std::size_t bytes);
+  int lastBatchCount() const;
 
   struct State;
   struct Source;
 
  private:
   Result<std::vector<CellCase>> classify(const Source& source);
-  // Records one slab's pass: its labels into place, the counter cleared, the dispatch.
-  void recordSlab(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter, int first,
-                  int layers, std::size_t capacity, std::uint32_t labelOffset) const;
+  // Records one batch's pass: its labels into place, the counter cleared, the dispatch.
+  void recordBatch(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter, int first,
+                   int layers, std::size_t capacity, std::uint32_t labelOffset) const;
   Result<Source> deviceSource(const DeviceLabelVolume& volume) const;
   explicit Classifier(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;

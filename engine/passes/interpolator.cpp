@@ -38,9 +38,9 @@ enum Binding : std::uint32_t {
   kCrossings
 };
 
-// One buffer per binding, kept from slab to slab and grown when a slab needs more (fresh
-// memory for every slab cost more in page faults than the work).
-struct SlabBuffers {
+// One buffer per binding, kept from batch to batch and grown when a batch needs more (fresh
+// memory for every batch cost more in page faults than the work).
+struct BatchBuffers {
   std::array<gpu::Buffer, kBindings> buffers;
 
   static gpu::MemoryDomain domainOf(std::uint32_t binding) {
@@ -84,16 +84,16 @@ struct Interpolator::State {
   gpu::Owned<VkPipeline> lines, envelopes, finish, interpolate;
   gpu::Owned<VkDescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
-  SlabBuffers buffers;
+  BatchBuffers buffers;
   gpu::Buffer tableFields;  // the fields the layer table is read off, read back
-  std::size_t slabBudget = std::size_t{64} << 20;
-  int lastSlabs = 0;
+  std::size_t batchBudget = std::size_t{64} << 20;
+  int lastBatches = 0;
 };
 
 Interpolator::Interpolator(std::unique_ptr<State> state) : state_(std::move(state)) {}
 Interpolator::~Interpolator() = default;
-void Interpolator::setSlabBudget(std::size_t bytes) { state_->slabBudget = bytes; }
-int Interpolator::lastSlabCount() const { return state_->lastSlabs; }
+void Interpolator::setBatchBudget(std::size_t bytes) { state_->batchBudget = bytes; }
+int Interpolator::lastBatchCount() const { return state_->lastBatches; }
 
 namespace {
 
@@ -119,13 +119,13 @@ Result<void> createPipelines(const gpu::Context& ctx, Interpolator::State& s) {
   return {};
 }
 
-// Fills the buffers for `slab` (the planes only when they are not copied on the device from
+// Fills the buffers for `batch` (the planes only when they are not copied on the device from
 // devicePlanes); true when any buffer is new.
-Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVolume& volume,
-                         const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab, bool devicePlanes) {
+Result<bool> prepareBatch(const gpu::Context& ctx, BatchBuffers& b, const LabelVolume& volume,
+                          const std::vector<std::uint16_t>& crossings, const InterpolationBatch& batch, bool devicePlanes) {
   const std::size_t plane = static_cast<std::size_t>(volume.grid.nx) * static_cast<std::size_t>(volume.grid.ny);
-  const std::size_t first = plane * static_cast<std::size_t>(slab.firstPlane),
-                    count = plane * static_cast<std::size_t>(slab.planes);
+  const std::size_t first = plane * static_cast<std::size_t>(batch.firstPlane),
+                    count = plane * static_cast<std::size_t>(batch.planes);
   bool fresh = false;
   auto track = [&](Result<bool> r) -> Result<void> {
     if (!r) return Unexpected(std::move(r).takeError());
@@ -135,19 +135,19 @@ Result<bool> prepareSlab(const gpu::Context& ctx, SlabBuffers& b, const LabelVol
   SCANSURF_TRY(track(devicePlanes ? b.reserve(ctx, kPlanes, count * sizeof(Label))
                                   : b.upload(ctx, kPlanes, volume.labels.data() + first, count * sizeof(Label))));
   SCANSURF_TRY(track(b.upload(ctx, kCrossings, crossings.data() + first, count * sizeof(std::uint16_t))));
-  SCANSURF_TRY(track(b.upload(ctx, kFields, slab.fields)));
-  SCANSURF_TRY(track(b.reserve(ctx, kValues, slab.fieldValues * 4)));
-  SCANSURF_TRY(track(b.reserve(ctx, kScratch, slab.scratchInts * 4)));
-  SCANSURF_TRY(track(b.upload(ctx, kEntries, slab.entries)));
-  SCANSURF_TRY(track(b.upload(ctx, kPairs, slab.pairs)));
-  SCANSURF_TRY(track(b.upload(ctx, kTileRanges, slab.tileRanges)));
-  SCANSURF_TRY(track(b.upload(ctx, kTileEntries, slab.tileEntries)));
-  SCANSURF_TRY(track(b.reserve(ctx, kOutput, plane * static_cast<std::size_t>(slab.outputLayers) * 4)));
-  SCANSURF_TRY(track(b.reserve(ctx, kLayerTable, slab.layerInts * 4)));  // filled once the fields are made
+  SCANSURF_TRY(track(b.upload(ctx, kFields, batch.fields)));
+  SCANSURF_TRY(track(b.reserve(ctx, kValues, batch.fieldValues * 4)));
+  SCANSURF_TRY(track(b.reserve(ctx, kScratch, batch.scratchInts * 4)));
+  SCANSURF_TRY(track(b.upload(ctx, kEntries, batch.entries)));
+  SCANSURF_TRY(track(b.upload(ctx, kPairs, batch.pairs)));
+  SCANSURF_TRY(track(b.upload(ctx, kTileRanges, batch.tileRanges)));
+  SCANSURF_TRY(track(b.upload(ctx, kTileEntries, batch.tileEntries)));
+  SCANSURF_TRY(track(b.reserve(ctx, kOutput, plane * static_cast<std::size_t>(batch.outputLayers) * 4)));
+  SCANSURF_TRY(track(b.reserve(ctx, kLayerTable, batch.layerInts * 4)));  // filled once the fields are made
   return fresh;
 }
 
-void bindSlab(const gpu::Context& ctx, VkDescriptorSet set, const SlabBuffers& s) {
+void bindBatch(const gpu::Context& ctx, VkDescriptorSet set, const BatchBuffers& s) {
   std::array<VkBuffer, kBindings> buffers{};
   for (std::uint32_t i = 0; i < kBindings; ++i) buffers[i] = s.buffers[i].handle();
   gpu::bindStorageBuffers(ctx, set, buffers);
@@ -179,7 +179,7 @@ Result<std::unique_ptr<Interpolator>> Interpolator::create(const gpu::Context& c
   return std::unique_ptr<Interpolator>(new Interpolator(std::move(s)));
 }
 
-// The slab's planes from the scan-converted labels on the device, instead of an upload.
+// The batch's planes from the scan-converted labels on the device, instead of an upload.
 void recordPlanesCopy(VkCommandBuffer cmd, const gpu::Buffer& devicePlanes, const gpu::Buffer& planes, VkDeviceSize offset,
                       VkDeviceSize bytes) {
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -190,7 +190,7 @@ void recordPlanesCopy(VkCommandBuffer cmd, const gpu::Buffer& devicePlanes, cons
                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
-// The slab's words into the device volume of words (its output layers are consecutive fine
+// The batch's words into the device volume of words (its output layers are consecutive fine
 // layers), once the host has read and amended them (host writes before a submit are visible
 // to it).
 void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::Buffer& words, VkDeviceSize offset,
@@ -203,39 +203,39 @@ void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::
 
 namespace {
 
-// The slab's distance fields: three passes over every field.
-void recordFields(VkCommandBuffer cmd, const Interpolator::State& s, const InterpolationSlab& slab,
+// The batch's distance fields: three passes over every field.
+void recordFields(VkCommandBuffer cmd, const Interpolator::State& s, const InterpolationBatch& batch,
                   const shared::InterpolatePush& push) {
   std::uint32_t longest = 0, widest = 0;
-  for (const shared::DistanceField& f : slab.fields)
+  for (const shared::DistanceField& f : batch.fields)
     longest = std::max({longest, static_cast<std::uint32_t>(f.w), static_cast<std::uint32_t>(f.h)}),
     widest = std::max(widest, static_cast<std::uint32_t>(f.w));
   for (const auto& [pipeline, lines] :
        {std::pair{s.lines.get(), longest}, std::pair{s.envelopes.get(), longest}, std::pair{s.finish.get(), widest}}) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    dispatchFields(cmd, s.layout.get(), push, slab.fields.size(), lines);
+    dispatchFields(cmd, s.layout.get(), push, batch.fields.size(), lines);
     computeBarrier(cmd);
   }
 }
 
 // The layer table (buildLayerTable: dome erosions, area-keeping offsets) from the fields it
 // needs, read back once made, into the buffer the interpolation pass reads.
-Result<void> fillLayerTable(const gpu::Context& ctx, Interpolator::State& s, const InterpolationSlab& slab, int threads) {
-  std::vector<std::size_t> at(slab.fields.size(), SIZE_MAX);
+Result<void> fillLayerTable(const gpu::Context& ctx, Interpolator::State& s, const InterpolationBatch& batch, int threads) {
+  std::vector<std::size_t> at(batch.fields.size(), SIZE_MAX);
   std::vector<VkBufferCopy> regions;
   std::size_t ints = 0;
   auto need = [&](int index) {
     const auto field = static_cast<std::size_t>(index);
     if (at[field] != SIZE_MAX) return;
-    const shared::DistanceField& f = slab.fields[field];
+    const shared::DistanceField& f = batch.fields[field];
     const std::size_t n = static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h);
     at[field] = ints;
     regions.push_back({static_cast<VkDeviceSize>(f.offset) * 4, ints * 4, n * 4});
     ints += n;
   };
-  for (const InterpolationSlab::CappedEntry& c : slab.cappedEntries) need(c.field);
-  for (const InterpolationSlab::BlendedEntry& b : slab.blendedEntries)
-    need(slab.entries[b.entry].fieldA), need(slab.entries[b.entry].fieldB);
+  for (const InterpolationBatch::CappedEntry& c : batch.cappedEntries) need(c.field);
+  for (const InterpolationBatch::BlendedEntry& b : batch.blendedEntries)
+    need(batch.entries[b.entry].fieldA), need(batch.entries[b.entry].fieldB);
   if (s.tableFields.size() < std::max<std::size_t>(ints, 1) * 4) {
     s.tableFields = gpu::Buffer{};
     SCANSURF_ASSIGN_OR_RETURN(s.tableFields, gpu::Buffer::create(ctx, std::max<std::size_t>(ints, 1) * 4,
@@ -254,49 +254,49 @@ Result<void> fillLayerTable(const gpu::Context& ctx, Interpolator::State& s, con
   const auto* mapped = static_cast<const std::int32_t*>(s.tableFields.mapped());
   std::vector<const std::int32_t*> values;
   for (std::size_t place : at) values.push_back(place == SIZE_MAX ? nullptr : mapped + place);
-  const std::vector<std::int32_t> table = buildLayerTable(slab, values, threads);
+  const std::vector<std::int32_t> table = buildLayerTable(batch, values, threads);
   std::memcpy(s.buffers.buffers[kLayerTable].mapped(), table.data(), table.size() * 4);
   return {};
 }
 
 }  // namespace
 
-Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                   const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps, int threads,
-                                   const SlabWords& store, const InterpolationDeviceIo& device) {
+Result<void> Interpolator::runBatch(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                    const InterpolationBatch& batch, const DistanceWeights& weights, CapShape caps, int threads,
+                                    const BatchWords& store, const InterpolationDeviceIo& device) {
   const gpu::Context& ctx = *state_->ctx;
   const Grid& g = volume.grid;
-  SlabBuffers& buffers = state_->buffers;
-  SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareSlab(ctx, buffers, volume, crossings, slab, device.planes != nullptr));
-  if (fresh) bindSlab(ctx, state_->set, buffers);
+  BatchBuffers& buffers = state_->buffers;
+  SCANSURF_ASSIGN_OR_RETURN(const bool fresh, prepareBatch(ctx, buffers, volume, crossings, batch, device.planes != nullptr));
+  if (fresh) bindBatch(ctx, state_->set, buffers);
   const VkDeviceSize plane = static_cast<VkDeviceSize>(g.nx) * static_cast<VkDeviceSize>(g.ny);
   shared::InterpolatePush push{static_cast<std::uint32_t>(g.nx),
                                static_cast<std::uint32_t>(g.ny),
-                               static_cast<std::uint32_t>(slab.fields.size()),
+                               static_cast<std::uint32_t>(batch.fields.size()),
                                0,
                                weights.x,
                                weights.y,
                                weights.fixedScale,
                                caps == CapShape::Round ? 1u : 0u,
                                static_cast<std::uint32_t>(kTileSize),
-                               static_cast<std::uint32_t>(slab.tilesX),
+                               static_cast<std::uint32_t>(batch.tilesX),
                                weights.unit,
                                farDistance(g, weights),
                                deepDistance(g)};
   // The fields first; the layer table needs their values before interpolation.
-  const bool tables = slab.layerInts > 0;
+  const bool tables = batch.layerInts > 0;
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
   VkCommandBuffer cmd = commands.cmd();
   if (device.planes)
     recordPlanesCopy(cmd, *device.planes, buffers.buffers[kPlanes],
-                     plane * static_cast<VkDeviceSize>(slab.firstPlane) * sizeof(Label),
-                     plane * static_cast<VkDeviceSize>(slab.planes) * sizeof(Label));
+                     plane * static_cast<VkDeviceSize>(batch.firstPlane) * sizeof(Label),
+                     plane * static_cast<VkDeviceSize>(batch.planes) * sizeof(Label));
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
-  recordFields(cmd, *state_, slab, push);
+  recordFields(cmd, *state_, batch, push);
   std::optional<gpu::OneShotCommands> second;
   if (tables) {
     SCANSURF_TRY(commands.submitAndWait());
-    SCANSURF_TRY(fillLayerTable(ctx, *state_, slab, threads));
+    SCANSURF_TRY(fillLayerTable(ctx, *state_, batch, threads));
     SCANSURF_ASSIGN_OR_RETURN(second, gpu::OneShotCommands::begin(ctx));
     cmd = second->cmd();
     gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -304,12 +304,12 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->layout.get(), 0, 1, &state_->set, 0, nullptr);
   }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, state_->interpolate.get());
-  for (std::size_t p = 0; p < slab.pairs.size(); ++p) {
+  for (std::size_t p = 0; p < batch.pairs.size(); ++p) {
     push.pair = static_cast<std::uint32_t>(p);
     vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(g.nx) + kPixelGroup - 1) / kPixelGroup,
                   (static_cast<std::uint32_t>(g.ny) + kPixelGroup - 1) / kPixelGroup,
-                  static_cast<std::uint32_t>(slab.pairs[p].layers));
+                  static_cast<std::uint32_t>(batch.pairs[p].layers));
   }
   const gpu::Buffer& output = buffers.buffers[kOutput];
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -322,7 +322,7 @@ Result<void> Interpolator::runSlab(const LabelVolume& volume, const std::vector<
   SCANSURF_TRY(output.flush());
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands copy, gpu::OneShotCommands::begin(ctx));
   recordWordsCopy(copy.cmd(), output, *device.words, device.wordsOffset,
-                  plane * static_cast<VkDeviceSize>(slab.outputLayers) * 4);
+                  plane * static_cast<VkDeviceSize>(batch.outputLayers) * 4);
   return copy.submitAndWait();
 }
 
@@ -332,16 +332,16 @@ Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const st
   if (crossings.size() != volume.labels.size())
     return makeError(Errc::InvalidArgument, "interpolation: one edge-crossing word per voxel is needed");
   SCANSURF_ASSIGN_OR_RETURN(const DistanceWeights weights, distanceWeights(volume.grid));
-  const std::size_t budget = std::min<std::size_t>(state_->slabBudget, state_->ctx->limits().maxStorageBufferRange);
-  state_->lastSlabs = 0;
+  const std::size_t budget = std::min<std::size_t>(state_->batchBudget, state_->ctx->limits().maxStorageBufferRange);
+  state_->lastBatches = 0;
   const std::vector<int> fineOf = fineLayerOfPlane(factors);
   const VkDeviceSize plane = static_cast<VkDeviceSize>(volume.grid.nx) * static_cast<VkDeviceSize>(volume.grid.ny);
   return interpolateVolume(
       volume, factors, budget, threads,
-      [&](const InterpolationSlab& slab, const SlabWords& store) {
-        ++state_->lastSlabs;
-        device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(slab.firstPlane)]) * 4;
-        return runSlab(volume, crossings, slab, weights, caps, threads, store, device);
+      [&](const InterpolationBatch& batch, const BatchWords& store) {
+        ++state_->lastBatches;
+        device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(batch.firstPlane)]) * 4;
+        return runBatch(volume, crossings, batch, weights, caps, threads, store, device);
       },
       device.words == nullptr, containers);
 }

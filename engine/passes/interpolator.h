@@ -1,5 +1,5 @@
 // scansurf passes: multi-label shape-based interpolation on the GPU (Grevera & Udupa 1996;
-// the rule in geometry/interpolation/interpolation_plan.h). Per slab, three compute passes with no host
+// the rule in geometry/interpolation/interpolation_plan.h). Per batch, three compute passes with no host
 // round trip between them: the rows of every label's distance field, its columns (exact
 // Euclidean distances, Felzenszwalb & Huttenlocher 2012), then the labels of the interpolated
 // layers. Identical, voxel for voxel, to geometry/interpolation/interpolation_reference.h.
@@ -16,13 +16,13 @@ namespace scansurf::passes {
 
 // What of an interpolation stays on the device: `planes`, the same labels as the
 // planes volume in a buffer of 16-bit labels (ScanConverter::runOnDevice), copied there into
-// each slab instead of uploaded; `words` (at least 4 bytes per voxel of the interpolated grid)
+// each batch instead of uploaded; `words` (at least 4 bytes per voxel of the interpolated grid)
 // receives every voxel's word, label | clearance << 16 (the contour planes' own labels on
 // their layers), to be classified there (Classifier::runInPlace, upper half as data).
 struct InterpolationDeviceIo {
   const gpu::Buffer* planes = nullptr;
   const gpu::Buffer* words = nullptr;
-  VkDeviceSize wordsOffset = 0;  // runSlab: where the slab's first output layer goes
+  VkDeviceSize wordsOffset = 0;  // runBatch: where the batch's first output layer goes
 };
 
 class Interpolator {
@@ -33,19 +33,19 @@ class Interpolator {
   // The volume on interpolatedGrid(volume.grid, factors) (see interpolated_volume.h);
   // crossings: planeEdgeCrossings of the volume (geometry/extraction/edge_crossings.h). With device
   // words, the host gets the clearances only (the volume's labels stay empty). containers: as
-  // planInterpolationSlab's (geometry/interpolation/interpolation_plan.h).
+  // planInterpolationBatch's (geometry/interpolation/interpolation_plan.h).
   Result<InterpolatedVolume> run(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
                                  const std::vector<int>& factors, CapShape caps, int threads, InterpolationDeviceIo device = {},
                                  const std::vector<bool>& containers = {});
-  // One slab's output layers, handed to `store` (InterpolationSlab::outputLayers of nx * ny
+  // One batch's output layers, handed to `store` (InterpolationBatch::outputLayers of nx * ny
   // label | clearance << 16 words, read straight from the device's readback buffer).
-  Result<void> runSlab(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationSlab& slab,
-                       const DistanceWeights& weights, CapShape caps, int threads, const SlabWords& store,
-                       const InterpolationDeviceIo& device = {});
+  Result<void> runBatch(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings, const InterpolationBatch& batch,
+                        const DistanceWeights& weights, CapShape caps, int threads, const BatchWords& store,
+                        const InterpolationDeviceIo& device = {});
 
-  // Bytes one slab may use on the device; smaller forces more slabs (tests use it).
-  void setSlabBudget(std::size_t bytes);
-  int lastSlabCount() const;
+  // Bytes one batch may use on the device; smaller forces more batches (tests use it).
+  void setBatchBudget(std::size_t bytes);
+  int lastBatchCount() const;
 
   struct State;
 

@@ -45,7 +45,7 @@ struct SliceRef {
   const FeatureSlice* slice;
 };
 
-// What every slab of one run shares.
+// What every batch of one run shares.
 struct RunPlan {
   const Grid* grid = nullptr;
   std::vector<std::vector<SliceRef>> byLayer;  // which feature slices land on which layer
@@ -57,10 +57,10 @@ struct RunPlan {
   std::size_t layerBytes = 0;                  // labels of one layer
 };
 
-// The render targets every slab reuses: a label image with a layer per slice layer of the
-// slab, one depth-stencil image shared by the layers, and the buffer labels are read back in
+// The render targets every batch reuses: a label image with a layer per slice layer of the
+// batch, one depth-stencil image shared by the layers, and the buffer labels are read back in
 // (none when only the device keeps them).
-struct SlabTargets {
+struct BatchTargets {
   gpu::Image labels;
   gpu::Image depthStencil;
   gpu::Buffer readback;
@@ -72,9 +72,9 @@ struct LabelSinks {
   const gpu::Buffer* device = nullptr;
 };
 
-// A slab's vertices (x, y in pixels): each contour's points (a fan), then the feature's cover
-// quad; and per layer of the slab, the draws that use them.
-struct SlabGeometry {
+// A batch's vertices (x, y in pixels): each contour's points (a fan), then the feature's cover
+// quad; and per layer of the batch, the draws that use them.
+struct BatchGeometry {
   std::vector<float> vertices;
   std::vector<std::vector<FeatureDraw>> draws;
 };
@@ -136,26 +136,26 @@ Result<RunPlan> planRun(const ContourSet& contours, const Grid& grid, const std:
 
 // As many layers as the budget allows, at least one, at most the device's array layers and the
 // layers there are.
-int slabLayerCount(std::size_t slabBudget, std::size_t layerBytes, std::uint32_t maxImageArrayLayers, int sliceLayers) {
+int batchLayerCount(std::size_t batchBudget, std::size_t layerBytes, std::uint32_t maxImageArrayLayers, int sliceLayers) {
   return static_cast<int>(std::clamp<std::size_t>(
-      slabBudget / layerBytes, 1, std::min<std::size_t>(maxImageArrayLayers, static_cast<std::size_t>(sliceLayers))));
+      batchBudget / layerBytes, 1, std::min<std::size_t>(maxImageArrayLayers, static_cast<std::size_t>(sliceLayers))));
 }
 
-Result<SlabTargets> createSlabTargets(const gpu::Context& ctx, VkFormat depthStencilFormat, const Grid& grid, int slabLayers,
-                                      std::size_t layerBytes, bool toHost) {
+Result<BatchTargets> createBatchTargets(const gpu::Context& ctx, VkFormat depthStencilFormat, const Grid& grid, int batchLayers,
+                                        std::size_t layerBytes, bool toHost) {
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Image labels,
       gpu::Image::create(ctx, kLabelFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny),
-                         static_cast<std::uint32_t>(slabLayers),
+                         static_cast<std::uint32_t>(batchLayers),
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT));
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Image depthStencil,
       gpu::Image::create(ctx, depthStencilFormat, static_cast<std::uint32_t>(grid.nx), static_cast<std::uint32_t>(grid.ny), 1,
                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT));
-  SlabTargets targets{std::move(labels), std::move(depthStencil), {}};
+  BatchTargets targets{std::move(labels), std::move(depthStencil), {}};
   if (toHost) {
     SCANSURF_ASSIGN_OR_RETURN(targets.readback,
-                              gpu::Buffer::create(ctx, layerBytes * static_cast<std::size_t>(slabLayers),
+                              gpu::Buffer::create(ctx, layerBytes * static_cast<std::size_t>(batchLayers),
                                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryDomain::Readback));
   }
   return targets;
@@ -191,8 +191,8 @@ FeatureDraw appendFeatureDraw(const RunPlan& plan, const SliceRef& ref, std::vec
   return draw;
 }
 
-SlabGeometry buildSlabGeometry(const RunPlan& plan, int first, int count) {
-  SlabGeometry geometry;
+BatchGeometry buildBatchGeometry(const RunPlan& plan, int first, int count) {
+  BatchGeometry geometry;
   geometry.draws.resize(static_cast<std::size_t>(count));
   for (int l = 0; l < count; ++l)
     for (const SliceRef& ref : plan.byLayer[static_cast<std::size_t>(first + l)])
@@ -201,8 +201,8 @@ SlabGeometry buildSlabGeometry(const RunPlan& plan, int first, int count) {
   return geometry;
 }
 
-// Both images from whatever they held (the previous slab's copy reads the labels) to attachments.
-void transitionToAttachments(VkCommandBuffer cmd, const SlabTargets& targets) {
+// Both images from whatever they held (the previous batch's copy reads the labels) to attachments.
+void transitionToAttachments(VkCommandBuffer cmd, const BatchTargets& targets) {
   gpu::imageBarrier(cmd, targets.labels.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
@@ -221,9 +221,9 @@ void waitForDepthStencilTests(VkCommandBuffer cmd) {
                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT);
 }
 
-// Copies the slab's `count` label layers (from layer `first` of the volume) to the readback
+// Copies the batch's `count` label layers (from layer `first` of the volume) to the readback
 // buffer, visible to the host, and into the device volume.
-void recordCopyOut(VkCommandBuffer cmd, const SlabTargets& targets, const LabelSinks& sinks, const Grid& grid, int first,
+void recordCopyOut(VkCommandBuffer cmd, const BatchTargets& targets, const LabelSinks& sinks, const Grid& grid, int first,
                    int count) {
   gpu::imageBarrier(cmd, targets.labels.handle(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -245,7 +245,7 @@ void recordCopyOut(VkCommandBuffer cmd, const SlabTargets& targets, const LabelS
 }
 
 // The device volume starts as background (its padding layers are never drawn); the first
-// slab clears it before its copy.
+// batch clears it before its copy.
 void recordClear(VkCommandBuffer cmd, const gpu::Buffer& device) {
   vkCmdFillBuffer(cmd, device.handle(), 0, VK_WHOLE_SIZE, kBackground);
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -263,15 +263,15 @@ struct ScanConverter::State {
   gpu::Owned<VkPipeline> stencilPipeline;
   gpu::Owned<VkPipeline> coverPipeline;
   int subPixelBits = 8;
-  int lastSlabs = 0;
-  std::size_t slabBudget = std::size_t{64} << 20;
+  int lastBatches = 0;
+  std::size_t batchBudget = std::size_t{64} << 20;
 };
 
 ScanConverter::ScanConverter(std::unique_ptr<State> state) : state_(std::move(state)) {}
 ScanConverter::~ScanConverter() = default;
 int ScanConverter::subPixelBits() const { return state_->subPixelBits; }
-int ScanConverter::lastSlabCount() const { return state_->lastSlabs; }
-void ScanConverter::setSlabBudget(std::size_t bytes) { state_->slabBudget = bytes; }
+int ScanConverter::lastBatchCount() const { return state_->lastBatches; }
+void ScanConverter::setBatchBudget(std::size_t bytes) { state_->batchBudget = bytes; }
 
 Result<std::unique_ptr<ScanConverter>> ScanConverter::create(const gpu::Context& ctx) {
   auto s = std::make_unique<State>();
@@ -331,9 +331,9 @@ void recordFeatureDraws(VkCommandBuffer cmd, const ScanConverter::State& state, 
   }
 }
 
-// Renders each layer of the slab into its layer of the label image, then copies them out.
-void recordSlab(VkCommandBuffer cmd, const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets,
-                const LabelSinks& sinks, int first, const SlabGeometry& geometry, VkBuffer vertexBuffer) {
+// Renders each layer of the batch into its layer of the label image, then copies them out.
+void recordBatch(VkCommandBuffer cmd, const ScanConverter::State& state, const RunPlan& plan, const BatchTargets& targets,
+                 const LabelSinks& sinks, int first, const BatchGeometry& geometry, VkBuffer vertexBuffer) {
   const Grid& grid = *plan.grid;
   if (sinks.device && first == 1) recordClear(cmd, *sinks.device);
   transitionToAttachments(cmd, targets);
@@ -358,17 +358,17 @@ void recordSlab(VkCommandBuffer cmd, const ScanConverter::State& state, const Ru
 }
 
 // Scan converts layers first .. first + count - 1 in one submit into the sinks.
-Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan, const SlabTargets& targets, int first, int count,
-                         const LabelSinks& sinks) {
+Result<void> convertBatch(const ScanConverter::State& state, const RunPlan& plan, const BatchTargets& targets, int first,
+                          int count, const LabelSinks& sinks) {
   const gpu::Context& ctx = *state.ctx;
-  const SlabGeometry geometry = buildSlabGeometry(plan, first, count);
+  const BatchGeometry geometry = buildBatchGeometry(plan, first, count);
   const std::size_t vertexBytes = geometry.vertices.size() * sizeof(float);
   SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer vertexBuffer,
                             gpu::Buffer::create(ctx, vertexBytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, gpu::MemoryDomain::Upload));
   std::memcpy(vertexBuffer.mapped(), geometry.vertices.data(), vertexBytes);
 
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
-  recordSlab(commands.cmd(), state, plan, targets, sinks, first, geometry, vertexBuffer.handle());
+  recordBatch(commands.cmd(), state, plan, targets, sinks, first, geometry, vertexBuffer.handle());
   SCANSURF_TRY(commands.submitAndWait());
   if (!sinks.host) return {};
   SCANSURF_TRY(targets.readback.invalidate());
@@ -380,20 +380,20 @@ Result<void> convertSlab(const ScanConverter::State& state, const RunPlan& plan,
 // The volume before drawing: padding layers are never drawn and stay background.
 LabelVolume backgroundVolume(const Grid& grid) { return LabelVolume{grid, std::vector<Label>(grid.voxelCount(), kBackground)}; }
 
-// Scan converts every slice layer, slab by slab, into the sinks.
+// Scan converts every slice layer, batch by batch, into the sinks.
 Result<void> convertAll(ScanConverter::State& state, const ContourSet& contours, const Grid& grid, const std::vector<int>& order,
                         const LabelSinks& sinks) {
   const gpu::Context& ctx = *state.ctx;
   SCANSURF_ASSIGN_OR_RETURN(const RunPlan plan, planRun(contours, grid, order, state.subPixelBits));
   const int sliceLayers = grid.nz - 2;
-  const int slabLayers = slabLayerCount(state.slabBudget, plan.layerBytes, ctx.limits().maxImageArrayLayers, sliceLayers);
-  SCANSURF_ASSIGN_OR_RETURN(const SlabTargets targets, createSlabTargets(ctx, state.depthStencilFormat, grid, slabLayers,
-                                                                         plan.layerBytes, sinks.host != nullptr));
-  state.lastSlabs = 0;
-  for (int first = 1; first <= sliceLayers; first += slabLayers) {
-    const int count = std::min(slabLayers, sliceLayers + 1 - first);
-    SCANSURF_TRY(convertSlab(state, plan, targets, first, count, sinks));
-    ++state.lastSlabs;
+  const int batchLayers = batchLayerCount(state.batchBudget, plan.layerBytes, ctx.limits().maxImageArrayLayers, sliceLayers);
+  SCANSURF_ASSIGN_OR_RETURN(const BatchTargets targets, createBatchTargets(ctx, state.depthStencilFormat, grid, batchLayers,
+                                                                           plan.layerBytes, sinks.host != nullptr));
+  state.lastBatches = 0;
+  for (int first = 1; first <= sliceLayers; first += batchLayers) {
+    const int count = std::min(batchLayers, sliceLayers + 1 - first);
+    SCANSURF_TRY(convertBatch(state, plan, targets, first, count, sinks));
+    ++state.lastBatches;
   }
   return {};
 }

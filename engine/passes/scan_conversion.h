@@ -3,7 +3,7 @@
 // toggle one stencil bit (even-odd parity: holes and concave shapes fill right); a quad over
 // the feature's bounding box then writes the feature's label where the bit is set, with the
 // feature's nesting rank as depth so inner features win, and clears the bit for the next
-// feature. Many slices are recorded into one command buffer (a slab), one submit per slab.
+// feature. Many slices are recorded into one command buffer (a batch), one submit per batch.
 #pragma once
 
 #include <memory>
@@ -38,11 +38,11 @@ class ScanConverter {
                                    LabelVolume* host);
 
   int subPixelBits() const;
-  // Slabs used by the last run (for reports and tests).
-  int lastSlabCount() const;
+  // Batches used by the last run (for reports and tests).
+  int lastBatchCount() const;
 
-  // Bytes of label image one slab may use; smaller forces more slabs (tests use it).
-  void setSlabBudget(std::size_t bytes);
+  // Bytes of label image one batch may use; smaller forces more batches (tests use it).
+  void setBatchBudget(std::size_t bytes);
 
   struct State;
 

@@ -188,7 +188,7 @@ int run(const fs::path& input, int pixels, int repeat, bool smooth, int interpol
     add("remesh_p5_angle", rr.anglesAfter.p5);
     add("remesh_mean_angle", rr.anglesAfter.mean);
     add("remesh_max_distance", rr.maxDistance);
-    add("remesh_slabs", static_cast<double>(rr.slabs));
+    add("remesh_chunks", static_cast<double>(rr.chunks));
     add("remesh_bands", static_cast<double>(rr.bands));
   }
   json += ", \"device\": \"" + engine->device().name + "\"}";

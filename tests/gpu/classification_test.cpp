@@ -72,28 +72,28 @@ TEST_F(ClassificationTest, RandomVolumesMatchReference) {
   }
 }
 
-// Slabs and the growth of the record buffer (it starts with room for 4096 records).
-TEST_F(ClassificationTest, SlabsAndBufferGrowthGiveTheSameRecords) {
+// Batches and the growth of the record buffer (it starts with room for 4096 records).
+TEST_F(ClassificationTest, BatchesAndBufferGrowthGiveTheSameRecords) {
   auto classifier = passes::Classifier::create(sharedContext());
   ASSERT_TRUE(classifier);
   const LabelVolume v = randomVolume(42, 40, 37, 30, 5);
   const std::vector<CellCase> ref = classifyCellsReference(v);
   ASSERT_GT(ref.size(), 4096u);
-  (*classifier)->setSlabBudget(static_cast<std::size_t>(40 * 37 * 2) * 4 + 4);
-  auto slabbed = (*classifier)->run(v);
-  ASSERT_TRUE(slabbed) << slabbed.error().message;
-  EXPECT_GE((*classifier)->lastSlabCount(), 10);
-  expectSameRecords(*slabbed, ref);
+  (*classifier)->setBatchBudget(static_cast<std::size_t>(40 * 37 * 2) * 4 + 4);
+  auto batchbed = (*classifier)->run(v);
+  ASSERT_TRUE(batchbed) << batchbed.error().message;
+  EXPECT_GE((*classifier)->lastBatchCount(), 10);
+  expectSameRecords(*batchbed, ref);
 }
 
 // Labels already on the device (16 and 32 bits, at an offset in the buffer), classified in
-// slabs copied on the device: the same records as the CPU reference.
-TEST_F(ClassificationTest, DeviceLabelsInSlabsMatchReference) {
+// batches copied on the device: the same records as the CPU reference.
+TEST_F(ClassificationTest, DeviceLabelsInBatchesMatchReference) {
   auto classifier = passes::Classifier::create(sharedContext());
   ASSERT_TRUE(classifier);
   const LabelVolume v = randomVolume(7, 40, 37, 30, 5);
   const std::vector<CellCase> ref = classifyCellsReference(v);
-  (*classifier)->setSlabBudget(static_cast<std::size_t>(40 * 37 * 2) * 4 + 4);
+  (*classifier)->setBatchBudget(static_cast<std::size_t>(40 * 37 * 2) * 4 + 4);
   for (std::uint32_t bits : {16u, 32u}) {
     SCOPED_TRACE(std::to_string(bits) + "-bit labels");
     const std::size_t bytes = v.labels.size() * bits / 8, offset = 12;
@@ -110,7 +110,7 @@ TEST_F(ClassificationTest, DeviceLabelsInSlabsMatchReference) {
     DeviceLabelVolume device{buffer->handle(), offset, bits, v.grid};
     auto gpu = (*classifier)->run(device);
     ASSERT_TRUE(gpu) << gpu.error().message;
-    EXPECT_GE((*classifier)->lastSlabCount(), 10);
+    EXPECT_GE((*classifier)->lastBatchCount(), 10);
     expectSameRecords(*gpu, ref);
   }
 }

@@ -70,7 +70,7 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     for (int& n : factors) n = 1 + static_cast<int>(rng.uniform(0, 6));  // 1: a gap left as it is
     factors[1] = 2 + round % 5;
     const CapShape caps = round % 2 ? CapShape::Flat : CapShape::Round;
-    (*interpolator)->setSlabBudget(round % 4 == 3 ? 1 : std::size_t{64} << 20);  // 1 byte: a slab per pair
+    (*interpolator)->setBatchBudget(round % 4 == 3 ? 1 : std::size_t{64} << 20);  // 1 byte: a batch per pair
     const std::vector<std::uint16_t> crossings = randomCrossings(rng, planes);
     const Grid fineGrid = interpolatedGrid(planes.grid, factors);
     auto words =
@@ -88,18 +88,18 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     ASSERT_TRUE(onDeviceRun) << onDeviceRun.error().message;
     EXPECT_TRUE(onDeviceRun->volume.labels.empty());  // they stayed on the device
     const DistanceWeights weights = *distanceWeights(planes.grid);
-    auto cpu =
-        interpolateVolume(planes, factors, std::size_t{64} << 20, 1, [&](const InterpolationSlab& slab, const SlabWords& store) {
-          store(interpolateSlabReference(planes, crossings, slab, weights, caps).data());
-          return Result<void>{};
-        });
+    auto cpu = interpolateVolume(planes, factors, std::size_t{64} << 20, 1,
+                                 [&](const InterpolationBatch& batch, const BatchWords& store) {
+                                   store(interpolateBatchReference(planes, crossings, batch, weights, caps).data());
+                                   return Result<void>{};
+                                 });
     ASSERT_TRUE(cpu) << cpu.error().message;
     ASSERT_EQ(gpu->volume.grid.nz, cpu->volume.grid.nz);
     ASSERT_EQ(gpu->volume.labels, cpu->volume.labels) << "round " << round;
     ASSERT_EQ(gpu->clearance, cpu->clearance) << "round " << round;
     ASSERT_EQ(onDeviceRun->clearance, cpu->clearance) << "round " << round;
-    // Small classification slabs in some rounds: slab starts off the offset alignment.
-    (*classifier)->setSlabBudget(round % 2 ? static_cast<std::size_t>(nx * ny) * 4 * 3 : std::size_t{64} << 20);
+    // Small classification batches in some rounds: batch starts off the offset alignment.
+    (*classifier)->setBatchBudget(round % 2 ? static_cast<std::size_t>(nx * ny) * 4 * 3 : std::size_t{64} << 20);
     auto onDevice = (*classifier)->runInPlace(DeviceLabelVolume{words->handle(), 0, 32, fineGrid}, words->size(), true);
     ASSERT_TRUE(onDevice) << onDevice.error().message;
     const std::vector<CellCase> reference = classifyCellsReference(cpu->volume);
@@ -109,7 +109,7 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     labelled += static_cast<std::size_t>(
         std::count_if(cpu->volume.labels.begin(), cpu->volume.labels.end(), [](Label l) { return l != 0; }));
     if (round % 4 == 3) {
-      EXPECT_GT((*interpolator)->lastSlabCount(), 1);
+      EXPECT_GT((*interpolator)->lastBatchCount(), 1);
     }
   }
   EXPECT_GT(labelled, voxels / 10);  // not an empty comparison
@@ -149,10 +149,10 @@ TEST(InterpolationDistances, FieldsAreExactEuclideanDistancesToTheCrossings) {
     const std::vector<std::uint16_t> crossings = randomCrossings(rng, planes);
     const DistanceWeights w = *distanceWeights(planes.grid);
     const PlaneCensus census = takePlaneCensus(planes, 1);
-    const InterpolationSlab slab = planInterpolationSlab(planes, census, 0, 3, {2, 2});
-    const SlabFields fields = distanceFieldsReference(planes, crossings, slab, w);
-    ASSERT_FALSE(slab.fields.empty());
-    for (const shared::DistanceField& f : slab.fields) {
+    const InterpolationBatch batch = planInterpolationBatch(planes, census, 0, 3, {2, 2});
+    const BatchFields fields = distanceFieldsReference(planes, crossings, batch, w);
+    ASSERT_FALSE(batch.fields.empty());
+    for (const shared::DistanceField& f : batch.fields) {
       auto inside = [&](int x, int y) {
         const Label l = planes.at(f.x0 + x, f.y0 + y, f.plane);
         return f.label == 0 ? l != 0 : l == f.label;
@@ -634,10 +634,10 @@ TEST_F(InterpolatedShapesTest, RoundCapsGoOnAtTheStructuresTaper) {
   EXPECT_LE(capMean, 7.0);   // measured 5.0 (14.1)
   EXPECT_LT(bottom, -19.5);  // the dome's tip nears the true pole (-19.25 with half ellipsoids)
   EXPECT_GT(bottom, -20.5);
-  double slab = 0;  // the slab rule: each plane's 256-gon times the 3 mm gap
+  double batch = 0;  // the slab rule: each plane's 256-gon times the 3 mm gap
   for (const FeatureSlice& slice : set.features[0].slices)
-    slab += 3 * 128 * (r * r - slice.z * slice.z) * std::sin(2 * std::numbers::pi / 256);
-  EXPECT_NEAR(stats(b, 0).volume, slab, 0.002 * slab);
+    batch += 3 * 128 * (r * r - slice.z * slice.z) * std::sin(2 * std::numbers::pi / 256);
+  EXPECT_NEAR(stats(b, 0).volume, batch, 0.002 * batch);
 }
 
 // Once interpolation is on (gaps of 3 pixels or more), finer pixels never make the sphere

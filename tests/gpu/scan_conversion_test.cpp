@@ -58,21 +58,21 @@ std::size_t countMismatches(const LabelVolume& gpu, const LabelVolume& ref) {
 class ScanConversionTest : public GpuTest {
  protected:
   void expectMatchesReference(const ContourSet& set, const Grid& grid, const std::vector<int>& order,
-                              std::size_t slabBudget = std::size_t{64} << 20) {
+                              std::size_t batchBudget = std::size_t{64} << 20) {
     auto converter = passes::ScanConverter::create(sharedContext());
     ASSERT_TRUE(converter) << converter.error().message;
-    (*converter)->setSlabBudget(slabBudget);
+    (*converter)->setBatchBudget(batchBudget);
     auto gpu = (*converter)->run(set, grid, order);
     ASSERT_TRUE(gpu) << gpu.error().message;
     const LabelVolume ref = referenceScanConvert(set, grid, order, (*converter)->subPixelBits());
     ASSERT_EQ(gpu->labels.size(), ref.labels.size());
     EXPECT_EQ(countMismatches(*gpu, ref), 0u);
-    lastSlabs_ = (*converter)->lastSlabCount();
+    lastBatches_ = (*converter)->lastBatchCount();
     std::size_t filled = 0;
     for (Label l : ref.labels) filled += l != kBackground;
     EXPECT_GT(filled, 0u) << "the test drew nothing";
   }
-  int lastSlabs_ = 0;
+  int lastBatches_ = 0;
 };
 
 TEST_F(ScanConversionTest, RandomConcavePolygonsWithHolesAndOverlapsMatchReference) {
@@ -179,23 +179,23 @@ TEST_F(ScanConversionTest, NestedFeatureWinsAndHoleStaysEmpty) {
   EXPECT_EQ(reversed->at(4, 4, 1), labelOfFeature(0));
 }
 
-TEST_F(ScanConversionTest, SlabsGiveTheSameVolumeAsOneSubmission) {
+TEST_F(ScanConversionTest, BatchesGiveTheSameVolumeAsOneSubmission) {
   std::mt19937 rng(7);
   const Grid grid = smallGrid(33, 29, 9);
   ContourSet set;
-  set.source = "slabs";
+  set.source = "batches";
   Feature feature{"blob", {}, {}};
   for (int s = 0; s < 9; ++s)
     feature.slices.push_back({grid.layerZ[static_cast<std::size_t>(s + 1)], {randomStar(rng, grid, 17)}});
   set.features.push_back(feature);
   const std::size_t layerBytes = static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label);
   expectMatchesReference(set, grid, {0}, 2 * layerBytes);
-  EXPECT_EQ(lastSlabs_, 5);
+  EXPECT_EQ(lastBatches_, 5);
   expectMatchesReference(set, grid, {0});
-  EXPECT_EQ(lastSlabs_, 1);
+  EXPECT_EQ(lastBatches_, 1);
 }
 
-// Labels left on the device (issue 12, item 3), in slabs of an odd-sized layer (2-byte copy
+// Labels left on the device (issue 12, item 3), in batches of an odd-sized layer (2-byte copy
 // offsets): the host copy matches the reference, and classifying the device buffer gives the
 // records of the host volume, so the device copy holds the same labels, padding included.
 TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
@@ -210,11 +210,11 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
   auto converter = passes::ScanConverter::create(sharedContext());
   auto classifier = passes::Classifier::create(sharedContext());
   ASSERT_TRUE(converter && classifier);
-  (*converter)->setSlabBudget(3 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
+  (*converter)->setBatchBudget(3 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
   LabelVolume host;
   auto device = (*converter)->runOnDevice(set, grid, {0, 1}, &host);
   ASSERT_TRUE(device) << device.error().message;
-  EXPECT_EQ((*converter)->lastSlabCount(), 3);
+  EXPECT_EQ((*converter)->lastBatchCount(), 3);
   const LabelVolume ref = referenceScanConvert(set, grid, {0, 1}, (*converter)->subPixelBits());
   ASSERT_EQ(host.labels.size(), ref.labels.size());
   EXPECT_EQ(countMismatches(host, ref), 0u);
@@ -224,16 +224,16 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
   ASSERT_FALSE(fromHost->empty());
   ASSERT_EQ(fromDevice->size(), fromHost->size());
   EXPECT_EQ(std::memcmp(fromDevice->data(), fromHost->data(), fromHost->size() * sizeof(CellCase)), 0);
-  // Bound in place, slab by slab: a layer of 1914 bytes puts most slabs off the offset
-  // alignment, so the shader skips the labels before the slab's first.
+  // Bound in place, batch by batch: a layer of 1914 bytes puts most batches off the offset
+  // alignment, so the shader skips the labels before the batch's first.
   auto deviceOnly = (*converter)->runOnDevice(set, grid, {0, 1}, nullptr);
   ASSERT_TRUE(deviceOnly);
-  (*classifier)->setSlabBudget(4 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
+  (*classifier)->setBatchBudget(4 * static_cast<std::size_t>(grid.nx * grid.ny) * sizeof(Label));
   auto inPlace =
       (*classifier)
           ->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 0, 16, deviceOnly->grid}, deviceOnly->buffer.size());
   ASSERT_TRUE(inPlace) << inPlace.error().message;
-  EXPECT_EQ((*classifier)->lastSlabCount(), 5);  // 2 cell layers each
+  EXPECT_EQ((*classifier)->lastBatchCount(), 5);  // 2 cell layers each
   ASSERT_EQ(inPlace->size(), fromHost->size());
   EXPECT_EQ(std::memcmp(inPlace->data(), fromHost->data(), fromHost->size() * sizeof(CellCase)), 0);
   auto tooSmall =

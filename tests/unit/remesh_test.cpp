@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "geometry/extraction/feature_surfaces.h"
+#include "geometry/remesh/remesh_chunks.h"
 #include "geometry/remesh/remesh_network.h"
 #include "geometry/remesh/remesh_reference.h"
-#include "geometry/remesh/remesh_slabs.h"
 #include "geometry/smoothing/smooth_mesh.h"
 #include "support/intersections.h"
 #include "support/shapes.h"
@@ -34,15 +34,15 @@ RemeshOptions remeshOn(double edgeLength = 0) {
   return o;
 }
 
-// How remeshMesh splits the work: its default (these shapes are one slab), or slabs of about
+// How remeshMesh splits the work: its default (these shapes are one chunk), or chunks of about
 // this many triangles, on this many threads.
-struct Slabs {
-  std::size_t triangles = kTrianglesPerSlab;
+struct Chunks {
+  std::size_t triangles = kTrianglesPerChunk;
   int threads = 0;
 };
 
-RemeshReport remesh(Built& b, const RemeshOptions& options = remeshOn(), Slabs slabs = {}) {
-  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options, slabs.threads, slabs.triangles);
+RemeshReport remesh(Built& b, const RemeshOptions& options = remeshOn(), Chunks chunks = {}) {
+  const RemeshReport r = remeshMesh(b.mesh, b.grid, &b.set, b.nesting, options, chunks.threads, chunks.triangles);
   refreshFeatures(b);
   return r;
 }
@@ -85,7 +85,7 @@ constexpr double kMinAngleTarget = 10, kP5AngleTarget = 30;
 // Smooths and remeshes `set`, checking everything remeshing promises against the smoothed mesh
 // and the angle targets (p5Target: the 5th percentile's, lower for a shape that misses it).
 Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& options = remeshOn(),
-                  double p5Target = kP5AngleTarget, Slabs slabs = {}) {
+                  double p5Target = kP5AngleTarget, Chunks chunks = {}) {
   Built b = buildCpu(set, voxel);
   const auto t0 = std::chrono::steady_clock::now();
   smoothWithDefaults(b);
@@ -93,7 +93,7 @@ Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& opti
   const SurfaceSnapshot surfaces = snapshotSurfaces(b);
   const auto areas = areaByPair(b.mesh);
   const auto t2 = std::chrono::steady_clock::now();
-  const RemeshReport r = remesh(b, options, slabs);
+  const RemeshReport r = remesh(b, options, chunks);
   const auto t3 = std::chrono::steady_clock::now();
   EXPECT_TRUE(r.ran);
   EXPECT_TRUE(b.mesh.keys.empty());
@@ -307,53 +307,53 @@ TEST(Remesh, SameResultForAnyThreadCount) {
   Built two = one;
   smoothWithDefaults(one, 1);
   smoothWithDefaults(two, 2);
-  EXPECT_EQ(remesh(one).slabs, 1u);  // small enough to be remeshed whole
+  EXPECT_EQ(remesh(one).chunks, 1u);  // small enough to be remeshed whole
   EXPECT_EQ(remesh(two).bands, 0u);
   EXPECT_EQ(one.mesh.positions, two.mesh.positions);
   EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
   EXPECT_EQ(one.mesh.labels, two.mesh.labels);
 }
 
-// ---------------------------------------------------------------- slabs
+// ---------------------------------------------------------------- chunks
 
-// The phantom at 1 mm (290 594 triangles) in slabs of 60 000: three slabs and two bands (the
-// slabs are at least five band widths thick), each slab and band remeshed with its rim pinned.
+// The phantom at 1 mm (290 594 triangles) in chunks of 60 000: three chunks and two bands (the
+// chunks are at least five band widths thick), each chunk and band remeshed with its rim pinned.
 // Everything checkRemesh checks holds across the cuts.
-TEST(RemeshSlabs, PhantomInSlabsKeepsEveryGuarantee) {
-  const Built b = checkRemesh(phantomContours(), 1.0, remeshOn(), kP5AngleTarget, Slabs{60'000, 2});
+TEST(RemeshChunks, PhantomInChunksKeepsEveryGuarantee) {
+  const Built b = checkRemesh(phantomContours(), 1.0, remeshOn(), kP5AngleTarget, Chunks{60'000, 2});
   expectSharedInterfaces(b);
   EXPECT_GE(minAngles(b.mesh).min, 15.0);
 }
 
-TEST(RemeshSlabs, SameResultOnAnyThreadCount) {
+TEST(RemeshChunks, SameResultOnAnyThreadCount) {
   Built smoothed = buildCpu(phantomContours(), 2.0);
   smoothWithDefaults(smoothed);
-  const remesh::SlabPlan plan = remesh::planSlabs(smoothed.mesh, 2.3, 15'000);
+  const remesh::ChunkPlan plan = remesh::planChunks(smoothed.mesh, 2.3, 15'000);
   ASSERT_GE(plan.phases[0].size(), 2u);
   Built two = smoothed;
-  const RemeshReport r = remesh(two, remeshOn(), Slabs{15'000, 2});
-  EXPECT_EQ(r.slabs, plan.phases[0].size());
+  const RemeshReport r = remesh(two, remeshOn(), Chunks{15'000, 2});
+  EXPECT_EQ(r.chunks, plan.phases[0].size());
   EXPECT_EQ(r.bands, plan.phases[1].size());
   for (int threads : {1, 3}) {
     Built other = smoothed;
-    remesh(other, remeshOn(), Slabs{15'000, threads});
+    remesh(other, remeshOn(), Chunks{15'000, threads});
     EXPECT_EQ(other.mesh.positions, two.mesh.positions) << threads << " threads";
     EXPECT_EQ(other.mesh.triangles, two.mesh.triangles) << threads << " threads";
     EXPECT_EQ(other.mesh.labels, two.mesh.labels) << threads << " threads";
   }
 }
 
-TEST(RemeshSlabs, PlanCutsAtQuantilesAndBandsAroundEachCut) {
+TEST(RemeshChunks, PlanCutsAtQuantilesAndBandsAroundEachCut) {
   Built b = buildCpu(phantomContours(), 1.0);
   smoothWithDefaults(b);
-  const remesh::SlabPlan whole = remesh::planSlabs(b.mesh, 1.15, 0);
+  const remesh::ChunkPlan whole = remesh::planChunks(b.mesh, 1.15, 0);
   ASSERT_EQ(whole.phases[0].size(), 1u);
   EXPECT_TRUE(whole.phases[0][0].whole());
   EXPECT_TRUE(whole.phases[1].empty());
-  const remesh::SlabPlan plan = remesh::planSlabs(b.mesh, 1.15, 60'000);
+  const remesh::ChunkPlan plan = remesh::planChunks(b.mesh, 1.15, 60'000);
   ASSERT_GE(plan.phases[0].size(), 3u);
   ASSERT_EQ(plan.phases[1].size(), plan.phases[0].size() - 1);
-  std::size_t centred = 0;  // every triangle is centred in one slab
+  std::size_t centred = 0;  // every triangle is centred in one chunk
   for (const remesh::WorkUnit& u : plan.phases[0]) centred += u.triangles;
   EXPECT_EQ(centred, b.mesh.triangleCount());
   for (std::size_t i = 0; i + 1 < plan.phases[0].size(); ++i) {

@@ -1,4 +1,4 @@
-// scansurf: interpolated label volumes slab by slab (see interpolated_volume.h).
+// scansurf: interpolated label volumes batch by batch (see interpolated_volume.h).
 #include "geometry/interpolation/interpolated_volume.h"
 
 #include <algorithm>
@@ -9,23 +9,23 @@
 namespace scansurf {
 namespace {
 
-// A slab from layer `first` as long as its plan stays within the budget (two layers at least):
+// A batch from layer `first` as long as its plan stays within the budget (two layers at least):
 // as many planes as the estimate lets in, fewer if the plan turns out larger.
-InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census, int first, const std::vector<int>& factors,
-                           std::size_t slabBytes, const std::vector<bool>& containers) {
+InterpolationBatch planBatch(const LabelVolume& volume, const PlaneCensus& census, int first, const std::vector<int>& factors,
+                             std::size_t batchBytes, const std::vector<bool>& containers) {
   int planes = 0;
   std::size_t estimate = 0;
   while (first + planes < volume.grid.nz) {
     const int k = first + planes;
     estimate += estimatePlaneBytes(volume, census, k, k < volume.grid.nz - 1 ? factors[static_cast<std::size_t>(k)] : 1);
-    if (planes >= 2 && estimate > slabBytes) break;
+    if (planes >= 2 && estimate > batchBytes) break;
     ++planes;
   }
   for (;;) {
-    InterpolationSlab slab = planInterpolationSlab(volume, census, first, planes, factors, containers);
-    const std::size_t bytes = slab.deviceBytes(volume.grid);
-    if (bytes <= slabBytes || planes <= 2) return slab;
-    const double fit = static_cast<double>(slabBytes) / static_cast<double>(bytes);
+    InterpolationBatch batch = planInterpolationBatch(volume, census, first, planes, factors, containers);
+    const std::size_t bytes = batch.deviceBytes(volume.grid);
+    if (bytes <= batchBytes || planes <= 2) return batch;
+    const double fit = static_cast<double>(batchBytes) / static_cast<double>(bytes);
     planes = std::max(2, std::min(planes - 1, static_cast<int>(planes * fit * 0.9)));
   }
 }
@@ -34,7 +34,7 @@ InterpolationSlab planSlab(const LabelVolume& volume, const PlaneCensus& census,
 // and a neighbour of another label then lies near that neighbour.
 constexpr std::uint16_t kKeptClearance = 16;
 
-// keepSlabTopology on one pair's layers of the slab's words.
+// keepSlabTopology on one pair's layers of the batch's words.
 void keepTopologyOfPair(std::uint32_t* words, const LabelVolume& volume, const shared::PairPlan& pair, int planeA) {
   const Grid& g = volume.grid;
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
@@ -60,8 +60,8 @@ void storePair(const std::uint32_t* words, const shared::PairPlan& pair, std::si
   }
 }
 
-Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
-                                             int threads, const SlabInterpolator& interpolate, bool withLabels,
+Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t batchBytes,
+                                             int threads, const BatchInterpolator& interpolate, bool withLabels,
                                              const std::vector<bool>& containers) {
   const Grid& g = volume.grid;
   if (factors.size() + 1 != static_cast<std::size_t>(g.nz))
@@ -82,15 +82,15 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
 
   const PlaneCensus census = takePlaneCensus(volume, threads);
   for (int first = 0; first + 1 < g.nz;) {
-    const InterpolationSlab slab = planSlab(volume, census, first, factors, slabBytes, containers);
-    if (slab.outputLayers > 0) {
-      SCANSURF_TRY(interpolate(slab, [&](std::uint32_t* words) {
-        for (const shared::PairPlan& pair : slab.pairs) keepTopologyOfPair(words, volume, pair, slab.firstPlane + pair.planeA);
-        for (const shared::PairPlan& pair : slab.pairs)
-          storePair(words, pair, plane, fineOf[static_cast<std::size_t>(slab.firstPlane + pair.planeA)], out);
+    const InterpolationBatch batch = planBatch(volume, census, first, factors, batchBytes, containers);
+    if (batch.outputLayers > 0) {
+      SCANSURF_TRY(interpolate(batch, [&](std::uint32_t* words) {
+        for (const shared::PairPlan& pair : batch.pairs) keepTopologyOfPair(words, volume, pair, batch.firstPlane + pair.planeA);
+        for (const shared::PairPlan& pair : batch.pairs)
+          storePair(words, pair, plane, fineOf[static_cast<std::size_t>(batch.firstPlane + pair.planeA)], out);
       }));
     }
-    first += slab.planes - 1;
+    first += batch.planes - 1;
   }
   return out;
 }

@@ -1,5 +1,5 @@
-// scansurf: a label volume with interpolated layers, made slab by slab (any volume size) by
-// an interpolator of one slab: the GPU passes or the CPU reference.
+// scansurf: a label volume with interpolated layers, made batch by batch (any volume size) by
+// an interpolator of one batch: the GPU passes or the CPU reference.
 #pragma once
 
 #include <functional>
@@ -9,11 +9,11 @@
 
 namespace scansurf {
 
-// The slab's output layers, InterpolationSlab::outputLayers of nx * ny words, each
+// The batch's output layers, InterpolationBatch::outputLayers of nx * ny words, each
 // label | clearance << 16, are handed to `store` (valid during that call), which may rewrite
 // them: what it leaves is what the interpolator keeps (kept_topology.h).
-using SlabWords = std::function<void(std::uint32_t* words)>;
-using SlabInterpolator = std::function<Result<void>(const InterpolationSlab& slab, const SlabWords& store)>;
+using BatchWords = std::function<void(std::uint32_t* words)>;
+using BatchInterpolator = std::function<Result<void>(const InterpolationBatch& batch, const BatchWords& store)>;
 
 struct InterpolatedVolume {
   // Its labels are empty when asked for the clearances only (the labels stayed on the device).
@@ -25,11 +25,11 @@ struct InterpolatedVolume {
 
 // The volume on interpolatedGrid(volume.grid, factors): the original layers as they are, the
 // others from `interpolate` with the topology of the slab rule kept in every gap
-// (keepSlabTopology), in slabs whose plan needs at most about slabBytes (at least two
+// (keepSlabTopology), in batches whose plan needs at most about batchBytes (at least two
 // layers each). Without `withLabels`, only the grid and the clearances. containers: as
-// planInterpolationSlab's.
-Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t slabBytes,
-                                             int threads, const SlabInterpolator& interpolate, bool withLabels = true,
+// planInterpolationBatch's.
+Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const std::vector<int>& factors, std::size_t batchBytes,
+                                             int threads, const BatchInterpolator& interpolate, bool withLabels = true,
                                              const std::vector<bool>& containers = {});
 
 }  // namespace scansurf

@@ -86,7 +86,7 @@ std::int32_t deepDistance(const Grid& grid) {
   return static_cast<std::int32_t>(4 * kFieldPixel * std::ceil(ratio - 1e-9));
 }
 
-std::size_t InterpolationSlab::deviceBytes(const Grid& grid) const {
+std::size_t InterpolationBatch::deviceBytes(const Grid& grid) const {
   const std::size_t plane = static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny);
   return plane * static_cast<std::size_t>(planes) * sizeof(Label) + (fieldValues + scratchInts + fields.size()) * 4 +
          plane * static_cast<std::size_t>(outputLayers) * 4 + (tileRanges.size() + tileEntries.size()) * 4 +
@@ -157,51 +157,52 @@ std::vector<bool> overlappingLabels(const LabelVolume& volume, int a) {
 
 int roundHalfAway(double v) { return static_cast<int>(std::lround(v)); }
 
-class SlabPlanner {
+class BatchPlanner {
  public:
-  SlabPlanner(const LabelVolume& volume, const PlaneCensus& census, const std::vector<bool>& containers, InterpolationSlab& slab)
-      : g_(volume.grid), volume_(volume), census_(census), containers_(containers), slab_(slab) {}
+  BatchPlanner(const LabelVolume& volume, const PlaneCensus& census, const std::vector<bool>& containers,
+               InterpolationBatch& batch)
+      : g_(volume.grid), volume_(volume), census_(census), containers_(containers), batch_(batch) {}
 
   void addFields() {
-    for (int p = 0; p < slab_.planes; ++p) {
-      const int k = slab_.firstPlane + p;
-      planeFields_.push_back(slab_.fields.size());
+    for (int p = 0; p < batch_.planes; ++p) {
+      const int k = batch_.firstPlane + p;
+      planeFields_.push_back(batch_.fields.size());
       for (const LabelCensus& c : census_[static_cast<std::size_t>(k)]) {
         const Box b = fieldWindow(g_, census_, k, c.label);
         shared::DistanceField f{b.x0, b.y0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1, p, c.label, 0, 0};
         const std::size_t area = static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h);
-        f.offset = static_cast<std::int32_t>(slab_.fieldValues);
-        f.scratch = static_cast<std::int32_t>(slab_.scratchInts);
-        slab_.fieldValues += area;
-        slab_.scratchInts += 7 * area + static_cast<std::size_t>(f.w + f.h);
-        slab_.fields.push_back(f);
+        f.offset = static_cast<std::int32_t>(batch_.fieldValues);
+        f.scratch = static_cast<std::int32_t>(batch_.scratchInts);
+        batch_.fieldValues += area;
+        batch_.scratchInts += 7 * area + static_cast<std::size_t>(f.w + f.h);
+        batch_.fields.push_back(f);
       }
     }
   }
 
   void addPair(int p, int factor) {
-    const int k = slab_.firstPlane + p;
+    const int k = batch_.firstPlane + p;
     const bool last = k + 2 == g_.nz;  // plane B is the volume's last layer: its clearance too
-    shared::PairPlan pair{p, factor, slab_.outputLayers, static_cast<std::int32_t>(slab_.tileRanges.size() / 2),
+    shared::PairPlan pair{p, factor, batch_.outputLayers, static_cast<std::int32_t>(batch_.tileRanges.size() / 2),
                           factor + (last ? 1 : 0)};
-    slab_.outputLayers += pair.layers;
-    const std::size_t firstEntry = slab_.entries.size();
+    batch_.outputLayers += pair.layers;
+    const std::size_t firstEntry = batch_.entries.size();
     addEntries(p, k);
     markTouchingCaps(k, firstEntry);
     addLayerTables(firstEntry, k, factor);
     addTiles(firstEntry);
-    slab_.pairs.push_back(pair);
+    batch_.pairs.push_back(pair);
   }
 
  private:
   // Fields are in plane order, each plane's by label.
   int fieldOf(int p, Label label) const {
-    const auto first = slab_.fields.begin() + static_cast<std::ptrdiff_t>(planeFields_[static_cast<std::size_t>(p)]);
+    const auto first = batch_.fields.begin() + static_cast<std::ptrdiff_t>(planeFields_[static_cast<std::size_t>(p)]);
     const auto last = static_cast<std::size_t>(p + 1) < planeFields_.size()
-                          ? slab_.fields.begin() + static_cast<std::ptrdiff_t>(planeFields_[static_cast<std::size_t>(p + 1)])
-                          : slab_.fields.end();
+                          ? batch_.fields.begin() + static_cast<std::ptrdiff_t>(planeFields_[static_cast<std::size_t>(p + 1)])
+                          : batch_.fields.end();
     const auto it = std::lower_bound(first, last, label, [](const shared::DistanceField& f, Label l) { return f.label < l; });
-    return it != last && it->label == label ? static_cast<int>(it - slab_.fields.begin()) : -1;
+    return it != last && it->label == label ? static_cast<int>(it - batch_.fields.begin()) : -1;
   }
 
   void addEntries(int p, int k) {
@@ -217,7 +218,7 @@ class SlabPlanner {
       shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1, 0, -1};
       for (int f : {e.fieldA, e.fieldB}) {
         if (f < 0) continue;
-        const shared::DistanceField& d = slab_.fields[static_cast<std::size_t>(f)];
+        const shared::DistanceField& d = batch_.fields[static_cast<std::size_t>(f)];
         e.x0 = std::min(e.x0, d.x0), e.y0 = std::min(e.y0, d.y0);
         e.x1 = std::max(e.x1, d.x0 + d.w - 1), e.y1 = std::max(e.y1, d.y0 + d.h - 1);
       }
@@ -232,27 +233,27 @@ class SlabPlanner {
                                    static_cast<double>(ca.sumY) / static_cast<double>(ca.count));
         }
       }
-      slab_.entries.push_back(e);
+      batch_.entries.push_back(e);
     }
   }
 
   // Each feature's entry gets its place for factor + 1 values in the layer table: area-keeping
-  // offsets on both planes (not for a container: see planInterpolationSlab), dome erosions on
+  // offsets on both planes (not for a container: see planInterpolationBatch), dome erosions on
   // one plane only. The union has none: one offset for several features grew one at another's
   // cost, and a union's dome, sized by every feature's area together, grew the largest cap.
   void addLayerTables(std::size_t first, int k, int factor) {
-    for (std::size_t i = first; i < slab_.entries.size(); ++i) {
-      shared::PairEntry& e = slab_.entries[i];
+    for (std::size_t i = first; i < batch_.entries.size(); ++i) {
+      shared::PairEntry& e = batch_.entries[i];
       const bool both = e.fieldA >= 0 && e.fieldB >= 0;
       if (e.label == kBackground || (both && (factor < 2 || contains(static_cast<Label>(e.label))))) continue;
-      e.layerTable = static_cast<std::int32_t>(slab_.layerInts);
+      e.layerTable = static_cast<std::int32_t>(batch_.layerInts);
       if (both)
-        slab_.blendedEntries.push_back({i, factor, slab_.layerInts});
+        batch_.blendedEntries.push_back({i, factor, batch_.layerInts});
       else
-        slab_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, slab_.layerInts,
-                                       e.fieldA >= 0 ? capTaper(g_, census_, static_cast<Label>(e.label), k, k - 1, k + 1)
-                                                     : capTaper(g_, census_, static_cast<Label>(e.label), k + 1, k + 2, k)});
-      slab_.layerInts += static_cast<std::size_t>(factor) + 1;
+        batch_.cappedEntries.push_back({e.fieldA >= 0 ? e.fieldA : e.fieldB, factor, batch_.layerInts,
+                                        e.fieldA >= 0 ? capTaper(g_, census_, static_cast<Label>(e.label), k, k - 1, k + 1)
+                                                      : capTaper(g_, census_, static_cast<Label>(e.label), k + 1, k + 2, k)});
+      batch_.layerInts += static_cast<std::size_t>(factor) + 1;
     }
   }
 
@@ -263,8 +264,8 @@ class SlabPlanner {
   void markTouchingCaps(int k, std::size_t first) {
     std::vector<char> endsA(65536, 0), endsB(65536, 0);
     bool any = false;
-    for (std::size_t i = first; i < slab_.entries.size(); ++i) {
-      const shared::PairEntry& e = slab_.entries[i];
+    for (std::size_t i = first; i < batch_.entries.size(); ++i) {
+      const shared::PairEntry& e = batch_.entries[i];
       if (e.label == kBackground) continue;
       if (e.fieldB < 0) endsA[static_cast<std::size_t>(e.label)] = 1, any = true;
       if (e.fieldA < 0) endsB[static_cast<std::size_t>(e.label)] = 1, any = true;
@@ -278,8 +279,8 @@ class SlabPlanner {
         const Label a = volume_.at(x, y, k), b = volume_.at(x, y, k + 1);
         if (endsA[a] && endsB[b]) touching[a] = touching[b] = 1;
       }
-    for (std::size_t i = first; i < slab_.entries.size(); ++i)
-      if (touching[static_cast<std::size_t>(slab_.entries[i].label)]) slab_.entries[i].flatCap = 1;
+    for (std::size_t i = first; i < batch_.entries.size(); ++i)
+      if (touching[static_cast<std::size_t>(batch_.entries[i].label)]) batch_.entries[i].flatCap = 1;
   }
 
   void markTouching(int k, const std::vector<char>& ends, std::vector<char>& touching) const {
@@ -293,22 +294,22 @@ class SlabPlanner {
   }
 
   void addTiles(std::size_t firstEntry) {
-    const int tiles = slab_.tilesX * slab_.tilesY;
+    const int tiles = batch_.tilesX * batch_.tilesY;
     std::vector<std::vector<std::int32_t>> lists(static_cast<std::size_t>(tiles));
-    for (std::size_t i = firstEntry; i < slab_.entries.size(); ++i) {
-      const shared::PairEntry& e = slab_.entries[i];
+    for (std::size_t i = firstEntry; i < batch_.entries.size(); ++i) {
+      const shared::PairEntry& e = batch_.entries[i];
       for (int ty = e.y0 / kTileSize; ty <= e.y1 / kTileSize; ++ty)
         for (int tx = e.x0 / kTileSize; tx <= e.x1 / kTileSize; ++tx)
-          lists[static_cast<std::size_t>(tx + slab_.tilesX * ty)].push_back(static_cast<std::int32_t>(i));
+          lists[static_cast<std::size_t>(tx + batch_.tilesX * ty)].push_back(static_cast<std::int32_t>(i));
     }
     for (const auto& list : lists) {
       const bool moving = std::any_of(list.begin(), list.end(), [&](std::int32_t i) {
-        const shared::PairEntry& e = slab_.entries[static_cast<std::size_t>(i)];
+        const shared::PairEntry& e = batch_.entries[static_cast<std::size_t>(i)];
         return e.shiftX != 0 || e.shiftY != 0;
       });
-      slab_.tileRanges.push_back(static_cast<std::int32_t>(slab_.tileEntries.size()));
-      slab_.tileRanges.push_back(static_cast<std::int32_t>(list.size()) | (moving ? kMovingTile : 0));
-      slab_.tileEntries.insert(slab_.tileEntries.end(), list.begin(), list.end());
+      batch_.tileRanges.push_back(static_cast<std::int32_t>(batch_.tileEntries.size()));
+      batch_.tileRanges.push_back(static_cast<std::int32_t>(list.size()) | (moving ? kMovingTile : 0));
+      batch_.tileEntries.insert(batch_.tileEntries.end(), list.begin(), list.end());
     }
   }
 
@@ -316,7 +317,7 @@ class SlabPlanner {
   const LabelVolume& volume_;
   const PlaneCensus& census_;
   const std::vector<bool>& containers_;
-  InterpolationSlab& slab_;
+  InterpolationBatch& batch_;
   std::vector<std::size_t> planeFields_;  // first field of each plane
 
   bool contains(Label label) const { return label < containers_.size() && containers_[label]; }
@@ -345,18 +346,18 @@ PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads) {
   return census;
 }
 
-InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
-                                        const std::vector<int>& factors, const std::vector<bool>& containers) {
-  InterpolationSlab slab;
-  slab.firstPlane = firstPlane;
-  slab.planes = planes;
-  slab.tilesX = (volume.grid.nx + kTileSize - 1) / kTileSize;
-  slab.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
-  slab.blendLimit = deepDistance(volume.grid) * 3 / 4;  // within the label's window (kWindowMargin)
-  SlabPlanner planner(volume, census, containers, slab);
+InterpolationBatch planInterpolationBatch(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
+                                          const std::vector<int>& factors, const std::vector<bool>& containers) {
+  InterpolationBatch batch;
+  batch.firstPlane = firstPlane;
+  batch.planes = planes;
+  batch.tilesX = (volume.grid.nx + kTileSize - 1) / kTileSize;
+  batch.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
+  batch.blendLimit = deepDistance(volume.grid) * 3 / 4;  // within the label's window (kWindowMargin)
+  BatchPlanner planner(volume, census, containers, batch);
   planner.addFields();
   for (int p = 0; p + 1 < planes; ++p) planner.addPair(p, factors[static_cast<std::size_t>(firstPlane + p)]);
-  return slab;
+  return batch;
 }
 
 namespace {
@@ -459,24 +460,24 @@ void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& field
   }
 }
 
-std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const std::vector<const std::int32_t*>& fieldValues,
+std::vector<std::int32_t> buildLayerTable(const InterpolationBatch& batch, const std::vector<const std::int32_t*>& fieldValues,
                                           int threads) {
-  std::vector<std::int32_t> table(slab.layerInts, -1);
-  const std::size_t caps = slab.cappedEntries.size();
-  parallelChunks(caps + slab.blendedEntries.size(), threads, [&](int, std::size_t begin, std::size_t end) {
+  std::vector<std::int32_t> table(batch.layerInts, -1);
+  const std::size_t caps = batch.cappedEntries.size();
+  parallelChunks(caps + batch.blendedEntries.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       if (i < caps) {
-        const InterpolationSlab::CappedEntry& ref = slab.cappedEntries[i];
-        const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(ref.field)];
+        const InterpolationBatch::CappedEntry& ref = batch.cappedEntries[i];
+        const shared::DistanceField& f = batch.fields[static_cast<std::size_t>(ref.field)];
         domeErosions(fieldValues[static_cast<std::size_t>(ref.field)],
                      static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h), ref.factor, ref.taper,
                      table.data() + ref.table);
         continue;
       }
-      const InterpolationSlab::BlendedEntry& ref = slab.blendedEntries[i - caps];
-      const shared::PairEntry& e = slab.entries[ref.entry];
+      const InterpolationBatch::BlendedEntry& ref = batch.blendedEntries[i - caps];
+      const shared::PairEntry& e = batch.entries[ref.entry];
       const auto a = static_cast<std::size_t>(e.fieldA), b = static_cast<std::size_t>(e.fieldB);
-      blendOffsets(e, slab.fields[a], fieldValues[a], slab.fields[b], fieldValues[b], ref.factor, slab.blendLimit,
+      blendOffsets(e, batch.fields[a], fieldValues[a], batch.fields[b], fieldValues[b], ref.factor, batch.blendLimit,
                    table.data() + ref.table);
     }
   });

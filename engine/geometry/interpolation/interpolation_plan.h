@@ -87,7 +87,7 @@ std::int32_t deepDistance(const Grid& grid);
 
 // Pairs of planes [firstPlane, firstPlane + planes) of the volume: the distance fields of those
 // planes, each pair's entries and their tile lists.
-struct InterpolationSlab {
+struct InterpolationBatch {
   int firstPlane = 0;
   int planes = 0;
   int outputLayers = 0;  // layers m = 0 .. factor of each of its pairs
@@ -120,7 +120,7 @@ struct InterpolationSlab {
   std::size_t deviceBytes(const Grid& grid) const;
 };
 
-// Where each label lies on each layer of a volume, read once; every slab's plan uses it.
+// Where each label lies on each layer of a volume, read once; every batch's plan uses it.
 struct LabelCensus {
   Label label = 0;  // 0: the union of every non-background label
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
@@ -129,14 +129,14 @@ struct LabelCensus {
 using PlaneCensus = std::vector<std::vector<LabelCensus>>;  // per layer, by label (union first)
 PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads);
 
-// About what plane k adds to a slab's device memory (its fields, labels and output layers).
+// About what plane k adds to a batch's device memory (its fields, labels and output layers).
 std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& census, int k, int factor);
 
 // containers[label]: the label's feature contains another (Nesting::parent); its boundary
 // with what it contains is that feature's, so it keeps no area of its own between planes (its
 // own region has holes that come and go with its contents' caps).
-InterpolationSlab planInterpolationSlab(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
-                                        const std::vector<int>& factors, const std::vector<bool>& containers = {});
+InterpolationBatch planInterpolationBatch(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
+                                          const std::vector<int>& factors, const std::vector<bool>& containers = {});
 
 // Round caps: a dome that holds what a flat half slab holds, whatever the outline's shape, and
 // leaves its plane at the taper the structure had there. Its cross-section at height s (in
@@ -180,11 +180,11 @@ inline std::int32_t fieldValue(const shared::DistanceField& f, const std::int32_
   return values[static_cast<std::size_t>(x - f.x0) + static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
 }
 
-// The layer table (PairEntry::layerTable) of slab.layerInts: every round-capped entry's dome
+// The layer table (PairEntry::layerTable) of batch.layerInts: every round-capped entry's dome
 // erosions and every blended entry's offsets, from the fields' values (fieldValues[field]:
 // its window, as DistanceField::offset addresses; null for a field no entry needs), the
 // entries shared among threads (the same table for any count).
-std::vector<std::int32_t> buildLayerTable(const InterpolationSlab& slab, const std::vector<const std::int32_t*>& fieldValues,
+std::vector<std::int32_t> buildLayerTable(const InterpolationBatch& batch, const std::vector<const std::int32_t*>& fieldValues,
                                           int threads);
 
 // round(a / n), halves away from zero, for n > 0: how far a shifting label has moved at layer a of n.

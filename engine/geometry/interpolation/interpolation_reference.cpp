@@ -121,13 +121,13 @@ void fieldReference(const LabelVolume& volume, const std::vector<std::uint16_t>&
 
 struct Sampler {
   const LabelVolume& volume;
-  const InterpolationSlab& slab;
-  const SlabFields& fields;
+  const InterpolationBatch& batch;
+  const BatchFields& fields;
   CapShape caps;
   std::int32_t deep;
 
   std::int32_t at(int field, int x, int y) const {
-    const shared::DistanceField& f = slab.fields[static_cast<std::size_t>(field)];
+    const shared::DistanceField& f = batch.fields[static_cast<std::size_t>(field)];
     return fieldValue(f, fields.values.data() + f.offset, x, y);
   }
 
@@ -161,10 +161,10 @@ struct Sampler {
 
   // Whether the voxel lies deep inside one label on both planes (see interpolation_plan.h).
   bool deepInside(const shared::PairPlan& pair, int x, int y, std::int32_t first, std::int32_t count) const {
-    const Label a = volume.at(x, y, slab.firstPlane + pair.planeA), b = volume.at(x, y, slab.firstPlane + pair.planeA + 1);
+    const Label a = volume.at(x, y, batch.firstPlane + pair.planeA), b = volume.at(x, y, batch.firstPlane + pair.planeA + 1);
     if (a != b) return false;
     for (std::int32_t i = first; i < first + count; ++i) {
-      const shared::PairEntry& e = slab.entries[static_cast<std::size_t>(slab.tileEntries[static_cast<std::size_t>(i)])];
+      const shared::PairEntry& e = batch.entries[static_cast<std::size_t>(batch.tileEntries[static_cast<std::size_t>(i)])];
       if (e.label != a) continue;
       if (e.fieldA < 0 || e.fieldB < 0) return false;
       return std::abs(at(e.fieldA, x, y)) >= deep && std::abs(at(e.fieldB, x, y)) >= deep;
@@ -174,16 +174,16 @@ struct Sampler {
 
   // The label | clearance << 16 word of the voxel (as interpolate.comp writes it).
   std::uint32_t word(const shared::PairPlan& pair, int m, int x, int y) const {
-    const int tile = x / kTileSize + slab.tilesX * (y / kTileSize);
-    const std::int32_t first = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile)];
-    const std::int32_t flagged = slab.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile) + 1];
+    const int tile = x / kTileSize + batch.tilesX * (y / kTileSize);
+    const std::int32_t first = batch.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile)];
+    const std::int32_t flagged = batch.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile) + 1];
     const std::int32_t count = flagged & ~kMovingTile;
     if (!(flagged & kMovingTile) && deepInside(pair, x, y, first, count))
-      return volume.at(x, y, slab.firstPlane + pair.planeA) | 0xFFFF0000u;
+      return volume.at(x, y, batch.firstPlane + pair.planeA) | 0xFFFF0000u;
     std::int32_t best = kFarAway, second = kFarAway, united = kFarAway, extruded = 0, capMargin = kFarAway;
     Label winner = kBackground, extrudedLabel = kBackground;
     for (std::int32_t i = first; i < first + count; ++i) {
-      const shared::PairEntry& e = slab.entries[static_cast<std::size_t>(slab.tileEntries[static_cast<std::size_t>(i)])];
+      const shared::PairEntry& e = batch.entries[static_cast<std::size_t>(batch.tileEntries[static_cast<std::size_t>(i)])];
       if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
       bool wins = true;
       const std::int32_t v = value(e, m, pair.factor, x, y, wins);
@@ -252,29 +252,29 @@ std::int32_t farDistance(const Grid& grid, const DistanceWeights& weights) {
   return weights.unit * (std::max(grid.nx, grid.ny) + 1);
 }
 
-SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                   const InterpolationSlab& slab, const DistanceWeights& weights) {
-  SlabFields out;
-  out.values.resize(slab.fieldValues);
-  for (std::size_t i = 0; i < slab.fields.size(); ++i) {
-    const shared::DistanceField& f = slab.fields[i];
-    fieldReference(volume, crossings, slab.firstPlane + f.plane, f, weights, out.values.data() + f.offset);
+BatchFields distanceFieldsReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                    const InterpolationBatch& batch, const DistanceWeights& weights) {
+  BatchFields out;
+  out.values.resize(batch.fieldValues);
+  for (std::size_t i = 0; i < batch.fields.size(); ++i) {
+    const shared::DistanceField& f = batch.fields[i];
+    fieldReference(volume, crossings, batch.firstPlane + f.plane, f, weights, out.values.data() + f.offset);
   }
   std::vector<const std::int32_t*> values;
-  for (const shared::DistanceField& f : slab.fields) values.push_back(out.values.data() + f.offset);
-  out.layerTable = buildLayerTable(slab, values, 1);
+  for (const shared::DistanceField& f : batch.fields) values.push_back(out.values.data() + f.offset);
+  out.layerTable = buildLayerTable(batch, values, 1);
   return out;
 }
 
-std::vector<std::uint32_t> interpolateSlabReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                                    const InterpolationSlab& slab, const DistanceWeights& weights,
-                                                    CapShape caps) {
+std::vector<std::uint32_t> interpolateBatchReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                                     const InterpolationBatch& batch, const DistanceWeights& weights,
+                                                     CapShape caps) {
   const Grid& g = volume.grid;
-  const SlabFields fields = distanceFieldsReference(volume, crossings, slab, weights);
-  const Sampler sampler{volume, slab, fields, caps, deepDistance(g)};
+  const BatchFields fields = distanceFieldsReference(volume, crossings, batch, weights);
+  const Sampler sampler{volume, batch, fields, caps, deepDistance(g)};
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
-  std::vector<std::uint32_t> out(plane * static_cast<std::size_t>(slab.outputLayers));
-  for (const shared::PairPlan& pair : slab.pairs)
+  std::vector<std::uint32_t> out(plane * static_cast<std::size_t>(batch.outputLayers));
+  for (const shared::PairPlan& pair : batch.pairs)
     for (int m = 0; m < pair.layers; ++m) {
       std::uint32_t* layer = out.data() + plane * static_cast<std::size_t>(pair.firstLayer + m);
       for (int y = 0; y < g.ny; ++y)

@@ -10,9 +10,9 @@
 
 namespace scansurf {
 
-struct SlabFields {
-  std::vector<std::int32_t> values;      // InterpolationSlab::fieldValues
-  std::vector<std::int32_t> layerTable;  // the slab's layer table (buildLayerTable)
+struct BatchFields {
+  std::vector<std::int32_t> values;      // InterpolationBatch::fieldValues
+  std::vector<std::int32_t> layerTable;  // the batch's layer table (buildLayerTable)
 };
 
 // Exact squared distance (weights w) from each of n samples to the nearest sample whose
@@ -29,11 +29,12 @@ std::int32_t fixedDistance(std::int64_t d2, std::uint32_t scale);
 std::int32_t farDistance(const Grid& grid, const DistanceWeights& weights);
 
 // crossings: planeEdgeCrossings of the volume (edge_crossings.h).
-SlabFields distanceFieldsReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                   const InterpolationSlab& slab, const DistanceWeights& weights);
+BatchFields distanceFieldsReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                    const InterpolationBatch& batch, const DistanceWeights& weights);
 
-// The slab's output layers (outputLayers of nx * ny words, label | clearance << 16).
-std::vector<std::uint32_t> interpolateSlabReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
-                                                    const InterpolationSlab& slab, const DistanceWeights& weights, CapShape caps);
+// The batch's output layers (outputLayers of nx * ny words, label | clearance << 16).
+std::vector<std::uint32_t> interpolateBatchReference(const LabelVolume& volume, const std::vector<std::uint16_t>& crossings,
+                                                     const InterpolationBatch& batch, const DistanceWeights& weights,
+                                                     CapShape caps);
 
 }  // namespace scansurf

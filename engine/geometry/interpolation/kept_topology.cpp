@@ -114,9 +114,9 @@ std::size_t keepSlabTopology(std::uint32_t* words, const Label* planeA, const La
   for (int m = 0; m <= factor; ++m)
     for (std::size_t i = 0; i < plane; ++i) {  // ties at the middle go to the lower plane
       const std::size_t at = static_cast<std::size_t>(m) * plane + i;
-      const Label slab = 2 * m <= factor ? planeA[i] : planeB[i];
-      const Label interpolated = m == 0 || m == factor ? slab : interpolatedLabel(words, at);
-      gap.labels[at] = shifting[slab] || shifting[interpolated] ? interpolated : slab;
+      const Label slabRule = 2 * m <= factor ? planeA[i] : planeB[i];
+      const Label interpolated = m == 0 || m == factor ? slabRule : interpolatedLabel(words, at);
+      gap.labels[at] = shifting[slabRule] || shifting[interpolated] ? interpolated : slabRule;
     }
   std::deque<std::size_t> queue;
   for (std::size_t i = plane; i < plane * static_cast<std::size_t>(factor); ++i)

@@ -19,7 +19,7 @@
 // tested exactly against every triangle near it (geometry/mesh/triangle_intersection.h), none
 // turns over, and new triangles stay within a tenth of a voxel of the smoothed sheet of their
 // label pair (in-plane edges: a twentieth of the cross-section). Large networks are remeshed
-// slab by slab, the slabs of a phase in parallel (remesh_slabs.h); each slab serially, so
+// chunk by chunk, the chunks of a phase in parallel (remesh_chunks.h); each chunk serially, so
 // the result is the same for any thread count.
 #include "geometry/remesh/remesh_mesh.h"
 
@@ -32,9 +32,9 @@
 
 #include "core/parallel.h"
 #include "geometry/mesh/triangle_intersection.h"
+#include "geometry/remesh/remesh_chunks.h"
 #include "geometry/remesh/remesh_network.h"
 #include "geometry/remesh/remesh_reference.h"
-#include "geometry/remesh/remesh_slabs.h"
 
 namespace scansurf {
 namespace {
@@ -92,7 +92,7 @@ double angleAt(const Vec3& o, const Vec3& p, const Vec3& q) {
   return std::acos(std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0));
 }
 
-// What every remesher of one run shares: read-only, so slabs may use it at once.
+// What every remesher of one run shares: read-only, so chunks may use it at once.
 struct Context {
   std::vector<double> planes;  // the contour planes' z, ascending
   double sliceTolerance, length, voxel;
@@ -629,9 +629,9 @@ double Remesher::curvatureSize(std::uint32_t v) {
 }
 
 void Remesher::run(int iterations, bool remeshedBefore) {
-  // A band's first round grades what the slabs remeshed only: the cut's own triangles, pinned
+  // A band's first round grades what the chunks remeshed only: the cut's own triangles, pinned
   // until now, are the smoothed mesh's and get one ungraded round, as everything did in the
-  // slabs (their short edges would otherwise keep them dense).
+  // chunks (their short edges would otherwise keep them dense).
   for (int i = 0; i < iterations; ++i) round(/*graded=*/i > 0 || remeshedBefore, /*settledOnly=*/remeshedBefore && i == 0);
   for (int i = 0; i < kFitPasses; ++i) fitAll();
 }
@@ -687,7 +687,7 @@ void addCounts(RemeshReport& into, const RemeshReport& from) {
   into.moves += from.moves, into.rejected += from.rejected;
 }
 
-// One phase of slab units, at most `threads` at once; merged in unit order.
+// One phase of chunk units, at most `threads` at once; merged in unit order.
 void runPhase(MultiLabelMesh& mesh, const std::vector<WorkUnit>& units, bool remeshedBefore, std::vector<char>& settled,
               const Context& context, int threads, RemeshReport& report) {
   const std::vector<std::uint32_t> valence = vertexValence(mesh);
@@ -758,12 +758,12 @@ void accumulate(RemeshReport& into, const RemeshReport& layer) {
   into.trianglesBefore += layer.trianglesBefore;
   into.trianglesAfter += layer.trianglesAfter;
   into.maxDistance = std::max(into.maxDistance, layer.maxDistance);
-  into.slabs += layer.slabs, into.bands += layer.bands;
+  into.chunks += layer.chunks, into.bands += layer.bands;
   addCounts(into, layer);
 }
 
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, int threads, std::size_t trianglesPerSlab) {
+                        const RemeshOptions& options, int threads, std::size_t trianglesPerChunk) {
   const double sliceTolerance = grid.planeTolerance;
   RemeshReport report;
   if (!options.enabled || mesh.triangleCount() == 0) return report;
@@ -773,9 +773,9 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
   std::vector<double> planes = contours ? contourPlanes(*contours, sliceTolerance) : std::vector<double>{};
   report.edgeLength = targetLength(options, grid, planes);
   const SurfaceTable surfaces(mesh, nesting);
-  const SlabPlan plan = planSlabs(mesh, report.edgeLength, trianglesPerSlab);
+  const ChunkPlan plan = planChunks(mesh, report.edgeLength, trianglesPerChunk);
   const bool whole = plan.phases[0].size() == 1 && plan.phases[0][0].whole();
-  report.slabs = plan.phases[0].size(), report.bands = plan.phases[1].size();
+  report.chunks = plan.phases[0].size(), report.bands = plan.phases[1].size();
   Network network(mesh, planes, sliceTolerance, report.edgeLength, /*broadPhase=*/whole);
   const ReferenceSurface reference(network, report.edgeLength, threads);
   const double voxel = std::min(grid.spacingX, grid.spacingY);
@@ -789,7 +789,7 @@ RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet
     addCounts(report, remesher.counts());
   } else {
     { const Network freed = std::move(network); }
-    std::vector<char> settled;  // per vertex: remeshed by a slab
+    std::vector<char> settled;  // per vertex: remeshed by a chunk
     runPhase(mesh, plan.phases[0], /*remeshedBefore=*/false, settled, context, threads, report);
     runPhase(mesh, plan.phases[1], /*remeshedBefore=*/true, settled, context, threads, report);
     compactVertices(mesh);

@@ -22,12 +22,12 @@ namespace scansurf {
 // still a closed oriented 2-manifold of the same genus and components, no triangle crosses
 // another (exact test), no triangle turned over, and the surface lies within a tenth of a
 // voxel (cross-sections: a twentieth) of the smoothed one. mesh.keys is cleared. A mesh of at
-// least two slabs' worth of triangles (trianglesPerSlab; 0: never) is remeshed in slabs
-// along z, up to `threads` at once (0: all); the output depends on trianglesPerSlab, never on
+// least two chunks' worth of triangles (trianglesPerChunk; 0: never) is remeshed in chunks
+// along z, up to `threads` at once (0: all); the output depends on trianglesPerChunk, never on
 // threads. Returns the figures; ran = false when disabled or empty.
-inline constexpr std::size_t kTrianglesPerSlab = 200'000;
+inline constexpr std::size_t kTrianglesPerChunk = 200'000;
 RemeshReport remeshMesh(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours, const Nesting& nesting,
-                        const RemeshOptions& options, int threads = 0, std::size_t trianglesPerSlab = kTrianglesPerSlab);
+                        const RemeshOptions& options, int threads = 0, std::size_t trianglesPerChunk = kTrianglesPerChunk);
 
 // Adds a layer's figures to the run's (Surfaces::remeshing): counts summed, smallest angle
 // and 5th percentile the least of the two, means weighted by triangles, distance the largest.

@@ -418,7 +418,7 @@ bool roleHolds(const Network& net, std::uint32_t v, Spokes& spokes) {
 }  // namespace
 
 bool topologyHolds(const Network& net, const SurfaceTable& surfaces, const std::vector<std::uint32_t>& vertices) {
-  // Reused by every check on this thread (slabs run one remesher per thread): a check costs
+  // Reused by every check on this thread (chunks run one remesher per thread): a check costs
   // a few microseconds, and its allocations were a good part of it.
   thread_local Spokes spokes;
   thread_local std::vector<std::array<std::uint32_t, 3>> sorted;

@@ -8,7 +8,7 @@ namespace scansurf {
 
 struct RemeshOptions {
   // Off by default, in the library and the command-line tool: it is slow yet. Runs
-  // after smoothing, on the whole multi-label mesh; one of 400 000 triangles or more in slabs
+  // after smoothing, on the whole multi-label mesh; one of 400 000 triangles or more in chunks
   // along z, on BuildOptions::threads threads, with the same output for any thread count.
   bool enabled = false;
   // Target edge length in input units; 0 = 1.15 times
@@ -47,9 +47,9 @@ struct RemeshReport {
   // Largest distance of the remeshed surface (vertices, edge midpoints and centroids) from
   // the smoothed surface it replaced, input units.
   double maxDistance = 0;
-  // How the work was split: slabs remeshed in parallel, then bands around their cuts (1 and 0:
+  // How the work was split: chunks remeshed in parallel, then bands around their cuts (1 and 0:
   // the mesh was remeshed whole; with overlaps as layers, summed over the layers).
-  std::size_t slabs = 1, bands = 0;
+  std::size_t chunks = 1, bands = 0;
   std::size_t splits = 0, collapses = 0, flips = 0, moves = 0;  // operations applied
   std::size_t rejected = 0;                                     // operations refused by a validity check
 };

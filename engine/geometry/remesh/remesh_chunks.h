@@ -1,6 +1,6 @@
 // scansurf: remeshing in parallel, the same output for any thread count. The network is cut
-// into slabs along z at fixed triangle-count quantiles (from the mesh alone, never from the
-// thread count). Phase 0 remeshes each slab on its own, with everything on its cut planes
+// into chunks along z at fixed triangle-count quantiles (from the mesh alone, never from the
+// thread count). Phase 0 remeshes each chunk on its own, with everything on its cut planes
 // pinned; phase 1 remeshes a band around each cut, everything outside the band pinned. The
 // units of one phase run concurrently and are merged back in their order.
 //
@@ -32,11 +32,11 @@ struct WorkUnit {
 };
 
 // The units of both phases. One whole unit in phase 0 and none in phase 1 when the mesh has
-// fewer than two slabs' worth of triangles or is too flat to cut.
-struct SlabPlan {
+// fewer than two chunks' worth of triangles or is too flat to cut.
+struct ChunkPlan {
   std::vector<WorkUnit> phases[2];
 };
-SlabPlan planSlabs(const MultiLabelMesh& mesh, double edgeLength, std::size_t trianglesPerSlab);
+ChunkPlan planChunks(const MultiLabelMesh& mesh, double edgeLength, std::size_t trianglesPerChunk);
 
 // A unit's part of the network, its vertices renumbered in the whole mesh's order.
 struct SubMesh {

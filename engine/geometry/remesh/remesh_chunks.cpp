@@ -1,5 +1,5 @@
-// Slabs and bands of the parallel remeshing (remesh_slabs.h): planning, cutting out, merging.
-#include "geometry/remesh/remesh_slabs.h"
+// Chunks and bands of the parallel remeshing (remesh_chunks.h): planning, cutting out, merging.
+#include "geometry/remesh/remesh_chunks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@ namespace {
 // band frees every triangle phase 0 pinned on the cut and a few rows of the ones it had to
 // shape around them.
 constexpr double kBandLengths = 3.0;
-// Slabs at least this many band half-widths thick: the bands' regions (four half-widths) stay
+// Chunks at least this many band half-widths thick: the bands' regions (four half-widths) stay
 // apart.
-constexpr double kSlabBands = 5.0;
+constexpr double kChunkBands = 5.0;
 
 float zOf(const MultiLabelMesh& mesh, std::uint32_t v) { return mesh.positions[3 * v + 2]; }
 
@@ -27,12 +27,12 @@ void zRange(const MultiLabelMesh& mesh, std::size_t t, float& lo, float& hi) {
 
 }  // namespace
 
-SlabPlan planSlabs(const MultiLabelMesh& mesh, double edgeLength, std::size_t trianglesPerSlab) {
-  SlabPlan plan;
+ChunkPlan planChunks(const MultiLabelMesh& mesh, double edgeLength, std::size_t trianglesPerChunk) {
+  ChunkPlan plan;
   plan.phases[0].push_back(WorkUnit{});
   plan.phases[0][0].triangles = mesh.triangleCount();
-  const std::size_t n = mesh.triangleCount(), slabs = trianglesPerSlab ? n / trianglesPerSlab : 0;
-  if (slabs < 2) return plan;
+  const std::size_t n = mesh.triangleCount(), chunks = trianglesPerChunk ? n / trianglesPerChunk : 0;
+  if (chunks < 2) return plan;
   std::vector<float> centre(n);
   float tallest = 0;
   for (std::size_t t = 0; t < n; ++t) {
@@ -42,10 +42,10 @@ SlabPlan planSlabs(const MultiLabelMesh& mesh, double edgeLength, std::size_t tr
     tallest = std::max(tallest, hi - lo);
   }
   std::sort(centre.begin(), centre.end());
-  const double band = kBandLengths * edgeLength + tallest, thickness = kSlabBands * band;
-  // As many slabs as fit `thickness` apart, cut at triangle-count quantiles, each moved into
-  // the range that leaves the slabs before and after it their thickness.
-  const auto count = std::min<std::size_t>(slabs, static_cast<std::size_t>((centre.back() - centre.front()) / thickness));
+  const double band = kBandLengths * edgeLength + tallest, thickness = kChunkBands * band;
+  // As many chunks as fit `thickness` apart, cut at triangle-count quantiles, each moved into
+  // the range that leaves the chunks before and after it their thickness.
+  const auto count = std::min<std::size_t>(chunks, static_cast<std::size_t>((centre.back() - centre.front()) / thickness));
   std::vector<double> cuts;
   for (std::size_t s = 1; s < count; ++s) {
     const double earliest = (cuts.empty() ? centre.front() : cuts.back()) + thickness;
