@@ -24,9 +24,14 @@ ContourSet layerContours(const ContourSet& contours, const OverlapReport& report
 }
 
 void appendLayer(Surfaces& into, Surfaces&& layer, const OverlapReport& report, int index) {
-  if (index == 0) {  // its features of other layers have no triangles
+  if (index == 0) {
     into = std::move(layer);
     into.mesh.keys.clear();  // per-layer lattice keys do not combine; smoothing is done
+    // A feature of another layer may still have triangles here: in the enclosing convention
+    // its surface in this layer is the union of the descendants drawn in this layer. Its own
+    // surface comes from its own layer.
+    for (std::size_t f = 0; f < into.features.size(); ++f)
+      if (report.features[f].layer != 0) into.features[f].triangles.clear();
     return;
   }
   const auto offset = static_cast<std::uint32_t>(into.mesh.vertexCount());
