@@ -9,10 +9,13 @@
 // surface (open, not manifold or not oriented: nothing written unless --keep-defective).
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "batch.h"
@@ -59,6 +62,44 @@ std::string inFlags(std::string message) {
     if (const auto at = message.find(phrase); at != std::string::npos)
       message.replace(at, std::char_traits<char>::length(phrase), flag);
   return message;
+}
+
+// A warning's kind: the message less the input's path, names in quotes and numbers, so that
+// "contour 3 of slice z=12.5 covers no pixel centre" and its 400 siblings are one kind.
+std::string warningKind(const std::string& message) {
+  std::string kind;
+  bool quoted = false;
+  for (std::size_t i = message.find(": ") == std::string::npos ? 0 : message.find(": "); i < message.size(); ++i) {
+    const char c = message[i];
+    if (c == '"') quoted = !quoted;
+    if (quoted || c == '"') continue;
+    if (std::isdigit(static_cast<unsigned char>(c))) {  // a number, with its fraction and exponent
+      while (i + 1 < message.size() && (std::isalnum(static_cast<unsigned char>(message[i + 1])) || message[i + 1] == '.')) ++i;
+      kind += '#';
+      continue;
+    }
+    kind += c;
+  }
+  return kind;
+}
+
+// The warnings on the terminal, at most kShownPerKind of each kind, the last of them followed
+// by a count of the rest; every one is in the report.
+void printWarnings(cli::Progress& progress, const std::vector<std::string>& warnings, bool report) {
+  constexpr std::size_t kShownPerKind = 3;
+  std::vector<std::string> kinds;
+  kinds.reserve(warnings.size());
+  for (const std::string& w : warnings) kinds.push_back(warningKind(w));
+  std::map<std::string, std::pair<std::size_t, std::size_t>> counts;  // kind: in all, shown
+  for (const std::string& k : kinds) ++counts[k].first;
+  for (std::size_t i = 0; i < warnings.size(); ++i) {
+    auto& [total, shown] = counts[kinds[i]];
+    if (shown == kShownPerKind) continue;
+    progress.warning(inFlags(warnings[i]));
+    if (++shown == kShownPerKind && total > kShownPerKind)
+      progress.warning(std::to_string(total - kShownPerKind) + " more warnings like this one (" + std::to_string(total) +
+                       " in all; " + (report ? "every one is in the report)" : "--report FILE lists every one)"));
+  }
 }
 
 int fail(const Error& error) {
@@ -267,7 +308,7 @@ int run(const cli::CliOptions& o) {
   laps.begin("read");
   auto contours = readContours(o.input, o.read);
   if (!contours) return fail(contours.error());
-  for (const std::string& w : contours->warnings) progress.warning(w);
+  printWarnings(progress, contours->warnings, !o.report.empty());
   if (!o.quiet)
     for (const std::string& note : contours->notes) std::printf("%s\n", cli::printable(note).c_str());
   laps.lap("read");
@@ -302,7 +343,7 @@ int run(const cli::CliOptions& o) {
   auto written = interruptible.commit();
   if (!written) return fail(written.error());
   std::fflush(stdout);  // warnings after what was already printed
-  for (const std::string& w : result.warnings) progress.warning(inFlags(w));
+  printWarnings(progress, result.warnings, !o.report.empty());
   const bool defective = result.audit.defective();
   progress.finish(defective ? exitCode(Errc::DefectiveSurface) : 0);
   if (!o.quiet)

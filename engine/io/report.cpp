@@ -125,7 +125,8 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.simplification = built.surfaces.simplification;
   r.triangleShape = built.surfaces.triangleShape;
   for (const fs::path& p : context.outputs) r.outputs.push_back(p.string());
-  r.warnings = built.warnings;
+  r.warnings = contours.warnings;  // every warning of the run: reading's, then the build's
+  r.warnings.insert(r.warnings.end(), built.warnings.begin(), built.warnings.end());
   return r;
 }
 

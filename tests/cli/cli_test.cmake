@@ -28,6 +28,26 @@ if(last_output MATCHES "surface components where|genus [0-9]+ where|slab volume 
   message(FATAL_ERROR "the audit found fault with the bundled example:\n${last_output}")
 endif()
 
+# Warnings of one kind: three on the terminal and a count of the rest, every one in the report.
+set(specks "")
+foreach(k RANGE 0 5)
+  string(APPEND specks "{\"z\": ${k}, \"contours\": [[[0,0],[20,0],[20,20],[0,20]], [[40.01,40.01],[40.02,40.01],[40.02,40.02]]]},")
+endforeach()
+string(REGEX REPLACE ",$" "" specks "${specks}")
+file(WRITE "${OUT}/specks.json" "{\"version\": 1, \"units\": \"mm\", \"features\": [{\"name\": \"a\", \"slices\": [${specks}]}]}")
+run_scansurf(0 "${OUT}/specks.json" -o "${OUT}/specks" --report "${OUT}/specks/report.json" -q)
+string(REGEX MATCHALL "covers no pixel centre" shown "${last_output}")
+list(LENGTH shown shown_count)
+if(NOT shown_count EQUAL 3)
+  message(FATAL_ERROR "expected 3 of the 6 'covers no pixel centre' warnings on the terminal, got ${shown_count}:\n${last_output}")
+endif()
+expect_output("3 more warnings like this one \\(6 in all; every one is in the report\\)")
+file(READ "${OUT}/specks/report.json" specks_report)
+string(JSON specks_warnings LENGTH "${specks_report}" warnings)
+if(specks_warnings LESS 6)
+  message(FATAL_ERROR "the report holds ${specks_warnings} warnings, not every one of the 6")
+endif()
+
 # Usage errors a person can act on: an option misspelt names the one meant; a missing input is
 # an I/O error (exit 4) naming the file.
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --voxel-sise 1)
