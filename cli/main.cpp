@@ -45,6 +45,8 @@ std::string inFlags(std::string message) {
       {"option smoothing.iterations ", "option --smooth-iterations "},
       {"option threads ", "option --threads "},
       {"option grid.gapFactor ", "option --long-gap "},
+      {"option grid.nx ", "option --grid (NX) "},
+      {"option grid.ny ", "option --grid (NY) "},
       {"option interpolation.factor ", "option --interpolate "}};
   for (const auto& [field, flag] : kFlags)
     if (message.rfind(field, 0) == 0) return flag + message.substr(std::char_traits<char>::length(field));

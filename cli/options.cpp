@@ -114,9 +114,9 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                      "in-plane pixel size, input units (default: the reference CT's with --reference, else 256 pixels along "
                      "the longer side of every structure in the file, selected or not)")
           ->check(numberIn(0, 1e9, true, "a positive, finite number"));
-  app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border")
+  app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border (4 to 16384 each)")
       ->expected(2)
-      ->check(CLI::Range(3, 1 << 20))
+      ->check(CLI::Range(4, 16384))
       ->excludes(voxel);
   app.add_option("--convention", f.convention,
                  "enclosing: each surface around all its contours enclose, nested features included; "

@@ -67,6 +67,9 @@ Result<ContourSet> readStructureSet(const std::filesystem::path& path, const Rea
   SCANSURF_TRY(placeOnCtSlices(contours, ct, rtOptions.sliceTolerance));
   contours.reference = gridReferenceOf(ct);
   contours.notes.push_back(describeReference(ct, ctDir));
+  // The report's input files: the structure set first (withFiles), then every CT file read.
+  contours.files.push_back(path.string());
+  contours.files.insert(contours.files.end(), ct.files.begin(), ct.files.end());
   return contours;
 }
 

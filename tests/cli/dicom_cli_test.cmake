@@ -27,7 +27,13 @@ expect_output("patient +1 +0 +[0-9]+ +[0-9.]+ +[0-9.]+ +1 +0 yes")
 
 # The MIM phantom on its own CT: the CT's 512 x 512 pixels plus the border, over the 3 CT slices
 # that hold contours (of 5) and a background layer each side.
-run_scansurf(0 "${MIM}/rt.dcm" --reference "${MIM}" -o "${OUT}/mim" --roi "ROI-*")
+run_scansurf(0 "${MIM}/rt.dcm" --reference "${MIM}" -o "${OUT}/mim" --roi "ROI-*" --report "${OUT}/mim.json")
+# The report's input files: the structure set and the 5 CT files it was placed on.
+file(READ "${OUT}/mim.json" mim_report)
+string(JSON mim_inputs LENGTH "${mim_report}" input_files)
+if(NOT mim_inputs EQUAL 6)
+  message(FATAL_ERROR "the report lists ${mim_inputs} input files, not the RTSTRUCT and its 5 CT files")
+endif()
 expect_output("grid: 514 x 514 x 5 voxels \\(0.488281 x 0.488281 mm pixels, 3 slices")
 foreach(n 1 2 3 4)
   expect_output("ROI-${n} +${n} +0 +[0-9]+ +[0-9.]+ +[0-9.]+ +1 +[01] yes")

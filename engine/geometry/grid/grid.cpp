@@ -97,10 +97,9 @@ Result<Axis> axisOnFileLattice(double lo, double hi, double fileLo, double fileH
 }
 
 Result<Axis> axisFromCount(double lo, double hi, int n, const char* name) {
-  if (n < 4) return badOption(std::string("n") + name + " = " + std::to_string(n) + ": need at least 4 pixels");
-  if (n > kMaxPixelsPerSide)
-    return badOption(std::string("n") + name + " = " + std::to_string(n) + ": more than " + std::to_string(kMaxPixelsPerSide) +
-                     " pixels");
+  if (n < 4 || n > kMaxPixelsPerSide)
+    return badOption(std::string("option grid.n") + name + " must be 4 to " + std::to_string(kMaxPixelsPerSide) +
+                     " pixels (got " + std::to_string(n) + ")");
   const double extent = hi - lo;
   if (!(extent > 0))
     return makeError(Errc::InvalidInput, std::string("the contours have no extent along ") + name + ", so n" + name +
