@@ -57,7 +57,7 @@ class InterpolationVolumeTest : public EngineTest {
 // Within 3 % for one and two planes, 1 % for three, at 1 mm pixels (2 px gaps: no layers
 // between; relaxation alone took 17 % off the scar and added 4 % to the discs), 0.5 mm (4
 // layers a gap) and 0.25 mm (8), every surface closed and none crossing another.
-TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirBatchVolume) {
+TEST_F(InterpolationVolumeTest, FewPlaneStructuresKeepTheirSlabVolume) {
   const ContourSet set = smallStructures();
   for (double pixel : {1.0, 0.5, 0.25}) {
     const BuildResult b = build(set, pixel);
@@ -118,7 +118,7 @@ TEST_F(InterpolationVolumeTest, FeaturesOnInterleavedPlanesStayWhole) {
       EXPECT_EQ(s.components, 1) << set.features[static_cast<std::size_t>(f)].name;
       EXPECT_LE(std::abs(volumeError(b, f)), 0.02) << set.features[static_cast<std::size_t>(f)].name;  // -50 % before
     }
-    // Layer 2 (z = 2, B's plane) holds A's batch from its plane at z = 0: A is there in the labels.
+    // Layer 2 (z = 2, B's plane) holds A's slab from its plane at z = 0: A is there in the labels.
     if (factor == 1) {
       const int k = layerOfZ(b.volume.grid, 2.0, 1e-6);
       ASSERT_GE(k, 0);
@@ -185,7 +185,7 @@ void addSqueezingPair(ContourSet& set) {
 // Each structure's volume follows its slab rule whatever its outline does between the planes
 // (the blended fields alone lost 5 %, 8 % and 15 % here), round caps and flat: the layers
 // between the planes alone, without the volume restoration after smoothing.
-TEST_F(InterpolationVolumeTest, ChangingOutlinesKeepTheirBatchVolume) {
+TEST_F(InterpolationVolumeTest, ChangingOutlinesKeepTheirSlabVolume) {
   ContourSet set = changingOutlines();
   addSqueezingPair(set);
   for (CapShape caps : {CapShape::Round, CapShape::Flat}) {
@@ -210,7 +210,7 @@ TEST_F(InterpolationVolumeTest, ChangingOutlinesKeepTheirBatchVolume) {
 
 // A structure's volume does not depend on which others are in the set (on the same grid):
 // a disc alone and among the changing outlines, and one-section vesicles beside a cell of
-// five sections (an EM set) keep their batch, never inflated.
+// five sections (an EM set) keep their slab, never inflated.
 TEST_F(InterpolationVolumeTest, VolumesDoNotDependOnTheOtherStructures) {
   const Feature disc = onPlanes("disc", circleContour({-30, -30}, 10), {0, 5, 10});
   ContourSet alone;

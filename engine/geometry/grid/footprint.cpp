@@ -49,12 +49,12 @@ constexpr double kVerticesPerCrossing = 4;
 // three 32-bit indices, with a vector's growth slack.
 constexpr double kFeatureBytesPerVertex = 2 * 3 * 4 * 1.5;
 // Remeshing's peak per vertex of the remeshed mesh (the network with its reference surface,
-// broad phase and slab copies): 390 MB over smoothing's peak for 337 k vertices (phantom,
+// broad phase and batch copies): 390 MB over smoothing's peak for 337 k vertices (phantom,
 // --edge-length 0.5 at 1 mm pixels), rounded up.
 constexpr double kRemeshBytesPerVertex = 1300;
-// The device's slab budget of scan conversion, and per pixel of one slab layer what it holds:
+// The device's batch budget of scan conversion, and per pixel of one batch layer what it holds:
 // label image, depth-stencil image and the readback buffer.
-constexpr std::uint64_t kSlabBudget = std::uint64_t{64} << 20;
+constexpr std::uint64_t kBatchBudget = std::uint64_t{64} << 20;
 constexpr std::uint64_t kDeviceBytesPerPixel = 16;
 
 }  // namespace
@@ -92,12 +92,12 @@ Footprint estimateFootprint(const ContourSet& contours, const Grid& grid, int su
   const double host = kBaseline + 2.0 * static_cast<double>(f.labelVoxels) * sizeof(Label) + interpolated +
                       static_cast<double>(f.surfaceVertices) * kBytesPerVertex + featureSurfaces + remeshed;
   f.hostBytes = static_cast<std::uint64_t>(std::min(host, 1.8e19));
-  // One slab of scan conversion, the label volume kept on the device until classified and,
+  // One batch of scan conversion, the label volume kept on the device until classified and,
   // with interpolation, its volume of 32-bit label | clearance words.
   const double words = finer > 1 ? 4.0 * static_cast<double>(plane) * layers : 0.0;
   const double deviceVolumes = static_cast<double>(f.labelVoxels) * sizeof(Label) + words;
   f.deviceBytes =
-      std::max(kSlabBudget, plane * kDeviceBytesPerPixel) + static_cast<std::uint64_t>(std::min(deviceVolumes, 1.8e19));
+      std::max(kBatchBudget, plane * kDeviceBytesPerPixel) + static_cast<std::uint64_t>(std::min(deviceVolumes, 1.8e19));
   return f;
 }
 

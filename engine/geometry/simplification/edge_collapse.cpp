@@ -2,7 +2,7 @@
 // quadrics, unweighted: a vertex's quadric sums the squared distances to the planes of every
 // triangle merged into it, so a cost of at most d^2 keeps it within d of each of those planes.
 // Half-edge collapses (onto an existing vertex, as meshoptimizer's) keep every vertex where
-// smoothing put it: a triangle never leaves the slab its vertices span. Candidates sit in one
+// smoothing put it: a triangle never leaves the tier its vertices span. Candidates sit in one
 // heap with version stamps; a stale entry is skipped when it comes up. An edge no longer than
 // the bound collapses at no cost (its ends may have merged many planes, whose summed squared
 // distances would refuse it): that is what removes most needle slivers. After the collapses,

@@ -4,7 +4,7 @@
 // patches that keeps every feature line, and the checks that decide whether a patch's result
 // is kept. Why patches keep the guarantees: every vertex a patch shares with another stays, so
 // no other patch's surroundings change; collapses only merge vertices onto their neighbours, so
-// the triangles stay inside the slab between the patch's cuts. Per patch, the same border,
+// the triangles stay inside the tier between the patch's cuts. Per patch, the same border,
 // Euler characteristic and components and a manifold, oriented result mean the same topology;
 // the exact crossing test against every triangle near a new one (afterwards, over the whole
 // mesh) keeps the surfaces from crossing.
@@ -28,7 +28,7 @@
 namespace scansurf {
 namespace {
 
-// A patch: triangles order[first, first + count) of one key (slab << 48 | tile << 32 | label pair).
+// A patch: triangles order[first, first + count) of one key (tier << 48 | tile << 32 | label pair).
 struct Patch {
   std::uint64_t key = 0;
   std::size_t first = 0, count = 0;
@@ -41,18 +41,18 @@ struct PatchResult {
   bool refused = false;
 };
 
-// Per cell layer (between grid layers k and k + 1), its slab: a new one at every contour layer
-// and after kSlabLayers layers without one.
-std::vector<std::uint32_t> slabsOfLayers(const Grid& grid, const std::vector<bool>& contourLayers) {
-  std::vector<std::uint32_t> slab(static_cast<std::size_t>(std::max(grid.nz - 1, 1)), 0);
+// Per cell layer (between grid layers k and k + 1), its tier: a new one at every contour layer
+// and after kTierLayers layers without one.
+std::vector<std::uint32_t> tiersOfLayers(const Grid& grid, const std::vector<bool>& contourLayers) {
+  std::vector<std::uint32_t> tier(static_cast<std::size_t>(std::max(grid.nz - 1, 1)), 0);
   std::uint32_t current = 0;
   int since = 0;
-  for (std::size_t k = 0; k < slab.size(); ++k) {
+  for (std::size_t k = 0; k < tier.size(); ++k) {
     const bool contour = k < contourLayers.size() && contourLayers[k];
-    if (k > 0 && (contour || since == kSlabLayers)) ++current, since = 0;
-    slab[k] = current, ++since;
+    if (k > 0 && (contour || since == kTierLayers)) ++current, since = 0;
+    tier[k] = current, ++since;
   }
-  return slab;
+  return tier;
 }
 
 // The cell layer holding a triangle whose lowest z is `z`: the last layer at or below it.
@@ -76,12 +76,12 @@ std::vector<int> planesOfVertices(const MultiLabelMesh& mesh, const Grid& grid, 
   return plane;
 }
 
-// A patch key: slab << 48 | tile << 32 | label pair.
+// A patch key: tier << 48 | tile << 32 | label pair.
 constexpr std::uint64_t kField = 0xffff;
 
 std::vector<std::uint64_t> patchKeys(const MultiLabelMesh& mesh, const Grid& grid, const std::vector<bool>& contourLayers,
                                      double tolerance, int threads) {
-  const std::vector<std::uint32_t> slab = slabsOfLayers(grid, contourLayers);
+  const std::vector<std::uint32_t> tier = tiersOfLayers(grid, contourLayers);
   const auto tilesX = static_cast<std::uint64_t>((grid.nx + kTilePixels - 1) / kTilePixels);
   std::vector<std::uint64_t> keys(mesh.triangleCount());
   parallelChunks(keys.size(), threads, [&](int, std::size_t begin, std::size_t end) {
@@ -91,7 +91,7 @@ std::vector<std::uint64_t> patchKeys(const MultiLabelMesh& mesh, const Grid& gri
       const float* p = &mesh.positions[3 * std::size_t{tri[0]}];
       float z = p[2];
       for (int c = 1; c < 3; ++c) z = std::min(z, mesh.positions[3 * std::size_t{tri[c]} + 2]);
-      const std::uint64_t s = slab[cellLayerOf(grid, z, tolerance)] % kField;
+      const std::uint64_t s = tier[cellLayerOf(grid, z, tolerance)] % kField;
       const auto tx = static_cast<std::uint64_t>(std::max(0.0, (p[0] - grid.originX) / grid.spacingX / kTilePixels));
       const auto ty = static_cast<std::uint64_t>(std::max(0.0, (p[1] - grid.originY) / grid.spacingY / kTilePixels));
       keys[t] = s << 48 | ((ty * tilesX + tx) % kField) << 32 | pair;

@@ -32,7 +32,7 @@ struct SimplificationReport {
   bool ran = false;
   std::size_t trianglesBefore = 0, trianglesAfter = 0;
   AngleFigures anglesBefore, anglesAfter;  // every triangle's smallest angle
-  std::size_t patches = 0;                 // one label pair in one tile between two cuts (contour planes, slab bounds)
+  std::size_t patches = 0;                 // one label pair in one tile between two cuts (contour planes, tier bounds)
   // Patches whose simplified triangles failed a check and were put back as smoothed: by the
   // patch's own checks (topology, border, cross-sections, turned triangles), then by the exact
   // crossing test against every triangle near them.
