@@ -142,6 +142,13 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
       return makeError(Errc::InvalidArgument, "--format needs an output directory, not the file " + o.output);
     plan.glbFile = o.output;
   } else {
+    // A file name of a per-structure format: each file holds one structure, so -o cannot name
+    // one file for all of them; said rather than made into a folder of something else.
+    if (const auto named = parseMeshFormat(ext); named && !ext.empty())
+      return makeError(Errc::InvalidArgument,
+                       "-o " + o.output + " names a " + ext.substr(1) +
+                           " file, but those hold one structure each: use -o OUTDIR --format " + ext.substr(1) +
+                           " for one file per structure, or -o NAME.glb for one file with every structure");
     plan.dir = o.output;
     for (const std::string& f : o.formats.empty() ? std::vector<std::string>{"ply"} : o.formats) {
       SCANSURF_ASSIGN_OR_RETURN(const MeshFormat format, parseMeshFormat(f));
