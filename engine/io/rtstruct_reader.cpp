@@ -358,15 +358,16 @@ void warnSkippedContourTypes(const std::string& who, const RoiInfo& info, std::v
                        " contour(s); only CLOSED_PLANAR contours are surfaced");
 }
 
-// The ROI's name, or "name #number" when another ROI's feature has it already.
+// The ROI's name, or "name #number" when another ROI's feature has it already; never the name
+// another ROI of the file has (reserved): "A", "A #3", "A" gives "A", "A #3", "A #3 (2)".
 std::string uniqueFeatureName(const std::string& who, const RoiInfo& info, std::set<std::string>& usedNames,
-                              std::vector<std::string>& warnings) {
-  std::string name = info.name;
-  if (!usedNames.insert(name).second) {
-    name += " #" + std::to_string(info.number);
-    warnings.push_back(who + ": name used by another ROI; the feature is called \"" + name + "\"");
-    usedNames.insert(name);
-  }
+                              const std::set<std::string>& reserved, std::vector<std::string>& warnings) {
+  if (usedNames.insert(info.name).second) return info.name;
+  const std::string base = info.name + " #" + std::to_string(info.number);
+  std::string name = base;
+  for (int k = 2; usedNames.count(name) || reserved.count(name); ++k) name = base + " (" + std::to_string(k) + ")";
+  usedNames.insert(name);
+  warnings.push_back(who + ": name used by another ROI; the feature is called \"" + name + "\"");
   return name;
 }
 
@@ -392,7 +393,7 @@ int addSlices(std::vector<RawContour>& closed, std::span<const double> planes, F
 // Appends selected ROI r as a feature of out.contours, if any of its contours is usable, and
 // records its slice count and feature index; warns about what it skipped.
 void addFeature(const std::string& file, RawRoi& r, std::span<const double> planes, std::set<std::string>& usedNames,
-                RtStructure& out) {
+                const std::set<std::string>& reserved, RtStructure& out) {
   const std::string who = describeRoi(file, r.info);
   warnSkippedContourTypes(who, r.info, out.warnings);
   if (!r.hasContourItem || r.info.contoursByType.empty()) {
@@ -400,7 +401,7 @@ void addFeature(const std::string& file, RawRoi& r, std::span<const double> plan
     return;
   }
   Feature feature;
-  feature.name = uniqueFeatureName(who, r.info, usedNames, out.warnings);
+  feature.name = uniqueFeatureName(who, r.info, usedNames, reserved, out.warnings);
   feature.color = r.info.color;
   feature.sourceNumber = r.info.number;
   feature.interpretedType = r.info.interpretedType;
@@ -418,7 +419,9 @@ void addFeature(const std::string& file, RawRoi& r, std::span<const double> plan
 void addFeatures(const std::string& file, double sliceTolerance, std::vector<RawRoi>& rois, RtStructure& out) {
   const std::vector<double> planeOf = sharedSlicePlanes(rois, sliceTolerance);
   const std::vector<std::size_t> planeStart = sharedPlaneStarts(rois);
-  std::set<std::string> usedNames;
+  std::set<std::string> usedNames, reserved;
+  for (const RawRoi& r : rois)
+    if (r.info.selected) reserved.insert(r.info.name);
   for (std::size_t roiIndex : featureOrder(rois)) {
     RawRoi& r = rois[roiIndex];
     if (!r.info.selected) {
@@ -426,7 +429,7 @@ void addFeatures(const std::string& file, double sliceTolerance, std::vector<Raw
       continue;
     }
     const std::span<const double> planes(planeOf.data() + planeStart[roiIndex], r.closed.size());
-    addFeature(file, r, planes, usedNames, out);
+    addFeature(file, r, planes, usedNames, reserved, out);
   }
 }
 

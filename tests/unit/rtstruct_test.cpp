@@ -258,6 +258,22 @@ TEST_F(Dicom, IslandsAreSeparateComponents) {
   EXPECT_EQ(labelAt(b.volume, 0, 0, 2), kBackground);
 }
 
+TEST_F(Dicom, ARenamedDuplicateNeverTakesAnotherRoisName) {
+  TestRtStruct rt;
+  for (const auto& [number, name] : std::vector<std::pair<int, std::string>>{{1, "A"}, {2, "A #3"}, {3, "A"}}) {
+    TestRoi roi{number, name, "ORGAN", std::nullopt, {}};
+    for (double z : {0.0, 2.0}) roi.contours.push_back(closedContour(square(10 * number, 0, 10 * number + 5, 5), z));
+    rt.rois.push_back(roi);
+  }
+  auto r = readBack(rt);
+  ASSERT_TRUE(r) << r.error().message;
+  ASSERT_EQ(r->contours.features.size(), 3u);
+  std::vector<std::string> names;
+  for (const Feature& f : r->contours.features) names.push_back(f.name);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"A", "A #3", "A #3 (2)"}));
+}
+
 TEST_F(Dicom, UnevenSlicesBecomeUnevenLayers) {
   TestRoi roi{1, "cone", "ORGAN", std::nullopt, {}};
   const std::vector<double> zs = {-3, -2, 0.5, 4.5, 5};
