@@ -272,7 +272,6 @@ struct ReportInputs {
   const BuildResult& result;
   const DeviceInfo& device;
   const std::vector<std::vector<fs::path>>& files;
-  const std::vector<MeshStats>& stats;
   const std::vector<StageTime>& timings;
   const std::string& started;
 };
@@ -284,7 +283,7 @@ Result<void> stageReport(OutputStaging& staging, const cli::CliOptions& o, const
   ReportContext context{o.input, runParameters(settings, in.result), in.timings, in.files, outputs};
   context.commandLine = o.commandLine;
   context.started = in.started;
-  const RunReport report = makeReport(in.contours, in.result, in.device, std::move(context), in.stats);
+  const RunReport report = makeReport(in.contours, in.result, in.device, std::move(context));
   return staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); });
 }
 
@@ -328,9 +327,6 @@ int run(const cli::CliOptions& o) {
   if (!built) return fail(built.error());
   BuildResult& result = built->result;
 
-  // Each feature's statistics, from the build's audit, for the report and the summary.
-  std::vector<MeshStats> stats = result.audit.stats;
-
   plan->scene.opacity = displayOpacity(result.nesting);
   laps.begin("write");
   auto files = stageSurfaceOutputs(staging, *plan, *contours, result);
@@ -343,7 +339,7 @@ int run(const cli::CliOptions& o) {
     laps.lap("preview");
   }
   if (!o.report.empty()) {
-    const ReportInputs inputs{*contours, result, built->engine.device(), files->files, stats, laps.timings, started};
+    const ReportInputs inputs{*contours, result, built->engine.device(), files->files, laps.timings, started};
     if (auto ok = stageReport(staging, o, inputs); !ok) return fail(ok.error());
   }
   // With --validation, a validation message means the device's results are suspect: write nothing.
@@ -356,7 +352,7 @@ int run(const cli::CliOptions& o) {
   const bool defective = result.audit.defective();
   progress.finish(defective ? exitCode(Errc::DefectiveSurface) : 0);
   if (!o.quiet)
-    cli::printSummary({o.input, &*contours, &result, o.build.convention, std::move(stats), laps.timings}, *written, o.output);
+    cli::printSummary({o.input, &*contours, &result, o.build.convention, result.audit.stats, laps.timings}, *written, o.output);
   if (defective)
     return fail({Errc::DefectiveSurface, "a surface is defective (see the warnings above); written as --keep-defective asks"});
   return 0;

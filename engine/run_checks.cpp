@@ -76,8 +76,6 @@ Result<void> checkOptions(const BuildOptions& o) {
   const int f = o.interpolation.factor;
   if (f != InterpolationOptions::kAuto && (f < 1 || f > InterpolationOptions::kMaxFactor))
     return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
-  if (!(std::isfinite(o.grid.gapFactor) && o.grid.gapFactor >= 0))
-    return badOption("grid.gapFactor", "0 (bridge every gap) or more", o.grid.gapFactor);
   if (!(o.audit.volumeTolerance > 0 && o.audit.volumeTolerance <= 1))
     return badOption("audit.volumeTolerance", "in (0, 1]", o.audit.volumeTolerance);
   if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);

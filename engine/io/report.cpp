@@ -99,7 +99,8 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.userOrder = built.nesting.userOrder;
   r.meshVertices = built.surfaces.mesh.vertexCount();
   r.meshTriangles = built.surfaces.mesh.triangleCount();
-  if (stats.size() != built.surfaces.features.size()) stats = computeFeatureStats(built.surfaces);
+  if (const std::size_t n = built.surfaces.features.size(); stats.size() != n)
+    stats = built.audit.stats.size() == n ? built.audit.stats : computeFeatureStats(built.surfaces);
   const std::vector<Rgb> colors = featureColors(contours);
   const std::vector<std::vector<std::string>> neighbours = surfaceNeighbours(contours, built.surfaces.mesh);
   for (std::size_t f = 0; f < contours.features.size() && f < stats.size(); ++f) {

@@ -191,8 +191,8 @@ void recordPlanesCopy(VkCommandBuffer cmd, const gpu::Buffer& devicePlanes, cons
 }
 
 // The batch's words into the device volume of words (its output layers are consecutive fine
-// layers), once the host has read and amended them (host writes before a submit are visible
-// to it).
+// layers): with the interpolation, and again when the host has amended them (host writes
+// before a submit are visible to it).
 void recordWordsCopy(VkCommandBuffer cmd, const gpu::Buffer& output, const gpu::Buffer& words, VkDeviceSize offset,
                      VkDeviceSize bytes) {
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
@@ -312,17 +312,18 @@ Result<void> Interpolator::runBatch(const LabelVolume& volume, const std::vector
                   static_cast<std::uint32_t>(batch.pairs[p].layers));
   }
   const gpu::Buffer& output = buffers.buffers[kOutput];
+  const VkDeviceSize bytes = plane * static_cast<VkDeviceSize>(batch.outputLayers) * 4;
+  if (device.words) recordWordsCopy(cmd, output, *device.words, device.wordsOffset, bytes);
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   SCANSURF_TRY(second ? second->submitAndWait() : commands.submitAndWait());
   SCANSURF_TRY(output.invalidate());
-  store(static_cast<std::uint32_t*>(output.mapped()));
-  if (!device.words) return {};
-  // The words as the host left them (the slab rule's topology kept) go to the device volume.
+  if (!store(static_cast<std::uint32_t*>(output.mapped())) || !device.words) return {};
+  // The host relabelled some voxels (the slab rule's topology kept): the device volume gets the
+  // batch again, as the host left it.
   SCANSURF_TRY(output.flush());
   SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands copy, gpu::OneShotCommands::begin(ctx));
-  recordWordsCopy(copy.cmd(), output, *device.words, device.wordsOffset,
-                  plane * static_cast<VkDeviceSize>(batch.outputLayers) * 4);
+  recordWordsCopy(copy.cmd(), output, *device.words, device.wordsOffset, bytes);
   return copy.submitAndWait();
 }
 

@@ -160,7 +160,6 @@ std::shared_ptr<PyResult> build(PyEngine& engine, std::shared_ptr<PyContours> co
   }();
   result->built = valueOrRaise(std::move(built));
   result->device = engine.engine.device();
-  result->stats.resize(result->built.surfaces.features.size());
   result->surfaces.resize(result->built.surfaces.features.size());
   if (messages > 0) raise({Errc::Vulkan, std::to_string(messages) + " Vulkan validation message(s) during this build"});
   return result;

@@ -13,16 +13,6 @@ namespace scansurf::python {
 namespace py = pybind11;
 namespace fs = std::filesystem;
 
-const MeshStats& PyResult::statsOf(int feature) {
-  const std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = stats.at(static_cast<std::size_t>(feature));
-  if (!slot && static_cast<std::size_t>(feature) < built.audit.stats.size())
-    slot = built.audit.stats[static_cast<std::size_t>(feature)];
-  if (!slot)
-    slot = computeMeshStats(built.surfaces.mesh.positions, built.surfaces.features[static_cast<std::size_t>(feature)].triangles);
-  return *slot;
-}
-
 const CompactSurface& PyResult::surfaceOf(int feature) {
   const std::lock_guard<std::mutex> lock(mutex);
   auto& slot = surfaces.at(static_cast<std::size_t>(feature));
@@ -79,13 +69,11 @@ py::tuple surface(const py::object& self, int feature) {
 }
 
 py::dict stats(PyResult& r, int feature) {
-  if (feature < 0 || static_cast<std::size_t>(feature) >= r.stats.size())
+  // Every build's audit computed the statistics of every feature.
+  const std::vector<MeshStats>& all = r.built.audit.stats;
+  if (feature < 0 || static_cast<std::size_t>(feature) >= all.size())
     throw py::index_error("no feature " + std::to_string(feature));
-  const MeshStats* s = nullptr;
-  {
-    py::gil_scoped_release unlocked;
-    s = &r.statsOf(feature);
-  }
+  const MeshStats* s = &all[static_cast<std::size_t>(feature)];
   const FeatureVolumes& v = r.built.overlaps.features[static_cast<std::size_t>(feature)];
   py::dict out;
   out["triangles"] = s->triangles, out["vertices"] = s->vertices, out["area"] = s->area, out["volume"] = s->volume;
@@ -112,9 +100,7 @@ RunReport reportOf(PyResult& r, const std::vector<std::vector<fs::path>>& files,
   const RunSettings settings{r.options, scene, r.contours->referenceSeries, r.validation};
   ReportContext context{r.contours->input, runParameters(settings, r.built), r.built.timings, files, std::move(outputs)};
   context.started = r.started;
-  std::vector<MeshStats> all;
-  for (int f = 0; f < static_cast<int>(r.stats.size()); ++f) all.push_back(r.statsOf(f));
-  return makeReport(r.contours->set, r.built, r.device, std::move(context), std::move(all));
+  return makeReport(r.contours->set, r.built, r.device, std::move(context));
 }
 
 std::string reportText(PyResult& r) {

@@ -45,12 +45,10 @@ struct PyResult {
   DeviceInfo device;
   bool validation = false;
   std::string started;
-  std::vector<std::optional<MeshStats>> stats;          // per feature, when first asked for
   std::vector<std::optional<CompactSurface>> surfaces;  // per feature, when first asked for
   std::optional<LabelImage> labelImage;
   std::mutex mutex;  // guards the lazily made members
 
-  const MeshStats& statsOf(int feature);
   const CompactSurface& surfaceOf(int feature);
   const LabelImage& image();
 };

@@ -90,7 +90,7 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     const DistanceWeights weights = *distanceWeights(planes.grid);
     auto cpu = interpolateVolume(planes, factors, std::size_t{64} << 20, 1,
                                  [&](const InterpolationBatch& batch, const BatchWords& store) {
-                                   store(interpolateBatchReference(planes, crossings, batch, weights, caps).data());
+                                   (void)store(interpolateBatchReference(planes, crossings, batch, weights, caps).data());
                                    return Result<void>{};
                                  });
     ASSERT_TRUE(cpu) << cpu.error().message;

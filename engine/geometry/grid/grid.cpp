@@ -190,7 +190,8 @@ Result<Grid> layOutGrid(const ContourSet& contours, const GridOptions& options) 
   if (!std::isfinite(options.sliceTolerance) || options.sliceTolerance < 0)
     return badOption("slice tolerance must be finite and not negative");
   const double tol = sliceToleranceOf(contours, options.sliceTolerance);
-  if (!std::isfinite(options.gapFactor) || options.gapFactor < 0) return badOption("the long-gap factor must be 0 or more");
+  if (!std::isfinite(options.gapFactor) || options.gapFactor < 0)
+    return badOption("option grid.gapFactor must be 0 (bridge every gap) or more (got " + formatNumber(options.gapFactor) + ")");
   const std::vector<double> caps = capLayers(contours, options.gapFactor, tol);
   if (!std::isfinite(options.voxelSize) || options.voxelSize < 0)
     return badOption("voxel size must be positive and finite, got " + formatNumber(options.voxelSize));

@@ -34,13 +34,13 @@ InterpolationBatch planBatch(const LabelVolume& volume, const PlaneCensus& censu
 // and a neighbour of another label then lies near that neighbour.
 constexpr std::uint16_t kKeptClearance = 16;
 
-// keepSlabTopology on one pair's layers of the batch's words.
-void keepTopologyOfPair(std::uint32_t* words, const LabelVolume& volume, const shared::PairPlan& pair, int planeA) {
+// keepSlabTopology on one pair's layers of the batch's words; the voxels it relabelled.
+std::size_t keepTopologyOfPair(std::uint32_t* words, const LabelVolume& volume, const shared::PairPlan& pair, int planeA) {
   const Grid& g = volume.grid;
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   std::uint32_t* layers = words + plane * static_cast<std::size_t>(pair.firstLayer);
   const Label* lower = volume.labels.data() + plane * static_cast<std::size_t>(planeA);
-  keepSlabTopology(layers, lower, lower + plane, g.nx, g.ny, pair.factor, kKeptClearance);
+  return keepSlabTopology(layers, lower, lower + plane, g.nx, g.ny, pair.factor, kKeptClearance);
 }
 
 }  // namespace
@@ -85,9 +85,12 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
     const InterpolationBatch batch = planBatch(volume, census, first, factors, batchBytes, containers);
     if (batch.outputLayers > 0) {
       SCANSURF_TRY(interpolate(batch, [&](std::uint32_t* words) {
-        for (const shared::PairPlan& pair : batch.pairs) keepTopologyOfPair(words, volume, pair, batch.firstPlane + pair.planeA);
+        std::size_t relabelled = 0;
+        for (const shared::PairPlan& pair : batch.pairs)
+          relabelled += keepTopologyOfPair(words, volume, pair, batch.firstPlane + pair.planeA);
         for (const shared::PairPlan& pair : batch.pairs)
           storePair(words, pair, plane, fineOf[static_cast<std::size_t>(batch.firstPlane + pair.planeA)], out);
+        return relabelled > 0;
       }));
     }
     first += batch.planes - 1;

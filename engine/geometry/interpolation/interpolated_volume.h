@@ -11,8 +11,9 @@ namespace scansurf {
 
 // The batch's output layers, InterpolationBatch::outputLayers of nx * ny words, each
 // label | clearance << 16, are handed to `store` (valid during that call), which may rewrite
-// them: what it leaves is what the interpolator keeps (kept_topology.h).
-using BatchWords = std::function<void(std::uint32_t* words)>;
+// them and returns whether it did: what it leaves is what the interpolator keeps
+// (kept_topology.h).
+using BatchWords = std::function<bool(std::uint32_t* words)>;
 using BatchInterpolator = std::function<Result<void>(const InterpolationBatch& batch, const BatchWords& store)>;
 
 struct InterpolatedVolume {

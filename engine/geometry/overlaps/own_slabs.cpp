@@ -4,41 +4,32 @@
 #include <algorithm>
 #include <vector>
 
-#include "geometry/contours/plane_gaps.h"
-
 namespace scansurf {
 namespace {
 
-// The feature's planes on the grid: (layer, slice) in z order.
-std::vector<std::pair<int, const FeatureSlice*>> planesOf(const Feature& feature, const Grid& grid) {
-  std::vector<std::pair<int, const FeatureSlice*>> planes;
-  for (const FeatureSlice& slice : feature.slices)
-    if (const int k = grid.layerOfPlane(slice.z); k >= 0) planes.push_back({k, &slice});
-  return planes;
+// Whether the feature's planes on layers a and b are one of its long gaps.
+bool isLongGap(const std::vector<LongGap>& gaps, int feature, int a, int b, const Grid& grid) {
+  return std::any_of(gaps.begin(), gaps.end(), [&](const LongGap& g) {
+    return g.feature == feature && grid.layerOfPlane(g.below) == a && grid.layerOfPlane(g.above) == b;
+  });
 }
 
-double medianGap(const std::vector<std::pair<int, const FeatureSlice*>>& planes) {
-  std::vector<double> z;
-  for (const auto& [k, slice] : planes) z.push_back(slice->z);
-  return medianPlaneGap(z);
-}
-
-bool isLong(double gap, double usual, double gapFactor) { return gapFactor > 0 && usual > 0 && gap > gapFactor * usual; }
-
-// The slices to add to one feature (its slices sorted by z, as validation leaves them).
-std::vector<FeatureSlice> gapSlices(const Feature& feature, const Grid& grid, double gapFactor) {
-  const auto planes = planesOf(feature, grid);
-  const double usual = medianGap(planes);
+// The slices to add to feature f (its slices sorted by z, as validation leaves them).
+std::vector<FeatureSlice> gapSlices(const Feature& feature, int f, const Grid& grid, const std::vector<LongGap>& gaps) {
   std::vector<FeatureSlice> added;
-  for (std::size_t i = 1; i < planes.size(); ++i) {
-    const auto [previous, previousSlice] = planes[i - 1];
-    const auto [k, slice] = planes[i];
-    if (k <= previous + 1 || isLong(slice->z - previousSlice->z, usual, gapFactor)) continue;
-    const double za = grid.layerZ[static_cast<std::size_t>(previous)], zb = grid.layerZ[static_cast<std::size_t>(k)];
-    for (int m = previous + 1; m < k; ++m) {
-      const double z = grid.layerZ[static_cast<std::size_t>(m)];
-      added.push_back({z, z - za <= zb - z ? previousSlice->contours : slice->contours});
+  int previous = -1;
+  const FeatureSlice* previousSlice = nullptr;
+  for (const FeatureSlice& slice : feature.slices) {
+    const int k = grid.layerOfPlane(slice.z);
+    if (k < 0) continue;
+    if (previousSlice && k > previous + 1 && !isLongGap(gaps, f, previous, k, grid)) {
+      const double za = grid.layerZ[static_cast<std::size_t>(previous)], zb = grid.layerZ[static_cast<std::size_t>(k)];
+      for (int m = previous + 1; m < k; ++m) {
+        const double z = grid.layerZ[static_cast<std::size_t>(m)];
+        added.push_back({z, z - za <= zb - z ? previousSlice->contours : slice.contours});
+      }
     }
+    previous = k, previousSlice = &slice;
   }
   return added;
 }
@@ -47,22 +38,16 @@ std::vector<FeatureSlice> gapSlices(const Feature& feature, const Grid& grid, do
 
 std::vector<LongGap> longGaps(const ContourSet& contours, const Grid& grid, double gapFactor) {
   std::vector<LongGap> out;
-  for (std::size_t f = 0; f < contours.features.size(); ++f) {
-    const auto planes = planesOf(contours.features[f], grid);
-    const double usual = medianGap(planes);
-    for (std::size_t i = 1; i < planes.size(); ++i) {
-      const double below = planes[i - 1].second->z, above = planes[i].second->z;
-      if (isLong(above - below, usual, gapFactor))
-        out.push_back({static_cast<int>(f), below, above, usual, planes[i].first > planes[i - 1].first + 1});
-    }
-  }
+  for (const PlaneGap& g : longPlaneGaps(contours, gapFactor, grid.planeTolerance))
+    out.push_back({g, grid.layerOfPlane(g.above) > grid.layerOfPlane(g.below) + 1});
   return out;
 }
 
 std::optional<ContourSet> withOwnSlabs(const ContourSet& contours, const Grid& grid, double gapFactor) {
+  const std::vector<LongGap> gaps = longGaps(contours, grid, gapFactor);
   std::optional<ContourSet> filled;
   for (std::size_t f = 0; f < contours.features.size(); ++f) {
-    std::vector<FeatureSlice> added = gapSlices(contours.features[f], grid, gapFactor);
+    std::vector<FeatureSlice> added = gapSlices(contours.features[f], static_cast<int>(f), grid, gaps);
     if (added.empty()) continue;
     if (!filled) filled = contours;
     std::vector<FeatureSlice>& slices = filled->features[f].slices;

@@ -10,19 +10,16 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/contours/plane_gaps.h"
 #include "scansurf/contours.h"
 #include "scansurf/grid.h"
 
 namespace scansurf {
 
-// Two consecutive planes of a feature farther apart than gapFactor times its median spacing:
-// a structure drawn with a part missing, or a stray contour far from the rest. The slab rule
-// does not bridge it: each side is capped on its own where the grid has layers between them.
-struct LongGap {
-  int feature = 0;
-  double below = 0, above = 0;  // the planes' z
-  double usual = 0;             // the feature's median plane spacing
-  bool capped = false;          // the grid has a layer between them, left empty
+// A feature's long gap (plane_gaps.h) on the grid: the slab rule does not bridge it, each side
+// is capped on its own on the layers between them.
+struct LongGap : PlaneGap {
+  bool capped = false;  // the grid has a layer between the planes, left empty
 };
 
 // Every feature's long gaps (gapFactor 0: none), in feature order, then by z.

@@ -102,8 +102,8 @@ struct ReportContext {
 };
 
 // The report of a build: statistics of every feature surface (computeMeshStats), the grid,
-// nesting order, device, warnings; `stats` may hold them already (one per feature), else they
-// are computed.
+// nesting order, device, warnings; `stats` may hold them already (one per feature), else the
+// build's audit's are used, or (a result made without Engine::build) they are computed.
 RunReport makeReport(const ContourSet& contours, const BuildResult& built, const DeviceInfo& device, ReportContext context,
                      std::vector<MeshStats> stats = {});
 
