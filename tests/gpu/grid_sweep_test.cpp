@@ -101,3 +101,38 @@ TEST_F(GridSweepTest, EveryShapeIsRightAtEveryGrid) {
 
 }  // namespace
 }  // namespace scansurf::test
+
+namespace scansurf::test {
+namespace {
+
+// A sphere with a stray square drawn far above it (four slice gaps of nothing between them).
+ContourSet sphereWithAStrayContour() {
+  ContourSet set = sphereContours(6, 1.0);
+  Feature& f = set.features[0];
+  const double top = f.slices.back().z;
+  f.slices.push_back({top + 5, {Contour{{{-2, -2}, {2, -2}, {2, 2}, {-2, 2}}}}});
+  return set;
+}
+
+class LongGapTest : public EngineTest {};
+
+TEST_F(LongGapTest, AStrayContourFarAboveIsCappedOnItsOwnNotBridged) {
+  BuildOptions options = BuildOptions::recommended();
+  options.grid.voxelSize = 0.5;
+  auto capped = engine_->build(sphereWithAStrayContour(), options);
+  ASSERT_TRUE(capped) << capped.error().message;
+  EXPECT_TRUE(capped->audit.findings.empty());
+  EXPECT_EQ(capped->audit.stats[0].components, 2);  // the sphere and the square's own cap
+  bool warned = false;
+  for (const std::string& w : capped->warnings) warned |= w.find("each side is capped on its own") != std::string::npos;
+  EXPECT_TRUE(warned);
+  options.grid.gapFactor = 0;  // bridge every gap, as the slab rule alone would
+  auto bridged = engine_->build(sphereWithAStrayContour(), options);
+  ASSERT_TRUE(bridged) << bridged.error().message;
+  EXPECT_EQ(bridged->audit.stats[0].components, 1);
+  // The lid across the gap: the bridged contour volume holds about 4 x 4 x 4 mm more.
+  EXPECT_GT(bridged->overlaps.features[0].contour - capped->overlaps.features[0].contour, 40);
+}
+
+}  // namespace
+}  // namespace scansurf::test

@@ -38,8 +38,15 @@ struct RunBox {
 
 // The region with an empty layer, row and column on every side; rows renumbered from 0.
 RunBox foreground(const FeatureRegion& region) {
+  // Each region layer's place in the box: after the empty bottom layer, with an empty layer
+  // wherever the region skips grid layers (a long gap, capped on each side).
+  std::vector<std::size_t> place(region.layers.size());
+  for (std::size_t l = 0, at = 1; l < region.layers.size(); ++l, ++at) {
+    if (l > 0 && region.layers[l] > region.layers[l - 1] + 1) ++at;
+    place[l] = at;
+  }
   RunBox box;
-  box.layers = static_cast<int>(region.layers.size()) + 2;
+  box.layers = static_cast<int>(place.empty() ? 2 : place.back() + 2);
   box.rows = region.maxRow - region.minRow + 3;
   box.firstColumn = region.minColumn - 1;
   box.endColumn = region.maxColumn + 2;
@@ -50,7 +57,7 @@ RunBox foreground(const FeatureRegion& region) {
       PixelRun local = r;
       local.row = r.row - region.minRow + 1;
       box.runs.push_back(local);
-      ++count[(l + 1) * static_cast<std::size_t>(box.rows) + static_cast<std::size_t>(local.row)];
+      ++count[place[l] * static_cast<std::size_t>(box.rows) + static_cast<std::size_t>(local.row)];
     }
   std::partial_sum(count.begin(), count.end() - 1, box.start.begin() + 1);
   return box;
@@ -173,7 +180,8 @@ FeatureRegion aligned(const FeatureRegion& region) {
   for (std::size_t l = 1; l < out.runs.size(); ++l) {
     const std::vector<PixelRun>& below = region.runs[l - 1];
     const std::vector<PixelRun>& here = region.runs[l];
-    if (!below.empty() && !here.empty() && sharedPixels(below, here) == 0) {
+    const bool adjacent = region.layers[l] == region.layers[l - 1] + 1;  // not across a long gap
+    if (adjacent && !below.empty() && !here.empty() && sharedPixels(below, here) == 0) {
       const auto [ax, ay] = centroid(below);
       const auto [bx, by] = centroid(here);
       dx += static_cast<int>(std::lround(bx - ax)), dy += static_cast<int>(std::lround(by - ay));

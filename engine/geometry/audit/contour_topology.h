@@ -19,8 +19,8 @@ struct TopologyRange {
   bool empty() const { return maxComponents == 0; }
 };
 
-// The topology of the region's slab volume: its layers stacked in order (a layer the list
-// skips does not part them), each layer's runs its pixels.
+// The topology of the region's slab volume: its layers stacked in order, each layer's runs its
+// pixels; a grid layer the list skips parts them (a long gap, capped on each side: own_slabs.h).
 TopologyRange contourTopology(const FeatureRegion& region);
 
 }  // namespace scansurf
