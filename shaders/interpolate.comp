@@ -23,7 +23,18 @@ int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
     const int sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
     const int a = fieldAt(e.fieldA, x - sx, y - sy), b = fieldAt(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
     if (a == kFarAway || b == kFarAway) return kFarAway;
-    return (n - m) * a + m * b - (e.layerTable >= 0 ? layerTable.value[e.layerTable + m] : 0);  // area-keeping
+    const int chord = b - a;
+    int tangentA = chord, tangentB = chord;  // bent across the planes (hermiteBend)
+    if (e.fieldBefore >= 0) {
+      const int before = fieldAt(e.fieldBefore, x, y);
+      if (before != kFarAway) tangentA = bendTangent(a - before, chord);
+    }
+    if (e.fieldAfter >= 0) {
+      const int after = fieldAt(e.fieldAfter, x, y);
+      if (after != kFarAway) tangentB = bendTangent(chord, after - b);
+    }
+    const int bend = hermiteBend(tangentA, tangentB, chord, m, n);
+    return (n - m) * a + m * b + bend - (e.layerTable >= 0 ? layerTable.value[e.layerTable + m] : 0);  // area-keeping
   }
   if (e.label == 0) return kFarAway;  // the union caps nothing
   const int field = e.fieldA >= 0 ? e.fieldA : e.fieldB;
@@ -35,7 +46,7 @@ int entryValue(PairEntry e, int m, int n, int x, int y, out bool wins) {
     return max(n * d, kFlatLidSlope * (2 * fromPlane - n));
   }
   const int erosion = layerTable.value[e.layerTable + fromPlane];  // a dome 3/4 of the gap high
-  if (erosion < 0) return kFarAway;                                  // no layer between: no dome
+  if (erosion < 0) return kFarAway;                                // no layer between: no dome
   return n * (d + erosion);
 }
 
@@ -56,8 +67,10 @@ bool deepInside(PairPlan pair, int x, int y, int first, int count) {
 // volume's last plane) the label is the plane's own, so the words of every pair, copied side
 // by side, are the whole interpolated label volume (classified on the device).
 void store(PairPlan pair, int m, int x, int y, int slot, uint label, uint clearance) {
-  if (m == 0) label = planeLabel(pair.planeA, x, y);
-  else if (m == pair.factor) label = planeLabel(pair.planeA + 1, x, y);
+  if (m == 0)
+    label = planeLabel(pair.planeA, x, y);
+  else if (m == pair.factor)
+    label = planeLabel(pair.planeA + 1, x, y);
   outputLabels.labels[slot] = label | (clearance << 16);
 }
 
@@ -80,9 +93,12 @@ void main() {
     if (x < e.x0 || y < e.y0 || x > e.x1 || y > e.y1) continue;
     bool wins;
     const int v = entryValue(e, m, pair.factor, x, y, wins);
-    if (e.label == 0) united = v;
-    else if (wins && v < best) second = best, best = v, winner = e.label;
-    else if (v < second) second = v;
+    if (e.label == 0)
+      united = v;
+    else if (wins && v < best)
+      second = best, best = v, winner = e.label;
+    else if (v < second)
+      second = v;
     const bool capped = e.label != 0 && (e.fieldA < 0 || e.fieldB < 0);
     if (wins && v < 0 && capped && (extrudedLabel == 0 || v < extruded)) extruded = v, extrudedLabel = e.label;
     if (v >= 0 && capped) capMargin = min(capMargin, v);  // how far a cap (or a lid) is from taking the voxel

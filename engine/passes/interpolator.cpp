@@ -235,7 +235,9 @@ Result<void> fillLayerTable(const gpu::Context& ctx, Interpolator::State& s, con
   };
   for (const InterpolationBatch::CappedEntry& c : batch.cappedEntries) need(c.field);
   for (const InterpolationBatch::BlendedEntry& b : batch.blendedEntries)
-    need(batch.entries[b.entry].fieldA), need(batch.entries[b.entry].fieldB);
+    for (const int field : {batch.entries[b.entry].fieldBefore, batch.entries[b.entry].fieldA, batch.entries[b.entry].fieldB,
+                            batch.entries[b.entry].fieldAfter})
+      if (field >= 0) need(field);
   if (s.tableFields.size() < std::max<std::size_t>(ints, 1) * 4) {
     s.tableFields = gpu::Buffer{};
     SCANSURF_ASSIGN_OR_RETURN(s.tableFields, gpu::Buffer::create(ctx, std::max<std::size_t>(ints, 1) * 4,
@@ -341,7 +343,7 @@ Result<InterpolatedVolume> Interpolator::run(const LabelVolume& volume, const st
       volume, factors, budget, threads,
       [&](const InterpolationBatch& batch, const BatchWords& store) {
         ++state_->lastBatches;
-        device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(batch.firstPlane)]) * 4;
+        device.wordsOffset = plane * static_cast<VkDeviceSize>(fineOf[static_cast<std::size_t>(batch.firstPairPlane())]) * 4;
         return runBatch(volume, crossings, batch, weights, caps, threads, store, device);
       },
       device.words == nullptr, containers);

@@ -9,9 +9,11 @@
 namespace scansurf::shared {
 using int_t = std::int32_t;
 #define SCANSURF_STRUCT(name) struct name
+#define SCANSURF_FN inline
 #else
 #define int_t int
 #define SCANSURF_STRUCT(name) struct name
+#define SCANSURF_FN
 #endif
 
 // A signed distance field of one label (0: the union of all features) on one plane of the
@@ -27,7 +29,9 @@ SCANSURF_STRUCT(DistanceField) {
 
 // One label that may appear between two planes A and B, with its fields (-1: absent on that
 // plane, the label ends there and gets a cap) and, when its regions on A and B do not
-// overlap, the whole-pixel shift from A to B that the interpolation follows. Round caps
+// overlap, the whole-pixel shift from A to B that the interpolation follows. A label on both
+// planes that does not shift also has its fields on the plane before A and the one after B
+// where it is there and the gap is alike (-1: none), which bend its blend (hermiteBend). Round caps
 // become flat where two labels that end together touch: domes of different sizes would let
 // the slower one grow into the other.
 SCANSURF_STRUCT(PairEntry) {
@@ -38,6 +42,7 @@ SCANSURF_STRUCT(PairEntry) {
   int_t flatCap;         // 1: the label ends here touching another that ends: a flat cap
   int_t layerTable;      // its first of factor + 1 values in the layer table (-1: none): on one plane
                          // only, the dome's erosions; on both (a feature), the area-keeping offsets
+  int_t fieldBefore, fieldAfter;
 };
 
 // Two consecutive planes of the slab, the interpolated layers between them and the entries
@@ -52,8 +57,33 @@ SCANSURF_STRUCT(PairPlan) {
   int_t layers;  // output layers m = 0 .. layers-1: factor, or factor + 1 for the volume's last pair
 };
 
+// Monotone cubic blending across the planes (Fritsch & Carlson 1980; the tangents of Fritsch &
+// Butland 1984): a field's value at a pixel, followed through planes 0..3 (A = 1, B = 2), is the
+// cubic Hermite curve through its values on A and B whose slope at each plane is the harmonic
+// mean of the changes over the gaps on either side, 0 where they differ in sign, so the blended
+// surface has no kink at a contour plane and never overshoots: between A and B the value stays
+// between its values there (a region between the planes is never larger than both planes'
+// regions together, nor smaller than what they share). Integers only, so that the shader and
+// the CPU reference agree exactly.
+#define SCANSURF_BEND_LIMIT 16384  // changes are clamped here (1024 pixels a gap) so products fit 32 bits
+SCANSURF_FN int_t bendTangent(int_t before, int_t after) {
+  const int_t s0 =
+      before < -SCANSURF_BEND_LIMIT ? -SCANSURF_BEND_LIMIT : (before > SCANSURF_BEND_LIMIT ? SCANSURF_BEND_LIMIT : before);
+  const int_t s1 =
+      after < -SCANSURF_BEND_LIMIT ? -SCANSURF_BEND_LIMIT : (after > SCANSURF_BEND_LIMIT ? SCANSURF_BEND_LIMIT : after);
+  if (s0 == 0 || s1 == 0 || (s0 > 0) != (s1 > 0)) return 0;
+  return 2 * s0 * s1 / (s0 + s1);
+}
+// What the cubic adds to the linear blend (n - m) a + m b at layer m of n (scaled by n as it
+// is), from the tangents at A and B (in value per gap) and the chord b - a: n t (1 - t)
+// ((1 - t)(tangentA - chord) - t (tangentB - chord)), t = m / n, rounded half away from zero.
+SCANSURF_FN int_t hermiteBend(int_t tangentA, int_t tangentB, int_t chord, int_t m, int_t n) {
+  const int_t num = m * (n - m) * ((n - m) * (tangentA - chord) - m * (tangentB - chord));
+  const int_t den = n * n;
+  return num >= 0 ? (2 * num + den) / (2 * den) : -((-2 * num + den) / (2 * den));
+}
 #ifdef __cplusplus
-static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 44 && sizeof(PairPlan) == 20);
+static_assert(sizeof(DistanceField) == 32 && sizeof(PairEntry) == 52 && sizeof(PairPlan) == 20);
 struct InterpolatePush {
   std::uint32_t nx, ny;
   std::uint32_t count;            // fields (EDT passes) or entries (unused by interpolate)
@@ -69,8 +99,10 @@ struct InterpolatePush {
 static_assert(sizeof(InterpolatePush) == 52, "InterpolatePush must match the GLSL block");
 }  // namespace scansurf::shared
 #undef SCANSURF_STRUCT
+#undef SCANSURF_FN
 #else
 #undef SCANSURF_STRUCT
+#undef SCANSURF_FN
 #undef int_t
 layout(push_constant) uniform InterpolatePush {
   uint nx;

@@ -93,7 +93,7 @@ Result<InterpolatedVolume> interpolateVolume(const LabelVolume& volume, const st
         return relabelled > 0;
       }));
     }
-    first += batch.planes - 1;
+    first = batch.lastPairPlane();
   }
   return out;
 }

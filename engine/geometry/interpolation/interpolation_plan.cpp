@@ -11,18 +11,24 @@
 
 namespace scansurf {
 
-std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options) {
+std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options, const std::vector<double>& steps) {
   const std::size_t gaps = grid.nz > 1 ? static_cast<std::size_t>(grid.nz - 1) : 0;
   if (options.factor != InterpolationOptions::kAuto)
     return std::vector<int>(gaps, std::clamp(options.factor, 1, InterpolationOptions::kMaxFactor));
   const double pixel = std::min(grid.spacingX, grid.spacingY);
+  // Thin gaps get layers by the outlines' largest step, the same in every gap (surfaces whose
+  // layer spacing changes from gap to gap smooth unevenly), up to kAutoMinimum: beyond, more
+  // layers than pixels of gap leave the in-plane staircase less smoothed.
+  double byStep = 1;
+  for (double s : steps) byStep = std::max(byStep, std::ceil(s - 1e-6));
+  byStep = std::min(byStep, double{InterpolationOptions::kAutoMinimum});
   std::vector<int> wanted(gaps);
   for (std::size_t k = 0; k < gaps; ++k) {
     const double n = std::round((grid.layerZ[k + 1] - grid.layerZ[k]) / pixel);
     // Below three pixels a gap gains nothing measurable (sphere at 1 mm pixels and 2 mm slices:
     // 0.044 mm interpolated, 0.040 mm not) and would cost the larger volume.
-    wanted[k] =
-        n < InterpolationOptions::kAutoMinimum ? 1 : static_cast<int>(std::min(n, double{InterpolationOptions::kMaxFactor}));
+    const double byGap = n < InterpolationOptions::kAutoMinimum ? 1 : n;
+    wanted[k] = static_cast<int>(std::clamp(std::max(byGap, byStep), 1.0, double{InterpolationOptions::kMaxFactor}));
   }
   // Lower the largest factors until the volume fits the limit; below kAutoMinimum, none.
   const std::uint64_t plane = static_cast<std::uint64_t>(grid.nx) * static_cast<std::uint64_t>(grid.ny);
@@ -157,17 +163,33 @@ std::vector<bool> overlappingLabels(const LabelVolume& volume, int a) {
 
 int roundHalfAway(double v) { return static_cast<int>(std::lround(v)); }
 
+// Gap j alike in length to gap k (layers k, k + 1): within a quarter of it either way, where the
+// same tangents fit both sides of their common plane.
+bool alikeGap(const Grid& g, int k, int j) {
+  if (j < 0 || j + 1 >= g.nz) return false;
+  const double gap = g.layerZ[static_cast<std::size_t>(k + 1)] - g.layerZ[static_cast<std::size_t>(k)];
+  const double other = g.layerZ[static_cast<std::size_t>(j + 1)] - g.layerZ[static_cast<std::size_t>(j)];
+  return other >= 0.8 * gap && other <= 1.25 * gap;
+}
+
+// The monotone tangent of a sequence at a point between changes s0 and s1 (as bendTangent).
+double monotoneTangent(double s0, double s1) { return s0 * s1 > 0 ? 2 * s0 * s1 / (s0 + s1) : 0.0; }
+
 class BatchPlanner {
  public:
   BatchPlanner(const LabelVolume& volume, const PlaneCensus& census, const std::vector<bool>& containers,
                InterpolationBatch& batch)
       : g_(volume.grid), volume_(volume), census_(census), containers_(containers), batch_(batch) {}
 
+  // Every label's field on each plane; on a halo plane, only those of labels on its neighbour.
   void addFields() {
     for (int p = 0; p < batch_.planes; ++p) {
       const int k = batch_.firstPlane + p;
+      const bool halo = p < batch_.haloBefore || p >= batch_.planes - batch_.haloAfter;
+      const auto& neighbour = census_[static_cast<std::size_t>(p < batch_.haloBefore ? k + 1 : k - 1)];
       planeFields_.push_back(batch_.fields.size());
       for (const LabelCensus& c : census_[static_cast<std::size_t>(k)]) {
+        if (halo && !find(neighbour, c.label)) continue;
         const Box b = fieldWindow(g_, census_, k, c.label);
         shared::DistanceField f{b.x0, b.y0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1, p, c.label, 0, 0};
         const std::size_t area = static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h);
@@ -215,7 +237,7 @@ class BatchPlanner {
     labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
     std::vector<bool> overlap;
     for (Label label : labels) {
-      shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1, 0, -1};
+      shared::PairEntry e{label, fieldOf(p, label), fieldOf(p + 1, label), 0, 0, g_.nx, g_.ny, -1, -1, 0, -1, -1, -1};
       for (int f : {e.fieldA, e.fieldB}) {
         if (f < 0) continue;
         const shared::DistanceField& d = batch_.fields[static_cast<std::size_t>(f)];
@@ -233,8 +255,17 @@ class BatchPlanner {
                                    static_cast<double>(ca.sumY) / static_cast<double>(ca.count));
         }
       }
+      addBends(e, p, k);
       batch_.entries.push_back(e);
     }
+  }
+
+  // The fields before plane A and after plane B that bend a label's blend across its planes.
+  void addBends(shared::PairEntry& e, int p, int k) const {
+    e.fieldBefore = e.fieldAfter = -1;
+    if (e.fieldA < 0 || e.fieldB < 0 || e.shiftX != 0 || e.shiftY != 0) return;
+    if (p > 0 && alikeGap(g_, k, k - 1)) e.fieldBefore = fieldOf(p - 1, static_cast<Label>(e.label));
+    if (p + 2 < batch_.planes && alikeGap(g_, k, k + 1)) e.fieldAfter = fieldOf(p + 2, static_cast<Label>(e.label));
   }
 
   // Each feature's entry gets its place for factor + 1 values in the layer table: area-keeping
@@ -349,14 +380,17 @@ PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads) {
 InterpolationBatch planInterpolationBatch(const LabelVolume& volume, const PlaneCensus& census, int firstPlane, int planes,
                                           const std::vector<int>& factors, const std::vector<bool>& containers) {
   InterpolationBatch batch;
-  batch.firstPlane = firstPlane;
-  batch.planes = planes;
+  batch.haloBefore = firstPlane > 0 ? 1 : 0;
+  batch.haloAfter = firstPlane + planes < volume.grid.nz ? 1 : 0;
+  batch.firstPlane = firstPlane - batch.haloBefore;
+  batch.planes = planes + batch.haloBefore + batch.haloAfter;
   batch.tilesX = (volume.grid.nx + kTileSize - 1) / kTileSize;
   batch.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
   batch.blendLimit = deepDistance(volume.grid) * 3 / 4;  // within the label's window (kWindowMargin)
   BatchPlanner planner(volume, census, containers, batch);
   planner.addFields();
-  for (int p = 0; p + 1 < planes; ++p) planner.addPair(p, factors[static_cast<std::size_t>(firstPlane + p)]);
+  for (int p = batch.haloBefore; p + 1 < batch.planes - batch.haloAfter; ++p)
+    planner.addPair(p, factors[static_cast<std::size_t>(batch.firstPlane + p)]);
   return batch;
 }
 
@@ -430,14 +464,53 @@ std::int32_t offsetCovering(const std::vector<std::int32_t>& band, double want, 
 
 }  // namespace
 
-void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& fieldA, const std::int32_t* valuesA,
-                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t limit,
-                  std::int32_t* out) {
+std::int32_t blendedValue(const shared::PairEntry& e, const BlendFields& f, int m, int n, int x, int y) {
+  const std::int32_t sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
+  const std::int32_t a = fieldValue(*f.field[1], f.values[1], x - sx, y - sy);
+  const std::int32_t b = fieldValue(*f.field[2], f.values[2], x + e.shiftX - sx, y + e.shiftY - sy);
+  if (a == kFarAway || b == kFarAway) return kFarAway;
+  const std::int32_t chord = b - a;
+  std::int32_t tangentA = chord, tangentB = chord;
+  if (f.field[0]) {
+    const std::int32_t before = fieldValue(*f.field[0], f.values[0], x, y);
+    if (before != kFarAway) tangentA = shared::bendTangent(a - before, chord);
+  }
+  if (f.field[3]) {
+    const std::int32_t after = fieldValue(*f.field[3], f.values[3], x, y);
+    if (after != kFarAway) tangentB = shared::bendTangent(chord, after - b);
+  }
+  return (n - m) * a + m * b + shared::hermiteBend(tangentA, tangentB, chord, m, n);
+}
+
+namespace {
+
+// The area at layer m of n on the monotone cubic through the areas before A, on A, on B and
+// after B (negative: no such plane, linear at that end), as blendedValue bends the fields.
+double blendedArea(const double (&area)[4], int m, int n) {
+  const double chord = area[2] - area[1];
+  const double tangentA = area[0] >= 0 ? monotoneTangent(area[1] - area[0], chord) : chord;
+  const double tangentB = area[3] >= 0 ? monotoneTangent(chord, area[3] - area[2]) : chord;
+  const double t = static_cast<double>(m) / n;
+  const double cubic = (1 - t) * area[1] + t * area[2] + t * (1 - t) * ((1 - t) * (tangentA - chord) - t * (tangentB - chord));
+  // The cubic holds (tangentA - tangentB) / 12 of an area over the gap beyond the trapezoid;
+  // 30 t^2 (1 - t)^2 holds 1 and leaves the ends' values and slopes as they are.
+  return cubic - 30 * t * t * (1 - t) * (1 - t) * (tangentA - tangentB) / 12;
+}
+
+double fieldArea(const shared::DistanceField* f, const std::int32_t* values) {
+  if (!f || !values) return -1;
+  return coveredArea(values, static_cast<std::size_t>(f->w) * static_cast<std::size_t>(f->h), kFieldPixel);
+}
+
+}  // namespace
+
+void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int factor, std::int32_t limit, std::int32_t* out) {
   const int n = factor;
   constexpr double unit = kFieldPixel;
   out[0] = out[n] = 0;
-  const double areaA = coveredArea(valuesA, static_cast<std::size_t>(fieldA.w) * static_cast<std::size_t>(fieldA.h), unit);
-  const double areaB = coveredArea(valuesB, static_cast<std::size_t>(fieldB.w) * static_cast<std::size_t>(fieldB.h), unit);
+  double area[4];
+  for (int i = 0; i < 4; ++i) area[i] = fieldArea(fields.field[i], fields.values[i]);
+  const shared::DistanceField &fieldA = *fields.field[1], &fieldB = *fields.field[2];
   const std::int32_t sure = limit + kFieldPixel;  // beyond: covered, or not, whatever the offset
   std::vector<std::int32_t> band;
   for (int m = 1; m < n; ++m) {
@@ -447,17 +520,29 @@ void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& field
     band.clear();
     for (int y = e.y0; y <= e.y1; ++y)
       for (int x = e.x0; x <= e.x1; ++x) {
-        const std::int32_t a = fieldValue(fieldA, valuesA, x - sx, y - sy);
-        const std::int32_t b = fieldValue(fieldB, valuesB, x + e.shiftX - sx, y + e.shiftY - sy);
+        const std::int32_t a = fieldValue(fieldA, fields.values[1], x - sx, y - sy);
+        const std::int32_t b = fieldValue(fieldB, fields.values[2], x + e.shiftX - sx, y + e.shiftY - sy);
         if (a == kFarAway || b == kFarAway || std::min(a, b) > sure) continue;
-        if (std::max(a, b) < -sure)
+        if (std::max(a, b) < -sure)  // the bent blend stays between a and b
           ++inside;
         else
-          band.push_back((n - m) * a + m * b);
+          band.push_back(blendedValue(e, fields, m, n, x, y));
       }
-    const double want = ((n - m) * areaA + m * areaB) / n - static_cast<double>(inside);
+    const double want = blendedArea(area, m, n) - static_cast<double>(inside);
     out[m] = offsetCovering(band, want, n * unit, n * limit);
   }
+}
+
+BlendFields blendFields(const InterpolationBatch& batch, const shared::PairEntry& e,
+                        const std::vector<const std::int32_t*>& fieldValues) {
+  BlendFields out;
+  const int fields[4] = {e.fieldBefore, e.fieldA, e.fieldB, e.fieldAfter};
+  for (int i = 0; i < 4; ++i) {
+    if (fields[i] < 0) continue;
+    out.field[i] = &batch.fields[static_cast<std::size_t>(fields[i])];
+    out.values[i] = fieldValues[static_cast<std::size_t>(fields[i])];
+  }
+  return out;
 }
 
 std::vector<std::int32_t> buildLayerTable(const InterpolationBatch& batch, const std::vector<const std::int32_t*>& fieldValues,
@@ -476,9 +561,7 @@ std::vector<std::int32_t> buildLayerTable(const InterpolationBatch& batch, const
       }
       const InterpolationBatch::BlendedEntry& ref = batch.blendedEntries[i - caps];
       const shared::PairEntry& e = batch.entries[ref.entry];
-      const auto a = static_cast<std::size_t>(e.fieldA), b = static_cast<std::size_t>(e.fieldB);
-      blendOffsets(e, batch.fields[a], fieldValues[a], batch.fields[b], fieldValues[b], ref.factor, batch.blendLimit,
-                   table.data() + ref.table);
+      blendOffsets(e, blendFields(batch, e, fieldValues), ref.factor, batch.blendLimit, table.data() + ref.table);
     }
   });
   return table;

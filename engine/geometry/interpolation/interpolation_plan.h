@@ -52,8 +52,10 @@
 
 namespace scansurf {
 
-// factors[k]: the volume gets factors[k] - 1 layers between grid layers k and k+1.
-std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options);
+// factors[k]: the volume gets factors[k] - 1 layers between grid layers k and k+1. steps[k]: how
+// far outlines move between them, in pixels (outline_steps.h; empty: by the gap alone).
+std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options,
+                                      const std::vector<double>& steps = {});
 bool interpolates(const std::vector<int>& factors);
 // The layer of the interpolated grid that grid layer k becomes.
 std::vector<int> fineLayerOfPlane(const std::vector<int>& factors);
@@ -85,11 +87,16 @@ inline constexpr std::int32_t kMovingTile = 1 << 30;  // tile flag: a label that
 // voxel must be to skip the competition.
 std::int32_t deepDistance(const Grid& grid);
 
-// Pairs of planes [firstPlane, firstPlane + planes) of the volume: the distance fields of those
-// planes, each pair's entries and their tile lists.
+// Pairs of planes [firstPlane + haloBefore, firstPlane + planes - haloAfter) of the volume: the
+// distance fields of planes [firstPlane, firstPlane + planes), each pair's entries and their tile
+// lists. A halo plane (the one before the first pair, the one after the last, where the volume
+// has them) only lends its fields to bend the blends of its neighbouring pair.
 struct InterpolationBatch {
   int firstPlane = 0;
   int planes = 0;
+  int haloBefore = 0, haloAfter = 0;
+  int firstPairPlane() const { return firstPlane + haloBefore; }
+  int lastPairPlane() const { return firstPlane + planes - 1 - haloAfter; }
   int outputLayers = 0;  // layers m = 0 .. factor of each of its pairs
   int tilesX = 0, tilesY = 0;
   std::vector<shared::DistanceField> fields;
@@ -132,6 +139,7 @@ PlaneCensus takePlaneCensus(const LabelVolume& volume, int threads);
 // About what plane k adds to a batch's device memory (its fields, labels and output layers).
 std::size_t estimatePlaneBytes(const LabelVolume& volume, const PlaneCensus& census, int k, int factor);
 
+// The pairs of planes [firstPlane, firstPlane + planes) with their halo planes.
 // containers[label]: the label's feature contains another (Nesting::parent); its boundary
 // with what it contains is that feature's, so it keeps no area of its own between planes (its
 // own region has holes that come and go with its contents' caps).
@@ -161,24 +169,39 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, dou
 // the half slab can follow without standing taller still: the taper falls back to 0 by 1.25.
 double capTaper(const Grid& grid, const PlaneCensus& census, Label label, int end, int before, int next);
 
-// Area-keeping blends: a feature on both planes of a pair keeps, at layer m of n, the linear
-// blend ((n - m) areaA + m areaB) / n of its areas on them, so that its volume follows
-// the slab rule (the blended fields alone lose area wherever the outline changes between the
-// planes: 15 % of the volume of an ellipse turned a quarter turn). Its region at layer m is
-// {value < offset(m)}, value the blend (n - m) dA + m dB as the interpolation samples it; areas
-// are the pixels' covers read off the signed distances, the offsets solved near the boundary
-// and bounded by n * limit, so that a voxel deep inside one label on both planes still
-// belongs to it. out gets factor + 1 offsets, the
-// first and last 0 (the planes are the contours).
-void blendOffsets(const shared::PairEntry& e, const shared::DistanceField& fieldA, const std::int32_t* valuesA,
-                  const shared::DistanceField& fieldB, const std::int32_t* valuesB, int factor, std::int32_t limit,
-                  std::int32_t* out);
+// The fields of one entry that a blend reads: before A, A, B, after B (null where absent), each
+// with its window's values.
+struct BlendFields {
+  const shared::DistanceField* field[4] = {};
+  const std::int32_t* values[4] = {};
+};
+
+// The entry's blended value at layer m of n and pixel (x, y), scaled by n, before its area
+// offset: (n - m) dA + m dB bent by the fields before and after (hermiteBend), kFarAway
+// outside A's or B's window. As interpolate.comp's entryValue.
+std::int32_t blendedValue(const shared::PairEntry& e, const BlendFields& f, int m, int n, int x, int y);
+
+// Area-keeping blends: a feature on both planes of a pair keeps, at layer m of n, an area on
+// the monotone cubic through its areas on the planes before A, A, B and after B (linear
+// where it has no such plane), so that its volume follows the slab rule without a kink in its
+// area at a contour plane (the blended fields alone lose area wherever the outline changes
+// between the planes: 15 % of the volume of an ellipse turned a quarter turn). Its region at
+// layer m is {value < offset(m)}, value the blend as the interpolation samples it
+// (blendedValue); areas are the pixels' covers read off the signed distances, the offsets
+// solved near the boundary and bounded by n * limit, so that a voxel deep inside one label on
+// both planes still belongs to it. out gets factor + 1 offsets, the first and last 0 (the
+// planes are the contours).
+void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int factor, std::int32_t limit, std::int32_t* out);
 
 // A field's value at grid pixel (x, y), kFarAway outside its window (values: the window).
 inline std::int32_t fieldValue(const shared::DistanceField& f, const std::int32_t* values, int x, int y) {
   if (x < f.x0 || y < f.y0 || x >= f.x0 + f.w || y >= f.y0 + f.h) return kFarAway;
   return values[static_cast<std::size_t>(x - f.x0) + static_cast<std::size_t>(f.w) * static_cast<std::size_t>(y - f.y0)];
 }
+
+// The entry's blend fields from the batch's field values (as buildLayerTable takes them).
+BlendFields blendFields(const InterpolationBatch& batch, const shared::PairEntry& e,
+                        const std::vector<const std::int32_t*>& fieldValues);
 
 // The layer table (PairEntry::layerTable) of batch.layerInts: every round-capped entry's dome
 // erosions and every blended entry's offsets, from the fields' values (fieldValues[field]:

@@ -125,6 +125,7 @@ struct Sampler {
   const BatchFields& fields;
   CapShape caps;
   std::int32_t deep;
+  std::vector<const std::int32_t*> fieldStarts;  // each field's window values
 
   std::int32_t at(int field, int x, int y) const {
     const shared::DistanceField& f = batch.fields[static_cast<std::size_t>(field)];
@@ -136,11 +137,10 @@ struct Sampler {
   std::int32_t value(const shared::PairEntry& e, int m, int n, int x, int y, bool& wins) const {
     wins = true;
     if (e.fieldA >= 0 && e.fieldB >= 0) {
-      const std::int32_t sx = roundDiv(m * e.shiftX, n), sy = roundDiv(m * e.shiftY, n);
-      const std::int32_t a = at(e.fieldA, x - sx, y - sy), b = at(e.fieldB, x + e.shiftX - sx, y + e.shiftY - sy);
-      if (a == kFarAway || b == kFarAway) return kFarAway;
+      const std::int32_t v = blendedValue(e, blendFields(batch, e, fieldStarts), m, n, x, y);
+      if (v == kFarAway) return kFarAway;
       const std::int32_t offset = e.layerTable >= 0 ? fields.layerTable[static_cast<std::size_t>(e.layerTable + m)] : 0;
-      return (n - m) * a + m * b - offset;  // area-keeping (blendOffsets)
+      return v - offset;  // area-keeping (blendOffsets)
     }
     if (e.label == kBackground) return kFarAway;  // the union caps nothing
     const int field = e.fieldA >= 0 ? e.fieldA : e.fieldB;
@@ -271,7 +271,9 @@ std::vector<std::uint32_t> interpolateBatchReference(const LabelVolume& volume, 
                                                      CapShape caps) {
   const Grid& g = volume.grid;
   const BatchFields fields = distanceFieldsReference(volume, crossings, batch, weights);
-  const Sampler sampler{volume, batch, fields, caps, deepDistance(g)};
+  std::vector<const std::int32_t*> starts;
+  for (const shared::DistanceField& f : batch.fields) starts.push_back(fields.values.data() + f.offset);
+  const Sampler sampler{volume, batch, fields, caps, deepDistance(g), std::move(starts)};
   const std::size_t plane = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   std::vector<std::uint32_t> out(plane * static_cast<std::size_t>(batch.outputLayers));
   for (const shared::PairPlan& pair : batch.pairs)

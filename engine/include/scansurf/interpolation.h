@@ -22,11 +22,12 @@ enum class CapShape {
 
 struct InterpolationOptions {
   // Interpolated layers between two consecutive layers of the grid: factor - 1 of them.
-  // kAuto: each gap of at least kAutoMinimum in-plane pixels gets about one layer per pixel
-  // (factor = round(gap / pixel), at most kMaxFactor), as long as the volume stays within
-  // autoVoxelLimit voxels (the largest factors are lowered until it does, down to
-  // kAutoMinimum; below that auto is off); thinner gaps stay as they are. 1: off (only the
-  // contour planes, as the seed).
+  // kAuto: by need. Each gap of at least kAutoMinimum in-plane pixels gets about one layer per
+  // pixel (factor = round(gap / pixel), at most kMaxFactor); where outlines move by more than a
+  // pixel between planes, thinner gaps get layers too (factor = ceil(largest step), at most
+  // kAutoMinimum, the same in every gap); as long as the volume stays within autoVoxelLimit
+  // voxels (the largest factors are lowered until it does, down to kAutoMinimum; below that
+  // auto is off). 1: off (only the contour planes, as the seed).
   // Off by default in the library (Engine::build); the command-line tool uses kAuto.
   int factor = 1;
   static constexpr int kAuto = 0;
