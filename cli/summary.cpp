@@ -78,12 +78,13 @@ void printOverlaps(const ContourSet& set, const OverlapReport& report) {
   const char* units = unitText.c_str();
   for (const SharedVolume& s : report.partialOverlaps()) {
     const std::string share = shareOfSmaller(report, s, names);
+    const std::string depth = s.depthMeasured
+                                  ? "at most " + formatVolume(s.depth) + " " + unitText + " deep"
+                                  : "deeper, in regions of at most " + formatVolume(report.tolerance.percent / 2) + " %";
     if (s.incidental && report.mode == OverlapMode::Layers)
-      std::printf(
-          "overlap: %s and %s share %s %s3 (%s, at most %s %s deep): incidental, split between them (%s gave up %s "
-          "%s3, %s %s %s3)\n",
-          name(s.a), name(s.b), formatVolume(s.volume).c_str(), units, share.c_str(), formatVolume(s.depth).c_str(), units,
-          name(s.a), formatVolume(s.givenUpByA).c_str(), units, name(s.b), formatVolume(s.givenUpByB).c_str(), units);
+      std::printf("overlap: %s and %s share %s %s3 (%s, %s): incidental, split between them (%s gave up %s %s3, %s %s %s3)\n",
+                  name(s.a), name(s.b), formatVolume(s.volume).c_str(), units, share.c_str(), depth.c_str(), name(s.a),
+                  formatVolume(s.givenUpByA).c_str(), units, name(s.b), formatVolume(s.givenUpByB).c_str(), units);
     else
       std::printf("overlap: %s and %s share %s %s3 (%s): %s\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
                   share.c_str(),
@@ -105,20 +106,21 @@ void printOverlapList(const ContourSet& set, const OverlapReport& report, double
   const std::string units = printable(set.units);
   if (report.tolerance.enabled)
     std::printf(
-        "%s: %zu features; a partial overlap is incidental when every shared voxel lies within %s %s of the nearer "
-        "outline and it is at most %s %% of the smaller feature\n",
-        printable(set.source).c_str(), set.features.size(), formatVolume(depthLimit).c_str(), units.c_str(),
-        formatVolume(report.tolerance.percent).c_str());
+        "%s: %zu features; a partial overlap is incidental when it is at most %s %% of the smaller feature and "
+        "each connected region of it lies within %s %s of the nearer outline or is at most %s %%\n",
+        printable(set.source).c_str(), set.features.size(), formatVolume(report.tolerance.percent).c_str(),
+        formatVolume(depthLimit).c_str(), units.c_str(), formatVolume(report.tolerance.percent / 2).c_str());
   else
     std::printf("%s: %zu features; overlap tolerance off: every partial overlap is real\n", printable(set.source).c_str(),
                 set.features.size());
-  std::printf("  %-20s %-20s %14s %24s %12s  %s\n", "feature", "with", ("shared " + units + "3").c_str(), "of the smaller",
-              ("depth " + units).c_str(), "verdict");
+  std::printf("  %-20s %-20s %14s %24s %12s %7s  %s\n", "feature", "with", ("shared " + units + "3").c_str(), "of the smaller",
+              ("depth " + units).c_str(), "regions", "verdict");
   for (const SharedVolume& s : report.shared) {
     const std::string depth = s.depthMeasured ? formatVolume(s.depth) : "-";
-    std::printf("  %-20s %-20s %14s %24s %12s  %s\n", names[static_cast<std::size_t>(s.a)].c_str(),
+    const std::string regions = s.nested || !report.tolerance.enabled ? "-" : std::to_string(s.regions);
+    std::printf("  %-20s %-20s %14s %24s %12s %7s  %s\n", names[static_cast<std::size_t>(s.a)].c_str(),
                 names[static_cast<std::size_t>(s.b)].c_str(), formatVolume(s.volume).c_str(),
-                shareOfSmaller(report, s, names).c_str(), depth.c_str(), verdictOf(report, s).c_str());
+                shareOfSmaller(report, s, names).c_str(), depth.c_str(), regions.c_str(), verdictOf(report, s).c_str());
   }
   if (report.shared.empty()) std::printf("  no two features share a voxel\n");
   std::printf("surface layers: %d\n", report.layers);

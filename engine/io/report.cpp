@@ -44,10 +44,10 @@ void addOverlapFacts(RunReport& r, const ContourSet& contours, const OverlapRepo
   for (const SharedVolume& s : overlaps.partialOverlaps()) {
     const FeatureVolumes &a = overlaps.features[static_cast<std::size_t>(s.a)],
                          &b = overlaps.features[static_cast<std::size_t>(s.b)];
-    r.partialOverlaps.push_back({contours.features[static_cast<std::size_t>(s.a)].name,
-                                 contours.features[static_cast<std::size_t>(s.b)].name, s.volume,
-                                 percent(s.volume, std::min(a.ownVolume, b.ownVolume)), s.depth, s.depthMeasured, s.incidental,
-                                 s.givenUpByA, s.givenUpByB, percent(s.givenUpByA, a.contour), percent(s.givenUpByB, b.contour)});
+    r.partialOverlaps.push_back(
+        {contours.features[static_cast<std::size_t>(s.a)].name, contours.features[static_cast<std::size_t>(s.b)].name, s.volume,
+         percent(s.volume, std::min(a.ownVolume, b.ownVolume)), s.depth, s.depthMeasured, s.regions, s.incidental, s.givenUpByA,
+         s.givenUpByB, percent(s.givenUpByA, a.contour), percent(s.givenUpByB, b.contour)});
   }
   for (const VolumeLoss& l : overlaps.losses) {
     const double contour = overlaps.features[static_cast<std::size_t>(l.feature)].contour;
@@ -267,6 +267,7 @@ nlohmann::ordered_json overlapsSectionJson(const RunReport& report) {
                      {"shared_volume", o.volume},
                      {"percent_of_smaller", o.percentOfSmaller},
                      {"depth", o.depthMeasured ? ordered_json(o.depth) : ordered_json(nullptr)},
+                     {"regions", o.regions},
                      {"verdict", o.incidental ? "incidental" : "real"},
                      {"given_up", {{"a", o.givenUpByA}, {"b", o.givenUpByB}}},
                      {"given_up_percent_of_contour_volume", {{"a", o.givenUpPercentA}, {"b", o.givenUpPercentB}}}});

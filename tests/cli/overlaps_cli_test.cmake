@@ -14,9 +14,9 @@ set(input "${OUT}/drawn-pelvis-ptv.json")
 
 # The verdicts, without surfacing: the drawn neighbours incidental, the PTV real.
 run_scansurf(0 "${input}" --list-overlaps --voxel-size 1)
-expect_output("within 2 mm of the nearer outline and it is at most 2 % of the smaller feature")
-expect_output("prostate +rectum +[0-9.]+ +[0-9.]+ % of [a-z]+ +[0-9.]+ +incidental: one layer, shared voxels split")
-expect_output("rectum +PTV +[0-9.]+ +[0-9.]+ % of rectum +- +real: separate layers \\(too large\\)")
+expect_output("at most 2 % of the smaller feature and each connected region of it lies within 2 mm of the nearer outline or is at most 1 %")
+expect_output("prostate +rectum +[0-9.]+ +[0-9.]+ % of [a-z]+ +[0-9.]+ +[0-9]+ +incidental: one layer, shared voxels split")
+expect_output("rectum +PTV +[0-9.]+ +[0-9.]+ % of rectum +- +[0-9]+ +real: separate layers \\(too large\\)")
 expect_output("BODY +prostate .* nested: one holds the other")
 expect_output("surface layers: 2")
 if(EXISTS "${OUT}/prostate.ply")
@@ -31,7 +31,7 @@ expect_output("surface layers: 3")
 
 # A depth and percentage of one's own; bad ones are usage errors.
 run_scansurf(0 "${input}" --list-overlaps --voxel-size 1 --overlap-tolerance 0.5,1)
-expect_output("within 0.5 mm of the nearer outline and it is at most 1 % of the smaller feature")
+expect_output("at most 1 % of the smaller feature and each connected region of it lies within 0.5 mm of the nearer outline or is at most 0.5 %")
 expect_output("prostate +rectum .* real: separate layers \\(too (large|deep)\\)")
 foreach(bad "-1" "1,101" "x" "auto," "1,2,3")
   run_scansurf(2 "${input}" --list-overlaps --overlap-tolerance "${bad}")

@@ -73,12 +73,13 @@ class IncidentalOverlapsTest : public EngineTest {
   }
   // One layer, no crossing, a shared interface, each surface within 1 % of its contour volume,
   // and each side's given-up volume adding up to the shared volume.
-  static void expectSharedInterface(const ContourSet& set, const BuildResult& b, int f, int g, double volumeTolerance = 0.01) {
+  static void expectSharedInterface(const ContourSet& set, const BuildResult& b, int f, int g, double volumeTolerance = 0.01,
+                                    bool thin = true) {
     SCOPED_TRACE(set.features[static_cast<std::size_t>(f)].name + " | " + set.features[static_cast<std::size_t>(g)].name);
     const SharedVolume* s = pairOf(b.overlaps, f, g);
     ASSERT_NE(s, nullptr) << "drawn independently, they overlap somewhere";
     EXPECT_TRUE(s->incidental);
-    EXPECT_TRUE(s->depthMeasured);
+    EXPECT_EQ(s->depthMeasured, thin);
     EXPECT_EQ(b.overlaps.features[static_cast<std::size_t>(f)].layer, b.overlaps.features[static_cast<std::size_t>(g)].layer);
     EXPECT_GT(interfaceTriangles(b, f, g), 100u);
     for (int h : {f, g}) {
@@ -185,25 +186,38 @@ TEST_F(IncidentalOverlapsTest, LongThinOverlapIsSplitDownItsMiddle) {
   EXPECT_EQ(s->givenUpByB, s->volume);
 }
 
-// The rectum poking 6 mm wide and 8 mm deep into the prostate on two planes: small against
-// both, but deep (3 mm from either outline), so real: two layers.
-TEST_F(IncidentalOverlapsTest, SmallButDeepPokeIsReal) {
-  DrawnPelvisOptions o;
-  o.jitter = 0;
-  o.pokeDepth = 8;
-  const ContourSet set = drawnPelvisContours(o);
-  const int prostate = featureNamed(set, "prostate"), rectum = featureNamed(set, "rectum");
-  for (double voxel : {1.0, 0.5}) {
-    const BuildResult b = build(set, options(voxel));
-    const SharedVolume* s = pairOf(b.overlaps, prostate, rectum);
-    ASSERT_NE(s, nullptr);
-    const double smaller = std::min(b.overlaps.features[static_cast<std::size_t>(prostate)].ownVolume,
-                                    b.overlaps.features[static_cast<std::size_t>(rectum)].ownVolume);
-    EXPECT_LT(s->volume, 0.02 * smaller) << "small: only the depth makes it real";
-    EXPECT_FALSE(s->incidental);
-    EXPECT_EQ(b.overlaps.layers, 2);
-    EXPECT_NE(b.overlaps.features[static_cast<std::size_t>(prostate)].layer,
-              b.overlaps.features[static_cast<std::size_t>(rectum)].layer);
+// The rectum poking 6 mm wide into the prostate on two planes, deeper than the limit from
+// either outline. 5 mm deep, its region is tiny against both (under 1 % of the smaller):
+// incidental whatever its depth, one layer, split medially. 12 mm deep it is not: real by its
+// depth (small, under 2 %), and 20 mm deep real by its size too: two layers.
+TEST_F(IncidentalOverlapsTest, ADeepPokeIsRealOnlyWhenNotTiny) {
+  for (double poke : {5.0, 12.0, 20.0}) {
+    DrawnPelvisOptions o;
+    o.jitter = 0;
+    o.pokeDepth = poke;
+    const ContourSet set = drawnPelvisContours(o);
+    const int prostate = featureNamed(set, "prostate"), rectum = featureNamed(set, "rectum");
+    for (double voxel : {1.0, 0.5}) {
+      SCOPED_TRACE("poke " + std::to_string(poke) + ", voxel size " + std::to_string(voxel));
+      const BuildResult b = build(set, options(voxel));
+      const SharedVolume* s = pairOf(b.overlaps, prostate, rectum);
+      ASSERT_NE(s, nullptr);
+      const double smaller = std::min(b.overlaps.features[static_cast<std::size_t>(prostate)].ownVolume,
+                                      b.overlaps.features[static_cast<std::size_t>(rectum)].ownVolume);
+      std::printf("[ figure   ] poke %.0f mm at %.1f mm pixels: %d region(s), the largest %.2f %% of the smaller, %s\n", poke,
+                  voxel, s->regions, 100 * s->largestRegion / smaller, s->incidental ? "incidental" : "real");
+      EXPECT_GE(s->regions, 1);
+      EXPECT_LE(s->largestRegion, s->volume);
+      EXPECT_FALSE(s->depthMeasured) << "deeper than the limit";
+      const bool tiny = poke == 5.0;
+      EXPECT_EQ(s->largestRegion < 0.01 * smaller, tiny);
+      EXPECT_EQ(s->incidental, tiny);
+      EXPECT_EQ(b.overlaps.layers, tiny ? 1 : 2);
+      if (tiny) {
+        expectSharedInterface(set, b, prostate, rectum, 0.015, false);
+        expectNoCrossings(b, 0);
+      }
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <compare>
 #include <limits>
 #include <map>
 #include <optional>
@@ -133,22 +134,65 @@ void forEachSharedVoxel(const FeatureRegion& a, const FeatureRegion& b, Visit&& 
   });
 }
 
-// The deepest shared voxel's distance to the nearer outline, when every one is within limit.
-std::optional<double> depthWithin(const SharedVolume& pair, const std::vector<FeatureRegion>& regions, Outlines& outlines,
-                                  double limit) {
+struct Voxel {
+  int k = 0, row = 0, column = 0;
+  auto operator<=>(const Voxel&) const = default;
+};
+
+// One connected region of a pair's shared voxels: face neighbours in a layer, and the same
+// pixel on grid layers k and k + 1.
+struct SharedRegion {
+  std::vector<Voxel> voxels;
+  double volume = 0;
+};
+
+std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The connected regions of the voxels two features share, largest first (ties by first voxel).
+std::vector<SharedRegion> sharedRegions(const FeatureRegion& a, const FeatureRegion& b, const Grid& grid) {
+  std::vector<Voxel> voxels;
+  forEachSharedVoxel(a, b, [&](int k, int row, int column) {
+    voxels.push_back({k, row, column});
+    return true;
+  });
+  std::sort(voxels.begin(), voxels.end());
+  std::vector<std::size_t> parent(voxels.size());
+  for (std::size_t i = 0; i < voxels.size(); ++i) parent[i] = i;
+  for (std::size_t i = 0; i < voxels.size(); ++i) {
+    const Voxel v = voxels[i];
+    for (const Voxel n : {Voxel{v.k, v.row, v.column - 1}, Voxel{v.k, v.row - 1, v.column}, Voxel{v.k - 1, v.row, v.column}}) {
+      const auto it = std::lower_bound(voxels.begin(), voxels.begin() + static_cast<std::ptrdiff_t>(i), n);
+      if (it != voxels.begin() + static_cast<std::ptrdiff_t>(i) && *it == n)
+        parent[findRoot(parent, static_cast<std::size_t>(it - voxels.begin()))] = findRoot(parent, i);
+    }
+  }
+  std::map<std::size_t, std::size_t> regionOfRoot;
+  std::vector<SharedRegion> out;
+  for (std::size_t i = 0; i < voxels.size(); ++i) {
+    const auto [it, added] = regionOfRoot.try_emplace(findRoot(parent, i), out.size());
+    if (added) out.emplace_back();
+    SharedRegion& r = out[it->second];
+    r.voxels.push_back(voxels[i]);
+    r.volume += voxelVolume(grid, voxels[i].k);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const SharedRegion& x, const SharedRegion& y) { return x.volume > y.volume; });
+  return out;
+}
+
+// The deepest voxel's distance to the nearer of the pair's outlines, when every one is within limit.
+std::optional<double> depthWithin(const SharedVolume& pair, const SharedRegion& region, Outlines& outlines, double limit) {
   double depth = 0;
-  bool within = true;
-  forEachSharedVoxel(regions[static_cast<std::size_t>(pair.a)], regions[static_cast<std::size_t>(pair.b)],
-                     [&](int k, int row, int column) {
-                       const Point2 p = outlines.centre(column, row);
-                       const double toA = outlines.of(pair.a, k).distance(p, row, limit);
-                       const double toB = outlines.of(pair.b, k).distance(p, row, std::min(toA, limit));
-                       const double nearer = std::min(toA, toB);
-                       within = nearer <= limit;
-                       if (within) depth = std::max(depth, nearer);
-                       return within;
-                     });
-  if (!within) return std::nullopt;
+  for (const Voxel& v : region.voxels) {
+    const Point2 p = outlines.centre(v.column, v.row);
+    const double toA = outlines.of(pair.a, v.k).distance(p, v.row, limit);
+    const double toB = outlines.of(pair.b, v.k).distance(p, v.row, std::min(toA, limit));
+    const double nearer = std::min(toA, toB);
+    if (nearer > limit) return std::nullopt;
+    depth = std::max(depth, nearer);
+  }
   return depth;
 }
 
@@ -253,11 +297,20 @@ void judgeOverlaps(const ContourSet& contours, const Grid& grid, const std::vect
     if (s.nested) continue;
     const double smaller = std::min(report.features[static_cast<std::size_t>(s.a)].ownVolume,
                                     report.features[static_cast<std::size_t>(s.b)].ownVolume);
-    if (s.volume > 0.01 * tolerance.percent * smaller) continue;
-    const std::optional<double> depth = depthWithin(s, regions, outlines, limit);
-    s.depthMeasured = depth.has_value();
-    s.depth = depth.value_or(0);
-    s.incidental = s.depthMeasured;
+    const double thin = 0.01 * tolerance.percent * smaller, tiny = thin / 2;
+    const std::vector<SharedRegion> parts =
+        sharedRegions(regions[static_cast<std::size_t>(s.a)], regions[static_cast<std::size_t>(s.b)], grid);
+    s.regions = static_cast<int>(parts.size());
+    s.largestRegion = parts.empty() ? 0 : parts.front().volume;
+    s.incidental = s.depthMeasured = !parts.empty() && s.volume <= thin;
+    s.depth = 0;
+    for (std::size_t r = 0; r < parts.size() && s.incidental; ++r) {
+      const std::optional<double> depth = depthWithin(s, parts[r], outlines, limit);
+      s.depth = std::max(s.depth, depth.value_or(0));
+      s.depthMeasured = s.depthMeasured && depth.has_value();
+      s.incidental = depth.has_value() || parts[r].volume <= tiny;
+    }
+    if (!s.incidental) s.depthMeasured = false, s.depth = 0;
   }
 }
 

@@ -25,12 +25,15 @@ enum class OverlapMode {
 };
 
 // When a partial overlap is incidental rather than by design. Hand-drawn neighbours always
-// overlap by a sliver along their interface (two outlines are never drawn on the same line);
-// such a sliver is thin (every shared voxel lies near one of the two outlines) and small
-// (a small part of both features). An incidental pair stays in one layer, sharing its
-// interface, and the shared voxels are divided between the two: each goes to the feature whose
-// own outline is farther from it (a medial split), so the shared surface runs between the two
-// drawn outlines. Any other partial overlap is real: the pair goes to separate layers.
+// overlap by a sliver along their interface (two outlines are never drawn on the same line),
+// and now and then by a stray bump. A pair's overlap is incidental when it is small (at most
+// `percent` of the smaller feature in all) and each connected region of its shared voxels is
+// thin (every voxel of it lies near one of the two outlines) or tiny (at most half `percent`)
+// whatever its depth: the medial split then moves less than that share of either feature.
+// An incidental pair stays in one layer, sharing its interface,
+// and the shared voxels are divided between the two: each goes to the feature whose own
+// outline is farther from it (a medial split), so the shared surface runs between the two
+// drawn outlines. A pair with any other region overlaps for real: it goes to separate layers.
 struct OverlapTolerance {
   // false: every shared voxel between features not nested in one another means layers.
   bool enabled = true;
@@ -39,7 +42,8 @@ struct OverlapTolerance {
   // and half the median spacing of the contour planes, so the verdict does not hinge on a fine
   // in-plane grid (a drawn outline is no more precise in-plane than about that).
   double depth = 0;
-  // The shared volume, at most this percentage of the smaller feature's own volume.
+  // The shared volume, at most this percentage of the smaller feature's own volume; a region
+  // deeper than `depth`, at most half of it.
   double percent = 2.0;
 };
 
@@ -70,11 +74,14 @@ struct SharedVolume {
   double volume = 0;
   bool nested = false;  // one contains the other (Nesting): not an overlap in the enclosing convention
   // Partial overlaps, with the rule on: the deepest shared voxel's distance to the nearer of the
-  // two outlines (input units); measured only for pairs small enough to be incidental, and
-  // then only up to the depth limit (depthMeasured false: not measured, or deeper than that).
+  // two outlines (input units); measured only for pairs whose regions are all small enough to
+  // be incidental, and then only up to the depth limit (depthMeasured false: not measured, or
+  // deeper than that).
   double depth = 0;
   bool depthMeasured = false;
-  bool incidental = false;  // thin and small (OverlapTolerance): one layer, the voxels split
+  int regions = 0;           // connected regions of the shared voxels (partial overlaps, rule on)
+  double largestRegion = 0;  // the largest one's volume
+  bool incidental = false;   // every region thin and small, or tiny (OverlapTolerance)
   // Incidental pairs in Layers mode: the shared volume whose surface went to the other
   // feature (what a gave up to b, and b to a).
   double givenUpByA = 0;

@@ -77,7 +77,9 @@ struct RunReport {
     std::string a, b;
     double volume = 0, percentOfSmaller = 0;
     double depth = 0;  // valid when depthMeasured
-    bool depthMeasured = false, incidental = false;
+    bool depthMeasured = false;
+    int regions = 0;  // connected regions of the shared voxels
+    bool incidental = false;
     double givenUpByA = 0, givenUpByB = 0;
     double givenUpPercentA = 0, givenUpPercentB = 0;  // of each one's contour volume
   };
