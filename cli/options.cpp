@@ -15,21 +15,61 @@
 #include <string>
 #include <string_view>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "help_format.h"
 #include "scansurf/version.h"
 
 namespace scansurf::cli {
 namespace {
 
 constexpr const char* kFooter =
-    "Outputs: OUTDIR/<feature>.ply (one closed surface per feature, outward), OUTDIR/multilabel.ply\n"
-    "(every separating surface, each face with its two labels; label = feature index + 1); other formats\n"
-    "with --format (glb: one scene OUTDIR/<input name>.glb); -o NAME.glb writes one Draco-compressed glTF scene instead;\n"
-    "--label-volume (.nrrd, .seg.nrrd, .nii, .nii.gz) and --dicom-seg (needs --reference) write the label volume.\n"
-    "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal,\n"
-    "8 out of memory, 9 resource limit (the run would need more memory than --max-memory allows).\n"
-    "Environment: SCANSURF_DEVICE (device index or name), SCANSURF_VALIDATION=1, SCANSURF_THREADS.";
+    "Outputs: OUTDIR/<feature>.ply (one closed surface per feature, outward) and OUTDIR/multilabel.ply (every "
+    "separating surface, each face with its two labels; label = feature index + 1); other formats with --format; "
+    "-o NAME.glb writes one Draco-compressed glTF scene instead; --label-volume and --dicom-seg write the label "
+    "volume.\n"
+    "Many inputs: scansurf batch INPUT... -o OUT (scansurf batch --help).\n"
+    "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal, 8 out "
+    "of memory, 9 over --max-memory, 10 defective surface (docs/limits.md).\n"
+    "Environment: SCANSURF_DEVICE, SCANSURF_VALIDATION=1, SCANSURF_THREADS.";
+
+// What --help shows for each option's value.
+constexpr std::pair<const char*, const char*> kValueNames[] = {
+    {"--output", "OUTDIR"},
+    {"--voxel-size", "S"},
+    {"--grid", "NX NY"},
+    {"--convention", "C"},
+    {"--overlaps", "M"},
+    {"--overlap-tolerance", "T"},
+    {"--device", "D"},
+    {"--threads", "N"},
+    {"--max-memory", "SIZE"},
+    {"--long-gap", "F"},
+    {"--interpolate", "I"},
+    {"--caps", "C"},
+    {"--smooth-iterations", "N"},
+    {"--smooth-strength", "X"},
+    {"--min-angle", "DEG"},
+    {"--snap", "F"},
+    {"--simplify-tolerance", "X"},
+    {"--simplify-edge-length", "X"},
+    {"--simplify-min-angle", "DEG"},
+    {"--edge-length", "L"},
+    {"--roi", "PATTERN"},
+    {"--reference", "DIR"},
+    {"--object", "PATTERN"},
+    {"--format", "LIST"},
+    {"--gltf-frame", "F"},
+    {"--draco-bits", "N"},
+    {"--draco-level", "N"},
+    {"--label-volume", "F"},
+    {"--dicom-seg", "F.dcm"},
+    {"--report", "F.json"},
+    {"--preview", "F.png"},
+    {"--view", "V"},
+    {"--preview-size", "W H"},
+};
 
 // A finite number with lo < value <= hi (lo < value when openLow, else lo <= value), parsed
 // without throwing; the message prints the bounds readably (no 309-digit DBL_MAX).
@@ -114,7 +154,7 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                      "in-plane pixel size, input units (default: the reference CT's with --reference, else 256 pixels along "
                      "the longer side of every structure in the file, selected or not)")
           ->check(numberIn(0, 1e9, true, "a positive, finite number"));
-  app.add_option("--grid", f.grid, "NX NY: pixels along x and y including the 1-pixel border (4 to 16384 each)")
+  app.add_option("--grid", f.grid, "pixels along x and y including the 1-pixel border (4 to 16384 each)")
       ->expected(2)
       ->check(CLI::Range(4, 16384))
       ->excludes(voxel);
@@ -293,7 +333,7 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
       ->check(CLI::IsMember({"oblique", "front", "back", "left", "right", "top", "bottom"}))
       ->capture_default_str();
   app.add_option("--preview-size", o.previewSize,
-                 "W H: preview size in pixels, at most 8192 (rendered at twice the size; default 960 720)")
+                 "preview size in pixels, at most 8192 each (rendered at twice the size; default 960 720)")
       ->expected(2)
       ->check(CLI::Range(1, 8192));
 }
@@ -384,20 +424,30 @@ int usageError(const CLI::App& app, const CLI::ParseError& e) {
 }  // namespace
 
 ParsedCommandLine parseCommandLine(int argc, char** argv) {
-  CLI::App app{"scansurf: separating surfaces from planar contours (scanline surfacing on Vulkan)"};
+  CLI::App app{"scansurf: separating surfaces from planar contours (scanline surfacing on Vulkan)", "scansurf"};
+  useHelpLayout(app);
   app.footer(kFooter);
   app.set_version_flag("--version", std::string("scansurf ") + version());
   ParsedCommandLine parsed;
   parsed.options.commandLine.assign(argv, argv + argc);
   Flags flags;
+  const auto group = [&](const char* name) { app.option_defaults()->group(name); };
+  group("Options");
   addGeneral(app, parsed.options, flags);
+  group("Between the slices (docs/method.md)");
   addInterpolation(app, parsed.options, flags);
+  group("Smoothing, on by default (docs/method.md)");
   addSmoothing(app, parsed.options, flags);
+  group("Simplification, on by default (docs/method.md)");
   addSimplification(app, parsed.options);
+  group("Remeshing, off by default (docs/method.md)");
   addRemeshing(app, parsed.options, flags);
+  group("Inputs (docs/formats.md)");
   addDicom(app, parsed.options, flags);
   addObjects(app, parsed.options);
+  group("Outputs (docs/outputs.md)");
   addOutputs(app, parsed.options, flags);
+  for (const auto& [name, value] : kValueNames) app.get_option(name)->option_text(value);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

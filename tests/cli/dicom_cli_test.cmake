@@ -73,7 +73,7 @@ expect_nothing_left("${OUT}/bad")
 
 # The label volume on the MIM phantom's CT as a DICOM Segmentation and as gzip NIfTI.
 run_scansurf(0 --help)
-expect_output("--label-volume[^\n]*\\.nrrd or \\.seg\\.nrrd[^\n]*\\.nii / \\.nii\\.gz")
+expect_output("--label-volume F +write the label volume by extension: \\.nrrd or \\.seg\\.nrrd")
 expect_output("--dicom-seg[^\n]*DICOM Segmentation")
 run_scansurf(0 "${MIM}/rt.dcm" --reference "${MIM}" -o "${OUT}/mim-seg" --no-smooth -q
   --dicom-seg "${OUT}/mim-seg/mim.dcm" --label-volume "${OUT}/mim-seg/mim.nii.gz")
