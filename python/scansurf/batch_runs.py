@@ -159,6 +159,33 @@ class _Progress:
         sys.stderr.flush()
 
 
+def _unguarded_script():
+    """The running script's path when its top level would run again in every local worker.
+
+    Dask starts local workers by spawning processes, and a spawned process imports the main
+    script again: a batch() call at its top level, outside `if __name__ == "__main__":`, starts
+    another cluster from every worker, which never ends. None when the script guards its entry
+    point (or there is no script: an interactive session, python -c, a notebook).
+    """
+    main = sys.modules.get("__main__")
+    path = getattr(main, "__file__", None)
+    if not path or not os.path.isfile(path) or getattr(main, "__spec__", None) is not None:
+        return None  # no script, or run as a module (python -m), which spawn does not re-run
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            source = f.read()
+    except OSError:
+        return None
+    return None if "__main__" in source else path
+
+
+def _in_respawned_script():
+    """Whether this is a spawned process importing the main script again (see _unguarded_script)."""
+    import multiprocessing
+    main = sys.modules.get("__main__")
+    return multiprocessing.parent_process() is not None and getattr(main, "__name__", "") == "__mp_main__"
+
+
 def _local_client(workers):
     from distributed import Client, LocalCluster
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
@@ -176,6 +203,15 @@ def batch(inputs, out_dir, client=None, workers=None, formats=("ply",), progress
     formats: as BuildResult.write; options: as scansurf.build (threads defaults to the cores
         divided among the local workers). Returns a BatchSummary.
     """
+    if client is None:
+        if _in_respawned_script():  # a worker importing an unguarded script: leave the batch to the parent
+            return BatchSummary([], [])
+        script = _unguarded_script()
+        if script is not None:
+            raise RuntimeError(
+                "scansurf.batch on a local cluster runs its workers as new processes, which import %s again "
+                "and would start the batch again each: put the call under `if __name__ == \"__main__\":` "
+                "(or pass client=\"serial\" to run in this process)" % script)
     if isinstance(inputs, (str, os.PathLike)):  # one folder of inputs, or one input
         inputs = inputs_in(inputs) if os.path.isdir(inputs) else [inputs]
     tasks = [_task_of(i) for i in inputs]

@@ -133,3 +133,14 @@ def test_the_command_line_batch_never_follows_a_link_at_its_log(tmp_path, cli):
     run = subprocess.run([cli, "batch", str(inputs), "-o", str(out), "-q"], capture_output=True, text=True)
     assert victim.read_text() == "precious"
     assert run.returncode != 0 and "a.json failed" in run.stderr  # quiet still names a failed input
+
+
+def test_a_script_without_the_main_guard_is_refused_at_once(tmp_path, cohort):
+    paths, _ = cohort
+    script = tmp_path / "cohort_script.py"
+    script.write_text("import scansurf\nscansurf.batch(%r, %r)\n" % (paths[0], str(tmp_path / "out")))
+    run = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=120,
+                         env=os.environ.copy())
+    assert run.returncode != 0
+    assert 'if __name__ == "__main__":' in run.stderr
+    assert not (tmp_path / "out").exists()
