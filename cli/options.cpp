@@ -186,7 +186,7 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
   app.add_option("--threads", o.build.threads,
                  "CPU threads for assembly, smoothing and statistics (default and at most: the machine's cores)")
-      ->check(CLI::Range(0, 1024));
+      ->check(CLI::Range(0, BuildOptions::kMostThreads));
   app.add_option("--max-memory", f.maxMemory,
                  "host memory the run may use, e.g. 8G or 512M (default: what the machine has available); a run that "
                  "would need more is refused before it starts (exit 9)")
@@ -205,7 +205,7 @@ void addSmoothing(CLI::App& app, CliOptions& o, Flags& f) {
   SmoothingOptions& s = o.build.smoothing;
   app.add_flag("--no-smooth", f.noSmooth, "write the raw (staircase) separating surfaces, without smoothing");
   app.add_option("--smooth-iterations", s.iterations, "how much to smooth, in plain relaxation sweeps (run as fewer super-steps)")
-      ->check(CLI::Range(1, 100000))
+      ->check(CLI::Range(1, SmoothingOptions::kMostIterations))
       ->capture_default_str();
   app.add_option("--smooth-strength", s.strength, "step of each smoothing sweep, in (0, 1]")
       ->check(numberIn(0, 1, true, "a number in (0, 1]"))

@@ -54,15 +54,17 @@ std::string describeGrid(const Grid& grid) {
 }
 
 // One policy for bad options: refused, naming the option and what it may be; never clamped or
-// replaced by a default behind the caller's back.
+// replaced by a default behind the caller's back. A stage that is off has its options checked
+// too: the report records them, and turning the stage on must not be what reveals them.
 Result<void> checkOptions(const BuildOptions& o) {
   const SmoothingOptions& s = o.smoothing;
-  if (s.enabled && !(s.strength > 0 && s.strength <= 1)) return badOption("smoothing.strength", "in (0, 1]", s.strength);
-  if (s.enabled && !(s.minAngle >= 0 && s.minAngle <= 30))
-    return badOption("smoothing.minAngle", "in [0, 30] degrees", s.minAngle);
-  if (s.enabled && !(s.snap >= 0 && s.snap <= 0.45)) return badOption("smoothing.snap", "in [0, 0.45] of a lattice edge", s.snap);
-  if (s.enabled && s.iterations < 1) return badOption("smoothing.iterations", "at least 1", s.iterations);
-  if (const SimplificationOptions& p = o.simplification; p.enabled) {
+  if (!(s.strength > 0 && s.strength <= 1)) return badOption("smoothing.strength", "in (0, 1]", s.strength);
+  if (!(s.minAngle >= 0 && s.minAngle <= 30)) return badOption("smoothing.minAngle", "in [0, 30] degrees", s.minAngle);
+  if (!(s.snap >= 0 && s.snap <= 0.45)) return badOption("smoothing.snap", "in [0, 0.45] of a lattice edge", s.snap);
+  if (s.iterations < 1 || s.iterations > SmoothingOptions::kMostIterations)
+    return badOption("smoothing.iterations", "1 to " + std::to_string(SmoothingOptions::kMostIterations), s.iterations);
+  {
+    const SimplificationOptions& p = o.simplification;
     if (!(p.tolerance > 0 && p.tolerance <= SimplificationOptions::kMostTolerance))
       return badOption("simplification.tolerance", "in (0, 0.5] in-plane voxels", p.tolerance);
     if (!(p.edgeLength >= SimplificationOptions::kLeastEdge && p.edgeLength <= SimplificationOptions::kMostEdge))
@@ -70,15 +72,16 @@ Result<void> checkOptions(const BuildOptions& o) {
     if (!(p.minAngle >= 0 && p.minAngle <= 30)) return badOption("simplification.minAngle", "in [0, 30] degrees", p.minAngle);
   }
   const RemeshOptions& r = o.remeshing;
-  if (r.enabled && !(std::isfinite(r.edgeLength) && r.edgeLength >= 0))
+  if (!(std::isfinite(r.edgeLength) && r.edgeLength >= 0))
     return badOption("remeshing.edgeLength", "0 (automatic) or a positive length", r.edgeLength);
-  if (r.enabled && r.iterations < 1) return badOption("remeshing.iterations", "at least 1", r.iterations);
+  if (r.iterations < 1) return badOption("remeshing.iterations", "at least 1", r.iterations);
   const int f = o.interpolation.factor;
   if (f != InterpolationOptions::kAuto && (f < 1 || f > InterpolationOptions::kMaxFactor))
     return badOption("interpolation.factor", "kAuto (0) or 1 to " + std::to_string(InterpolationOptions::kMaxFactor), f);
   if (!(o.audit.volumeTolerance > 0 && o.audit.volumeTolerance <= 1))
     return badOption("audit.volumeTolerance", "in (0, 1]", o.audit.volumeTolerance);
-  if (o.threads < 0) return badOption("threads", "0 (all) or more", o.threads);
+  if (o.threads < 0 || o.threads > BuildOptions::kMostThreads)
+    return badOption("threads", "0 (all cores) to " + std::to_string(BuildOptions::kMostThreads), o.threads);
   const double tol = o.grid.sliceTolerance;
   if (!(std::isfinite(tol) && tol >= 0))
     return badOption("grid.sliceTolerance", "0 (the contours' own) or a positive length", tol);

@@ -144,7 +144,9 @@ def build(contour_set, engine=None, device=None, validation=None, **options):
     ("auto", "off" or layers per gap), caps ("round", "flat"), smooth (True), smooth_iterations,
     smooth_strength, contour_fit, junction_smoothing, keep_volume, min_angle, snap, simplify (True),
     simplify_tolerance, simplify_edge_length, simplify_min_angle, remesh (False), edge_length,
-    curvature_sizing, threads (0: all cores), max_memory (bytes).
+    curvature_sizing, threads (0: all cores; more than the cores count as the cores), max_memory
+    (bytes). Every option is checked against the command line's range, whether its stage is on
+    or not: a bad one raises InvalidArgument naming it.
     engine: a scansurf.Engine to build on; else the one kept for `device` and `validation`.
     """
     if isinstance(contour_set, (str, bytes, os.PathLike)) or _is_dataset(contour_set):

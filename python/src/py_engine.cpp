@@ -2,8 +2,11 @@
 // the command-line tool uses (BuildOptions::recommended).
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <functional>
 #include <map>
+#include <string>
+#include <thread>
 #include <type_traits>
 
 #include "py_errors.h"
@@ -32,7 +35,12 @@ int interpolationFactor(const py::handle& v) {
     if (text == "off") return 1;
     raiseInvalidArgument("option interpolate: '" + text + "' is not \"auto\", \"off\" or a number of layers per gap");
   }
-  return as<int>(v, "interpolate", "\"auto\", \"off\" or an int");
+  const int n = as<int>(v, "interpolate", "\"auto\", \"off\" or an int");
+  // 0 is the library's kAuto: as a number of layers it would silently mean "auto".
+  if (n < 1 || n > InterpolationOptions::kMaxFactor)
+    raiseInvalidArgument("option interpolate: " + std::to_string(n) + " is not \"auto\", \"off\" or 1 to " +
+                         std::to_string(InterpolationOptions::kMaxFactor));
+  return n;
 }
 
 // "auto", "off", a depth, or (depth, percent).
@@ -47,9 +55,16 @@ OverlapTolerance overlapTolerance(const py::handle& v) {
   if (py::isinstance<py::tuple>(v) || py::isinstance<py::list>(v)) {
     const auto pair = as<std::pair<double, double>>(v, "overlap_tolerance", "(depth, percent)");
     t.depth = pair.first, t.percent = pair.second;
+    if (!(t.depth > 0))
+      raiseInvalidArgument("option overlap_tolerance: the depth must be a positive length (got " +
+                           py::str(v).cast<std::string>() + ")");
     return t;
   }
   t.depth = as<double>(v, "overlap_tolerance", "\"auto\", \"off\", a depth or (depth, percent)");
+  // A depth of 0 is the library's "automatic": as a length it would silently mean "auto".
+  if (!(t.depth > 0))
+    raiseInvalidArgument("option overlap_tolerance: the depth must be a positive length, or \"auto\" (got " +
+                         py::str(v).cast<std::string>() + ")");
   return t;
 }
 
@@ -120,7 +135,14 @@ const std::map<std::string, Setter>& setters() {
        [](BuildOptions& o, const py::handle& v) { o.remeshing.edgeLength = as<double>(v, "edge_length", "a number"); }},
       {"curvature_sizing",
        [](BuildOptions& o, const py::handle& v) { o.remeshing.curvatureSizing = as<bool>(v, "curvature_sizing", "a bool"); }},
-      {"threads", [](BuildOptions& o, const py::handle& v) { o.threads = as<int>(v, "threads", "an int"); }},
+      {"threads",
+       [](BuildOptions& o, const py::handle& v) {
+         o.threads = as<int>(v, "threads", "an int");
+         // As the command line: more threads than cores only cost memory and switches (the
+         // results do not depend on the count); build() refuses a count out of range.
+         const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+         if (o.threads >= 0 && o.threads <= BuildOptions::kMostThreads) o.threads = std::min(o.threads, cores);
+       }},
       {"max_memory",
        [](BuildOptions& o, const py::handle& v) { o.memoryLimit = as<std::uint64_t>(v, "max_memory", "a number of bytes"); }},
   };

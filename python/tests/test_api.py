@@ -232,3 +232,18 @@ def test_a_device_by_index_and_no_bool_for_a_number(phantom):
         scansurf.build(phantom, interpolate=True)
     with pytest.raises(scansurf.InvalidArgument, match="smooth_iterations"):
         scansurf.build(phantom, smooth_iterations=True)
+
+
+@pytest.mark.parametrize("options, option", [
+    (dict(smooth=False, snap=0.9), "snap"),
+    (dict(smooth=False, min_angle=-5), "min_angle"),
+    (dict(smooth=False, smooth_iterations=0), "smooth_iterations"),
+    (dict(smooth_iterations=10_000_000), "smooth_iterations"),
+    (dict(threads=100_000), "threads"),
+    (dict(interpolate=0), "interpolate"),
+    (dict(overlap_tolerance=0), "overlap_tolerance"),
+    (dict(overlap_tolerance=(0, 2)), "overlap_tolerance"),
+])
+def test_options_are_checked_against_the_command_lines_ranges_whatever_is_on(phantom, options, option):
+    with pytest.raises(scansurf.InvalidArgument, match="option " + option):
+        scansurf.build(phantom, voxel_size=2.0, **options)

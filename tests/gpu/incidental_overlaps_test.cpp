@@ -387,7 +387,25 @@ TEST_F(BuildOptionsTest, BadOptionsAreRefusedNamingTheOption) {
   o.interpolation.factor = 1;
   o.threads = -2;
   refused(o, "threads");
+  o.threads = BuildOptions::kMostThreads + 1;
+  refused(o, "threads");
   o.threads = 0;
+  o.smoothing.iterations = SmoothingOptions::kMostIterations + 1;
+  refused(o, "smoothing.iterations");
+  o.smoothing.iterations = 150;
+  // A stage that is off has its options checked too (the report records them).
+  o.smoothing.enabled = false;
+  o.smoothing.snap = 0.9;
+  refused(o, "smoothing.snap");
+  o.smoothing.snap = 0.05;
+  o.smoothing.minAngle = -5;
+  refused(o, "smoothing.minAngle");
+  o.smoothing.minAngle = 15;
+  o.simplification.enabled = false;
+  o.simplification.edgeLength = 100;
+  refused(o, "simplification.edgeLength");
+  o.simplification = {};
+  o.smoothing.enabled = true;
   EXPECT_TRUE(engine_->build(set, o));
   // The stage calls check the same options.
   auto volume = engine_->scanConvert(set, computeNesting(set), *makeGrid(set, o.grid), o);

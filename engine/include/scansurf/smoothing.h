@@ -14,6 +14,7 @@ struct SmoothingOptions {
   // How much to smooth, in plain Jacobi sweeps of every vertex; the smoother covers them in
   // far fewer sweeps (super-steps: 150 in 35).
   int iterations = 150;
+  static constexpr int kMostIterations = 100000;  // build() refuses more (or fewer than 1)
   // Step size of each sweep in (0, 1]: how far a vertex moves toward its relaxed target.
   double strength = 0.8;
   // Junction curves (three or more labels) relax along themselves; off: they stay put.
