@@ -110,15 +110,20 @@ Result<BatchArgs> parseArgs(int argc, char** argv) {
 Result<std::vector<Task>> tasksOf(const BatchArgs& a) {
   std::vector<std::string> files;
   std::error_code ec;
+  // The batch's own record is no input, when the output is also an input folder.
+  const fs::path record = fs::weakly_canonical(fs::path(a.output) / "batch.json", ec);
   for (const std::string& input : a.inputs) {
     if (!fs::is_directory(input, ec)) {
-      if (!fs::is_regular_file(input, ec)) return makeError(Errc::Io, "cannot read '" + input + "': no such file or folder");
+      if (!fs::exists(input, ec)) return makeError(Errc::Io, "cannot read '" + input + "': no such file or folder");
+      if (!fs::is_regular_file(input, ec))
+        return makeError(Errc::Io, "cannot read '" + input + "': not a regular file or a folder (a pipe or device?)");
       files.push_back(input);
       continue;
     }
     std::vector<std::string> inFolder;
     for (const auto& entry : fs::directory_iterator(input, ec))
-      if (entry.is_regular_file(ec) && isInputFile(entry.path())) inFolder.push_back(entry.path().string());
+      if (entry.is_regular_file(ec) && isInputFile(entry.path()) && fs::weakly_canonical(entry.path(), ec) != record)
+        inFolder.push_back(entry.path().string());
     std::sort(inFolder.begin(), inFolder.end());
     files.insert(files.end(), inFolder.begin(), inFolder.end());
   }

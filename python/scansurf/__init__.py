@@ -289,7 +289,7 @@ class BuildResult:
         if scene_name is None:
             scene_name = _stem(self.contours.input)
         _check_scene_name(scene_name)
-        paths = self._core._write(os.fspath(out_dir), formats, scene_name, os.fspath(label_volume or ""),
+        paths = self._core._write(os.fspath(out_dir), formats, os.fsencode(scene_name), os.fspath(label_volume or ""),
                                   os.fspath(dicom_seg or ""), os.fspath(report or ""), bool(draco))
         return [os.fspath(p) for p in paths]
 

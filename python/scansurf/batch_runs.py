@@ -48,18 +48,22 @@ def _task_of(item):
     return task
 
 
-def inputs_in(folder):
-    """The contour sets of a folder, sorted: .json, .dcm (RTSTRUCT), .ser, .mod files."""
+def inputs_in(folder, out_dir=None):
+    """The contour sets of a folder, sorted: .json, .dcm (RTSTRUCT), .ser, .mod files; not the
+    batch's own record when the folder is also the output (out_dir/batch.json)."""
     names = sorted(os.listdir(folder))
+    record = os.path.realpath(os.path.join(out_dir, "batch.json")) if out_dir is not None else None
     return [os.path.join(folder, n) for n in names if n.lower().endswith(INPUT_SUFFIXES)
-            and os.path.isfile(os.path.join(folder, n))]
+            and os.path.isfile(os.path.join(folder, n)) and os.path.realpath(os.path.join(folder, n)) != record]
 
 
 def _names(tasks):
     """Each input's folder name: its file name up to the first ".", made a safe file name and
     unique ignoring case, as the command-line batch names them."""
     from . import _scansurf
-    stems = [os.path.basename(t["input"]).split(".")[0] or "input" for t in tasks]
+    # As bytes: a file name that is not UTF-8 (os.listdir's surrogate escapes) gets the
+    # command line's name, byte for byte.
+    stems = [os.fsencode(os.path.basename(t["input"])).split(b".")[0] or b"input" for t in tasks]
     return _scansurf._file_stems(stems)
 
 
@@ -84,7 +88,7 @@ def run_one(task, folder, formats, options):
     start = time.perf_counter()
     record = {"input": task["input"], "output": folder, "status": "done", "error": "", "rows": []}
     if _complete(folder):
-        with open(os.path.join(folder, "report.json")) as f:
+        with open(os.path.join(folder, "report.json"), encoding="utf-8", errors="surrogateescape") as f:
             record["rows"] = _rows_of_report(task["input"], json.load(f), "done", 0.0)
         record["status"], record["seconds"] = "skipped", 0.0
         return record
@@ -93,7 +97,7 @@ def run_one(task, folder, formats, options):
         result = build(cs, engine=engine(options.pop("device", None)), **options)
         result.write(folder, formats=formats, report="report.json")
         seconds = time.perf_counter() - start
-        with open(os.path.join(folder, "report.json")) as f:
+        with open(os.path.join(folder, "report.json"), encoding="utf-8", errors="surrogateescape") as f:
             record["rows"] = _rows_of_report(task["input"], json.load(f), "done", seconds)
     except Exception as e:  # the input's own failure (scansurf.Error), or its report unreadable
         record["status"], record["error"] = "failed", "%s: %s" % (type(e).__name__, e)
@@ -108,7 +112,8 @@ def _write_atomically(path, write):
     os.umask(umask)
     os.fchmod(fd, 0o666 & ~umask)  # as any file the user writes, not mkstemp's 0600
     try:
-        with os.fdopen(fd, "w", newline="") as f:
+        # A file name that is not UTF-8 goes back out as the bytes it was (surrogate escapes).
+        with os.fdopen(fd, "w", newline="", encoding="utf-8", errors="surrogateescape") as f:
             write(f)
         os.replace(staged, path)
     except BaseException:
@@ -213,7 +218,7 @@ def batch(inputs, out_dir, client=None, workers=None, formats=("ply",), progress
                 "and would start the batch again each: put the call under `if __name__ == \"__main__\":` "
                 "(or pass client=\"serial\" to run in this process)" % script)
     if isinstance(inputs, (str, os.PathLike)):  # one folder of inputs, or one input
-        inputs = inputs_in(inputs) if os.path.isdir(inputs) else [inputs]
+        inputs = inputs_in(inputs, out_dir) if os.path.isdir(inputs) else [inputs]
     tasks = [_task_of(i) for i in inputs]
     os.makedirs(out_dir, exist_ok=True)
     folders = [os.path.join(os.fspath(out_dir), n) for n in _names(tasks)]
@@ -270,7 +275,10 @@ def main(argv):
     a = p.parse_args(argv)
     inputs = []
     for i in a.inputs:
-        inputs.extend(inputs_in(i) if os.path.isdir(i) else [i])
+        inputs.extend(inputs_in(i, a.output) if os.path.isdir(i) else [i])
+    if not inputs:  # as the command line's batch: a usage error
+        sys.stderr.write("scansurf batch: error: no contour set (.json, .dcm, .ser, .mod) among the inputs\n")
+        return 2
     client = "serial" if a.serial else None
     if a.scheduler:
         from distributed import Client

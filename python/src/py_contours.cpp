@@ -11,6 +11,12 @@ namespace scansurf::python {
 namespace py = pybind11;
 namespace {
 
+// A path as Python's os functions give it: bytes that are not UTF-8 as surrogate escapes, so
+// that the name opens the same file again (a plain str cast raised UnicodeDecodeError).
+py::str fileName(const std::string& path) {
+  return py::reinterpret_steal<py::str>(PyUnicode_DecodeFSDefaultAndSize(path.data(), static_cast<Py_ssize_t>(path.size())));
+}
+
 std::shared_ptr<PyContours> read(const std::filesystem::path& path, const std::filesystem::path& reference,
                                  const std::vector<std::string>& rois, const std::vector<std::string>& objects) {
   ReadOptions options;
@@ -86,8 +92,8 @@ py::list slicesAsArrays(const Feature& feature) {
 
 void registerContours(py::module_& m) {
   py::class_<PyContours, std::shared_ptr<PyContours>>(m, "ContourSet")
-      .def_property_readonly("source", [](const PyContours& c) { return c.set.source; })
-      .def_property_readonly("input", [](const PyContours& c) { return c.input; })
+      .def_property_readonly("source", [](const PyContours& c) { return fileName(c.set.source); })
+      .def_property_readonly("input", [](const PyContours& c) { return fileName(c.input); })
       .def_property_readonly("reference", [](const PyContours& c) { return c.referenceSeries; })
       .def_property_readonly("units", [](const PyContours& c) { return c.set.units; })
       .def_property_readonly("names",

@@ -4,6 +4,7 @@ import csv
 import filecmp
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -144,3 +145,46 @@ def test_a_script_without_the_main_guard_is_refused_at_once(tmp_path, cohort):
     assert run.returncode != 0
     assert 'if __name__ == "__main__":' in run.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_a_batch_into_its_own_input_folder_never_takes_its_record_as_an_input(tmp_path, cohort, cli):
+    paths, _ = cohort
+    for runner in ("cli", "module"):
+        folder = tmp_path / runner
+        folder.mkdir()
+        shutil.copy(paths[0], folder)
+        for _ in range(2):  # the second run finds OUT/batch.json among the inputs
+            if runner == "cli":
+                command = [cli, "batch", str(folder), "-o", str(folder), "-q", "--voxel-size", "1.5"]
+            else:
+                command = [sys.executable, "-m", "scansurf", "batch", str(folder), "-o", str(folder), "-q", "--serial",
+                           "--voxel-size", "1.5"]
+            run = subprocess.run(command, capture_output=True, text=True, env=os.environ.copy())
+            assert run.returncode == 0, run.stderr
+        assert sorted(p.name for p in folder.iterdir() if p.is_dir()) == [os.path.basename(paths[0])[:-5]]
+
+
+def test_an_empty_folder_is_a_usage_error_in_both_batches(tmp_path, cli):
+    (tmp_path / "empty").mkdir()
+    for command in ([cli, "batch", str(tmp_path / "empty"), "-o", str(tmp_path / "a"), "-q"],
+                    [sys.executable, "-m", "scansurf", "batch", str(tmp_path / "empty"), "-o", str(tmp_path / "b"), "-q"]):
+        run = subprocess.run(command, capture_output=True, text=True, env=os.environ.copy())
+        assert run.returncode == 2 and "no contour set" in run.stderr, command
+
+
+def test_a_file_name_that_is_not_utf8_gets_the_command_lines_folder(tmp_path, cohort, cli):
+    paths, _ = cohort
+    inputs = tmp_path / "inputs"
+    inputs.mkdir()
+    shutil.copy(paths[0], os.path.join(os.fsencode(inputs), b"caf\xe9.json"))
+    summary = scansurf.batch(str(inputs), tmp_path / "py", client="serial", progress=False, **OPTIONS)
+    assert not summary.failed
+    subprocess.run([cli, "batch", str(inputs), "-o", str(tmp_path / "cli"), "-q", "--voxel-size", "1.5"], check=True)
+    assert os.listdir(tmp_path / "py" / "caf_") and sorted(os.listdir(tmp_path / "py")) == sorted(os.listdir(tmp_path / "cli"))
+
+
+def test_a_pipe_is_named_as_no_regular_file(tmp_path, cli):
+    os.mkfifo(tmp_path / "pipe.json")
+    run = subprocess.run([cli, "batch", str(tmp_path / "pipe.json"), "-o", str(tmp_path / "out"), "-q"],
+                         capture_output=True, text=True)
+    assert run.returncode == 4 and "not a regular file" in run.stderr
