@@ -222,15 +222,23 @@ void finish(Task& t, const Child& c, int status, bool quiet, std::size_t done, s
   std::fflush(stdout);
 }
 
+// A folder is complete when its report (written last) reads as one: a report cut short or
+// damaged since means the input is surfaced again, not skipped with no row.
+bool completeFolder(const fs::path& folder) {
+  std::ifstream in(folder / "report.json");
+  if (!in) return false;
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  return !report.is_discarded() && report.is_object() && report.contains("features") && report["features"].is_array();
+}
+
 // Runs the tasks not yet complete, `workers` at a time.
 Result<void> runAll(const BatchArgs& a, std::vector<Task>& tasks) {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::string threads = std::to_string(std::max(1u, cores / static_cast<unsigned>(a.workers)));
   std::map<pid_t, Child> running;
   std::size_t next = 0, done = 0;
-  std::error_code ec;
   for (Task& t : tasks)
-    if (fs::is_regular_file(t.folder / "report.json", ec)) {
+    if (completeFolder(t.folder)) {
       t.status = "skipped";
       ++done;
       if (!a.quiet) std::printf("[%zu/%zu] %s: skipped (its folder is complete)\n", done, tasks.size(), t.input.c_str());

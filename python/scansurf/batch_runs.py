@@ -77,8 +77,15 @@ def _rows_of_report(input_path, report, status, seconds):
     return rows
 
 
-def _complete(folder):
-    return os.path.isfile(os.path.join(folder, "report.json"))
+def _report_of(folder):
+    """The folder's report (written last, so the folder is complete), or None when it has none
+    that reads as one: a report cut short or damaged since means the input is surfaced again."""
+    try:
+        with open(os.path.join(folder, "report.json"), encoding="utf-8", errors="surrogateescape") as f:
+            report = json.load(f)
+    except (OSError, ValueError):
+        return None
+    return report if isinstance(report, dict) and isinstance(report.get("features"), list) else None
 
 
 def run_one(task, folder, formats, options):
@@ -87,9 +94,9 @@ def run_one(task, folder, formats, options):
     from . import build, engine, read  # imported on the worker
     start = time.perf_counter()
     record = {"input": task["input"], "output": folder, "status": "done", "error": "", "rows": []}
-    if _complete(folder):
-        with open(os.path.join(folder, "report.json"), encoding="utf-8", errors="surrogateescape") as f:
-            record["rows"] = _rows_of_report(task["input"], json.load(f), "done", 0.0)
+    report = _report_of(folder)
+    if report is not None:
+        record["rows"] = _rows_of_report(task["input"], report, "done", 0.0)
         record["status"], record["seconds"] = "skipped", 0.0
         return record
     try:

@@ -188,3 +188,21 @@ def test_a_pipe_is_named_as_no_regular_file(tmp_path, cli):
     run = subprocess.run([cli, "batch", str(tmp_path / "pipe.json"), "-o", str(tmp_path / "out"), "-q"],
                          capture_output=True, text=True)
     assert run.returncode == 4 and "not a regular file" in run.stderr
+
+
+def test_a_damaged_report_means_the_input_is_surfaced_again(tmp_path, cohort, cli):
+    paths, _ = cohort
+    name = os.path.basename(paths[0])[:-5]
+    for runner in ("cli", "serial"):
+        out = tmp_path / runner
+        for damaged in (False, True):
+            if damaged:
+                (out / name / "report.json").write_text('{"cut sho')
+            if runner == "cli":
+                subprocess.run([cli, "batch", paths[0], "-o", str(out), "-q", "--voxel-size", "1.5"], check=True)
+            else:
+                scansurf.batch([paths[0]], out, client="serial", progress=False, **OPTIONS)
+        record = json.load(open(out / "batch.json"))["inputs"][0]
+        assert record["status"] == "done", runner
+        assert json.load(open(out / name / "report.json"))["features"]
+        assert len(list(csv.DictReader(open(out / "summary.csv")))) == 3, runner
