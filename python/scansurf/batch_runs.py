@@ -267,8 +267,62 @@ def _run_on(client, tasks, folders, formats, options, bar):
     return records
 
 
+_MEMORY_UNITS = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30, "T": 1 << 40}
+
+
+def _option_value(name, text):
+    """A run option's value from its command-line text, as build() takes it."""
+    if name == "max_memory":  # 8G, 512M, 1.5GiB
+        number = text.rstrip("iIbB")
+        unit = number[-1:].upper() if number[-1:].isalpha() else ""
+        if unit not in _MEMORY_UNITS:
+            raise ValueError("'%s' is not a memory size such as 8G or 512M" % text)
+        return int(float(number[:len(number) - len(unit)]) * _MEMORY_UNITS[unit])
+    if name == "overlap_tolerance" and "," in text:  # DEPTH,PERCENT
+        return tuple(float(t) for t in text.split(","))
+    for convert in (int, float):
+        try:
+            return convert(text)
+        except ValueError:
+            pass
+    return text  # auto, off, round, ...
+
+
+def run_options(tokens):
+    """The command line's run options (--interpolate off, --no-smooth, --grid 512 512, ...) as
+    build() keywords; a name that is no run option raises ValueError naming it."""
+    from . import _scansurf
+    names = set(_scansurf._option_names())
+    options, i = {}, 0
+    while i < len(tokens):
+        token = tokens[i]
+        name, _, value = token[2:].partition("=") if token.startswith("--") else ("", "", "")
+        name = name.replace("-", "_")
+        i += 1
+        if name.startswith("no_") and name[3:] in names and not value:
+            options[name[3:]] = False
+            continue
+        if name not in names:
+            raise ValueError("%s is not a run option (they are --%s, and --no-X for an on/off X)"
+                             % (token, ", --".join(sorted(n.replace("_", "-") for n in names))))
+        takes = 2 if name == "grid" else 1
+        values = [value] if value else []
+        while len(values) < takes and i < len(tokens) and not tokens[i].startswith("--"):
+            values.append(tokens[i])
+            i += 1
+        if not values:
+            options[name] = True  # an on/off option given alone: on
+        elif len(values) < takes:
+            raise ValueError("--%s takes %d values" % (token[2:], takes))
+        else:
+            converted = [_option_value(name, v) for v in values]
+            options[name] = tuple(converted) if takes > 1 else converted[0]
+    _scansurf._check_options(options)
+    return options
+
+
 def main(argv):
-    """python3 -m scansurf batch INPUT... -o OUT [--workers N] [--serial] [--format F] [--voxel-size V]"""
+    """python3 -m scansurf batch INPUT... -o OUT [--workers N] [--serial] [--format F] [run options]"""
     p = argparse.ArgumentParser(prog="python3 -m scansurf batch", description="Surface many contour sets on Dask.")
     p.add_argument("command", choices=["batch"])
     p.add_argument("inputs", nargs="+", help="contour sets, or folders of them")
@@ -277,9 +331,14 @@ def main(argv):
     p.add_argument("--scheduler", default=None, help="address of an existing Dask scheduler (tcp://host:8786)")
     p.add_argument("--serial", action="store_true", help="one input after another in this process, no Dask")
     p.add_argument("--format", default="ply", help="comma-separated output formats (as scansurf --format)")
-    p.add_argument("--voxel-size", type=float, default=None)
     p.add_argument("-q", "--quiet", action="store_true")
-    a = p.parse_args(argv)
+    p.epilog = "Any other --option is a run option, as scansurf --help lists them (e.g. --voxel-size 1 --no-smooth)."
+    a, rest = p.parse_known_args(argv)
+    try:
+        options = run_options(rest)
+    except Exception as e:  # an unknown name, a bad value: a usage error, before any input
+        sys.stderr.write("scansurf batch: error: %s\n" % e)
+        return 2
     inputs = []
     for i in a.inputs:
         inputs.extend(inputs_in(i, a.output) if os.path.isdir(i) else [i])
@@ -291,7 +350,7 @@ def main(argv):
         from distributed import Client
         client = Client(a.scheduler)
     summary = batch(inputs, a.output, client=client, workers=a.workers, formats=a.format.split(","),
-                    progress=not a.quiet, voxel_size=a.voxel_size)
+                    progress=not a.quiet, **options)
     for r in summary.failed:
         sys.stderr.write("scansurf batch: %s failed: %s\n" % (r["input"], r["error"]))
     return 1 if summary.failed else 0

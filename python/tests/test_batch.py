@@ -206,3 +206,18 @@ def test_a_damaged_report_means_the_input_is_surfaced_again(tmp_path, cohort, cl
         assert record["status"] == "done", runner
         assert json.load(open(out / name / "report.json"))["features"]
         assert len(list(csv.DictReader(open(out / "summary.csv")))) == 3, runner
+
+
+def test_the_module_command_passes_every_run_option_on(tmp_path, cohort, cli):
+    paths, _ = cohort
+    flags = ["--voxel-size", "1.5", "--interpolate", "off", "--no-smooth", "--overlap-tolerance", "1,2"]
+    subprocess.run([sys.executable, "-m", "scansurf", "batch", paths[0], "-o", str(tmp_path / "py"), "-q", "--serial",
+                    *flags], check=True, env=os.environ.copy())
+    subprocess.run([cli, "batch", paths[0], "-o", str(tmp_path / "cli"), "-q", *flags], check=True)
+    name = os.path.basename(paths[0])[:-5]
+    py, cl = (json.load(open(tmp_path / d / name / "report.json")) for d in ("py", "cli"))
+    assert py["parameters"]["interpolation"] == "off" and py["parameters"]["smoothing"] is False
+    assert [f["surface_volume"] for f in py["features"]] == [f["surface_volume"] for f in cl["features"]]
+    bad = subprocess.run([sys.executable, "-m", "scansurf", "batch", paths[0], "-o", str(tmp_path / "bad"), "--voxel-sise",
+                          "1"], capture_output=True, text=True, env=os.environ.copy())
+    assert bad.returncode == 2 and "--voxel-sise is not a run option" in bad.stderr and not (tmp_path / "bad").exists()
