@@ -154,6 +154,11 @@ TEST(ContoursJson, NamesAndColours) {
   expectError(doc(R"({"name":"skin","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})"),
               {"feature \"skin\" (#1)", "duplicate name", "#0"});
   expectError(doc(R"({"name":"","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})"), {"feature #1", "empty name"});
+  // A NUL would end the name early in the XML and DICOM writers' readers (VTK crashed on it).
+  expectError(doc(R"({"name":"le\u0000ft","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})"),
+              {"feature #1", "NUL character in its name"});
+  expectError(doc(R"({"name":"organ","slices":[{"z":0,"contours":[[[0,0],[1,0],[0,1]]]}]})", R"(,"units":"m\u0000m")"),
+              {"units hold a NUL character"});
   expectError(doc(R"({"name":"organ","color":[0,256,0],"slices":[]})"), {"feature \"organ\" (#1)", "color", "0..255"});
   expectError(doc(R"({"name":"organ","color":[0,-1,0],"slices":[]})"), {"feature \"organ\" (#1)", "color", "0..255"});
   expectError(doc(R"({"name":"organ","color":[0,1],"slices":[]})"), {"feature \"organ\" (#1)", "color"});

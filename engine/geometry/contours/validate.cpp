@@ -193,10 +193,15 @@ Result<void> validateAndNormalize(ContourSet& contours) {
     return invalid(source + ": " + std::to_string(featureCount) + " features, more than the " + std::to_string(kMaxFeatures) +
                    " supported");
 
+  // A NUL ends a string in C, XML and DICOM readers: a name or unit holding one would be read
+  // back as another (VTK's XML readers crash on it).
+  if (contours.units.find('\0') != std::string::npos) return invalid(source + ": the units hold a NUL character");
   std::map<std::string, int> firstIndexOfName;
   for (int f = 0; f < featureCount; ++f) {
     const std::string& name = contours.features[f].name;
     if (name.empty()) return invalid(source + ": feature #" + std::to_string(f) + " has an empty name");
+    if (name.find('\0') != std::string::npos)
+      return invalid(source + ": feature #" + std::to_string(f) + " has a NUL character in its name");
     const auto [it, inserted] = firstIndexOfName.emplace(name, f);
     if (!inserted) return invalid(describeFeature(contours, f) + ": duplicate name, also feature #" + std::to_string(it->second));
   }

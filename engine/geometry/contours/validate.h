@@ -19,7 +19,8 @@ inline constexpr double kMaxCoordinate = 1e7;
 //   planes), moves every slice within it of a lower plane onto that plane, across features
 //   (with a warning), and merges each feature's slices of one plane (their contours combine).
 // Errors (Errc::InvalidInput), each naming contours.source and the feature, slice and contour
-// at fault: no features; more than kMaxFeatures; an empty or duplicate feature name; a
+// at fault: no features; more than kMaxFeatures; an empty or duplicate feature name, a NUL in a
+// name or in the units; a
 // non-finite z or coordinate, or one beyond kMaxCoordinate; a contour of fewer than 3 distinct points; a slice without
 // contours; an `order` that does not name every feature exactly once.
 Result<void> validateAndNormalize(ContourSet& contours);
