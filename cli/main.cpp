@@ -227,6 +227,7 @@ Result<void> stagePreview(Engine& engine, const cli::CliOptions& o, const Contou
   if (o.previewSize.size() == 2) options.width = o.previewSize[0], options.height = o.previewSize[1];
   options.colors = featureColors(contours);
   options.opacity = displayOpacity(built.nesting);
+  options.memoryLimit = o.build.memoryLimit;
   SCANSURF_ASSIGN_OR_RETURN(const PreviewImage picture, engine.renderPreview(built.surfaces, options));
   return staging.stage(o.preview, [&](const fs::path& p) { return writePreview(p, picture); });
 }

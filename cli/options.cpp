@@ -364,6 +364,11 @@ void apply(const Flags& f, CliOptions& o) {
   o.scene.frame = f.gltfFrame == "patient" ? SceneFrame::Patient : SceneFrame::Gltf;
   o.read.referenceSeries = f.reference;
   if (!f.maxMemory.empty()) o.build.memoryLimit = *parseMemorySize(f.maxMemory);
+  if (!o.preview.empty()) {  // in the budget from the start: refused before the work, not after
+    PreviewOptions picture;
+    if (o.previewSize.size() == 2) picture.width = o.previewSize[0], picture.height = o.previewSize[1];
+    o.build.reservedMemory = estimatePreviewBytes(picture);
+  }
   // More threads than cores only costs memory and switches (results do not depend on it).
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.build.threads = std::min(o.build.threads, cores);

@@ -97,13 +97,16 @@ Result<void> checkMemoryBudget(const ContourSet& contours, const Grid& grid, int
       estimateFootprint(contours, grid, surfacedLayers, options.remeshing.enabled ? options.remeshing.edgeLength : 0);
   HostMemory limit{options.memoryLimit, "the limit asked for"};
   if (limit.bytes == 0) limit = availableHostMemory();
-  out.estimatedMemory = need.hostBytes;
+  const std::uint64_t hostBytes = need.hostBytes + options.reservedMemory;
+  out.estimatedMemory = hostBytes;
   out.memoryLimit = limit.bytes;
   const std::string what = "the surfaces of " + contours.source + " on a grid of " + describeGrid(grid);
-  if (limit.bytes > 0 && need.hostBytes > limit.bytes)
-    return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.hostBytes) + " of memory (label volume " +
+  const std::string reserved =
+      options.reservedMemory > 0 ? ", and " + formatBytes(options.reservedMemory) + " beside them (a preview)" : "";
+  if (limit.bytes > 0 && hostBytes > limit.bytes)
+    return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(hostBytes) + " of memory (label volume " +
                                               formatBytes(need.labelVoxels * sizeof(Label)) + ", about " +
-                                              formatCount(need.surfaceVertices) + " surface vertices); " +
+                                              formatCount(need.surfaceVertices) + " surface vertices" + reserved + "); " +
                                               formatBytes(limit.bytes) + " may be used: " + limit.source);
   if (device.deviceMemory > 0 && need.deviceBytes > device.deviceMemory)
     return makeError(Errc::ResourceLimit, what + " need about " + formatBytes(need.deviceBytes) +

@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 
+#include "core/memory.h"
 #include "geometry/mesh/vec3.h"
 #include "gpu/check.h"
 #include "gpu/commands.h"
@@ -27,6 +28,17 @@ std::optional<ViewPreset> parseViewPreset(std::string_view name) {
   for (const auto& [n, v] : kNames)
     if (n == name) return v;
   return std::nullopt;
+}
+
+}  // namespace scansurf
+
+namespace scansurf {
+
+std::uint64_t estimatePreviewBytes(const PreviewOptions& options) {
+  // At twice the size: colour and depth images, the readback buffer and its host copy (4 bytes
+  // a pixel each), then the picture, its averaging and its encoding at the size asked for.
+  const std::uint64_t pixels = std::uint64_t{options.width} * options.height;
+  return pixels * (4 * 4 * 4 + 3 * 4);
 }
 
 }  // namespace scansurf
@@ -342,6 +354,12 @@ Result<PreviewImage> PreviewRenderer::render(const Surfaces& surfaces, const Pre
       height > ctx.limits().maxImageDimension2D)
     return makeError(Errc::InvalidArgument, "preview: a " + std::to_string(options.width) + " x " +
                                                 std::to_string(options.height) + " picture is empty or too large for the device");
+  HostMemory limit{options.memoryLimit, "the limit asked for"};
+  if (limit.bytes == 0) limit = availableHostMemory();
+  if (const std::uint64_t need = estimatePreviewBytes(options); limit.bytes > 0 && need > limit.bytes)
+    return makeError(Errc::ResourceLimit, "preview: a " + std::to_string(options.width) + " x " + std::to_string(options.height) +
+                                              " picture needs about " + formatBytes(need) + " of memory to render; " +
+                                              formatBytes(limit.bytes) + " may be used: " + limit.source);
   const CameraBasis camera = cameraBasis(options.view);
   SCANSURF_ASSIGN_OR_RETURN(const PreviewScene scene, gatherScene(surfaces, options, camera));
 

@@ -229,7 +229,8 @@ void registerEngine(py::module_& m) {
   m.def("_build", &build, py::arg("engine"), py::arg("contours"), py::arg("options"));
   m.def("devices", &devices, "Every Vulkan device: index, name, type, whether scansurf can use it, and the default.");
   // Converts the options as build() would, without building: unknown names and wrong types raise.
-  m.def("_check_options", [](const py::dict& keywords) { optionsFrom(keywords); }, py::arg("options"));
+  m.def(
+      "_check_options", [](const py::dict& keywords) { optionsFrom(keywords); }, py::arg("options"));
   m.def("_option_names", [] {
     std::vector<std::string> names;
     for (const auto& [k, s] : setters()) names.push_back(k);

@@ -236,6 +236,11 @@ run_scansurf(9 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --voxel-size 0.0078
 run_scansurf(9 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --max-memory 20M)
 expect_output("need about [0-9.]+ MiB of memory .* 20.0 MiB may be used: the limit asked for")
 expect_nothing_left("${OUT}/budget")
+# A preview is in the budget from the start: refused before the work, not after it.
+run_scansurf(9 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --max-memory 1G --preview "${OUT}/budget.png"
+  --preview-size 8192 8192)
+expect_output("and [0-9.]+ GiB beside them \\(a preview\\)\\); 1.00 GiB may be used")
+expect_nothing_left("${OUT}/budget")
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/budget" --max-memory 8X)
 expect_output("'8X' is not a memory size")
 run_scansurf(0 "${DATA}/overlapping.json" -o "${OUT}/budget" --voxel-size 0.5 --max-memory 2G --report "${OUT}/budget/r.json")

@@ -102,5 +102,20 @@ TEST_F(PreviewTest, ZeroSizeIsRefused) {
   EXPECT_EQ(img.error().code, Errc::InvalidArgument);
 }
 
+// A picture that needs more host memory than allowed is refused before anything is allocated.
+TEST_F(PreviewTest, APictureOverTheMemoryLimitIsRefused) {
+  auto built = engine_->build(sphereContours(5, 1), {});
+  ASSERT_TRUE(built);
+  PreviewOptions options;
+  options.width = options.height = 4096;
+  options.memoryLimit = estimatePreviewBytes(options) - 1;
+  auto img = engine_->renderPreview(built->surfaces, options);
+  ASSERT_FALSE(img);
+  EXPECT_EQ(img.error().code, Errc::ResourceLimit);
+  EXPECT_NE(img.error().message.find("a 4096 x 4096 picture needs about"), std::string::npos) << img.error().message;
+  options.width = options.height = 64;
+  EXPECT_TRUE(engine_->renderPreview(built->surfaces, options));
+}
+
 }  // namespace
 }  // namespace scansurf::test

@@ -67,6 +67,10 @@ struct BuildOptions {
   // allocated, build() estimates the label volume, mesh and device needs from the contours and
   // the grid, and refuses with Errc::ResourceLimit when they exceed this or the device's memory.
   std::uint64_t memoryLimit = 0;
+  // Host memory the caller needs beside the build within memoryLimit (a preview it will render,
+  // estimatePreviewBytes): counted in the build's estimate, so that a run is refused before it
+  // starts rather than at the end.
+  std::uint64_t reservedMemory = 0;
   // Interpolated layers between the contour planes (stage "interpolation"); off unless set.
   InterpolationOptions interpolation;
   // Constrained smoothing after assembly (stage "smoothing"); off unless enabled.

@@ -27,7 +27,14 @@ struct PreviewOptions {
   // after the opaque ones, without depth writes, so what they enclose shows through.
   std::vector<float> opacity;
   Rgb background{245, 245, 245};
+  // Host memory the rendering may use, in bytes (estimatePreviewBytes); 0 = what the machine
+  // has available. A picture that needs more is refused with Errc::ResourceLimit.
+  std::uint64_t memoryLimit = 0;
 };
+
+// About the host memory a picture of options' size takes to render: it is drawn at twice the
+// size, read back, averaged and encoded (a software device's images are host memory too).
+std::uint64_t estimatePreviewBytes(const PreviewOptions& options);
 
 // An 8-bit sRGB RGBA picture, rows top to bottom.
 struct PreviewImage {
