@@ -72,4 +72,16 @@ bool looksLikeDicomDataSet(const std::filesystem::path& path) {
   return length == 0xFFFFFFFFu || length <= size - 8;
 }
 
+void decodeTextToUtf8(const std::string& file, DcmDataset& dataset, std::vector<std::string>& warnings) {
+  OFString charset;
+  dataset.findAndGetOFStringArray(DCM_SpecificCharacterSet, charset);
+  if (dataset.convertToUTF8().good()) return;
+  const std::string declared = charset.empty() ? "none, so ASCII" : "'" + std::string(charset.c_str()) + "'";
+  if (dataset.convertCharacterSet("ISO_IR 100", "ISO_IR 192", 0, OFTrue).good())
+    warnings.push_back(file + ": text that its Specific Character Set (" + declared +
+                       ") does not allow; read as Latin-1 (ISO_IR 100)");
+  else
+    warnings.push_back(file + ": text that could not be read in its Specific Character Set (" + declared + ")");
+}
+
 }  // namespace scansurf

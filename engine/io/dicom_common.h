@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "scansurf/result.h"
 
@@ -28,5 +30,11 @@ Result<DicomFile> loadDicomFile(const std::filesystem::path& path, bool stopAtPi
 // Whether a file without the Part 10 header starts like a DICOM data set (its first element in
 // group 0002 or 0008, with an explicit VR or an implicit length that fits the file).
 bool looksLikeDicomDataSet(const std::filesystem::path& path);
+
+// Every text value of the data set in UTF-8 (its Specific Character Set then says ISO_IR 192):
+// converted from the set it declares by DCMTK. Bytes the set does not allow (beyond ASCII
+// without one, as some systems write Latin-1 names) or a set that cannot be converted are read
+// as Latin-1 (ISO_IR 100), the common single-byte set, with a warning naming the file.
+void decodeTextToUtf8(const std::string& file, DcmDataset& dataset, std::vector<std::string>& warnings);
 
 }  // namespace scansurf

@@ -5,6 +5,7 @@
 #include "io/slicer_terminology.h"
 
 #include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcbytstr.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
@@ -194,6 +195,8 @@ Result<std::unique_ptr<DcmSegmentation>> createDocument(DcmItem& firstCt, const 
   seg->getEquipment().clearData();
   if ((c = seg->setEquipmentInfo(equipment)).bad()) return dcmtkError("the equipment", c);
   seg->getSeries().setSeriesDescription("scansurf segmentation");
+  // Names and the CT's text are UTF-8 (decodeTextToUtf8).
+  if ((c = seg->getSOPCommon().setSpecificCharacterSet("ISO_IR 192")).bad()) return dcmtkError("the character set", c);
   seg->getSeries().setSeriesNumber(values.seriesNumber.c_str());
   return seg;
 }
@@ -234,9 +237,12 @@ Result<std::vector<Uint16>> addSegments(DcmSegmentation& seg, const ContourSet& 
     const CodeSequenceMacro type(t.type.value, t.type.scheme, t.type.meaning);
     DcmSegment* created = nullptr;
     const std::string label = longString(contours.features[f].name);
-    OFCondition c = DcmSegment::create(created, label.c_str(), category, type, DcmSegTypes::SAT_AUTOMATIC, "scansurf");
+    // DCMTK checks a new segment's label as ASCII: created with a placeholder, then given its
+    // UTF-8 name (the document says ISO_IR 192).
+    OFCondition c = DcmSegment::create(created, "segment", category, type, DcmSegTypes::SAT_AUTOMATIC, "scansurf");
     std::unique_ptr<DcmSegment> segment(created);
-    if (c.bad() || !segment) return dcmtkError("segment \"" + label + "\"", c);
+    if (c.bad() || !segment || (c = segment->setSegmentLabel(label.c_str(), OFFalse)).bad())
+      return dcmtkError("segment \"" + label + "\"", c);
     double lab[3];
     IODCIELabUtil::rgb2DicomLab(lab[0], lab[1], lab[2], colors[f][0] / 255.0, colors[f][1] / 255.0, colors[f][2] / 255.0);
     Uint16 scaled[3];
@@ -406,6 +412,20 @@ Result<void> copyPatientAndStudy(DcmItem& ct, DcmItem& seg) {
   return {};
 }
 
+// DCMTK's IOD classes check each string they copy and write as ASCII (they pass no character
+// set to the check); the document's text is UTF-8 under ISO_IR 192, so the VR checker's
+// character test is off while the document is made and written, and restored after.
+class Utf8Strings {
+ public:
+  Utf8Strings() : was_(dcmEnableVRCheckerForStringValues.get()) { dcmEnableVRCheckerForStringValues.set(OFFalse); }
+  ~Utf8Strings() { dcmEnableVRCheckerForStringValues.set(was_); }
+  Utf8Strings(const Utf8Strings&) = delete;
+  Utf8Strings& operator=(const Utf8Strings&) = delete;
+
+ private:
+  OFBool was_;
+};
+
 Result<void> saveSegmentation(DcmSegmentation& seg, DcmItem& firstCt, const std::filesystem::path& path) {
   DcmFileFormat file;
   if (const OFCondition c = seg.writeDataset(*file.getDataset()); c.bad()) return dcmtkError("the Segmentation", c);
@@ -430,6 +450,8 @@ Result<DicomSegSummary> writeDicomSegmentation(const std::filesystem::path& path
     return makeError(Errc::InvalidInput, "DICOM SEG: no feature has a voxel on the CT's grid (" + ct.directory +
                                              "); nothing to write to " + path.string());
   SCANSURF_ASSIGN_OR_RETURN(DicomFile first, loadDicomFile(ct.files.front(), /*stopAtPixelData=*/true));
+  decodeTextToUtf8(ct.files.front(), first.dataset(), written.warnings);
+  const Utf8Strings utf8;
   const DatasetValues values = valuesOf(first.dataset(), ct);
   SCANSURF_ASSIGN_OR_RETURN(std::unique_ptr<DcmSegmentation> seg, createDocument(first.dataset(), ct, values));
   SCANSURF_TRY(addDimensionsAndSharedGroups(*seg, ct, values));

@@ -484,6 +484,7 @@ Result<RtStructure> readRtStruct(const std::filesystem::path& path, const RtStru
   RtStructure out;
   out.contours.source = file;
   out.contours.units = "mm";
+  decodeTextToUtf8(file, dataset, out.warnings);
   readStructureSetHeader(dataset, out);
   RoiIndex byNumber;
   SCANSURF_ASSIGN_OR_RETURN(std::vector<RawRoi> rois, readRoiDefinitions(file, dataset, byNumber));

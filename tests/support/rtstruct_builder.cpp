@@ -67,6 +67,7 @@ TestRoi roiFromFeature(const Feature& feature, int number) {
 void writeTestRtStruct(const TestRtStruct& rt, const std::filesystem::path& path) {
   DcmFileFormat file;
   DcmDataset& ds = *file.getDataset();
+  if (!rt.specificCharacterSet.empty()) put(ds, DCM_SpecificCharacterSet, rt.specificCharacterSet);
   if (!rt.sopClassUid.empty()) put(ds, DCM_SOPClassUID, rt.sopClassUid);
   put(ds, DCM_SOPInstanceUID, "1.2.826.0.1.3680043.2.1125.9.3");
   if (!rt.modality.empty()) put(ds, DCM_Modality, rt.modality);

@@ -38,6 +38,7 @@ struct TestRtStruct {
   bool roiContourSequence = true;
   std::string frameOfReferenceUid = "1.2.826.0.1.3680043.2.1125.9.1";
   std::string referencedSeriesUid = "1.2.826.0.1.3680043.2.1125.9.2";
+  std::string specificCharacterSet;  // (0008,0005), written when not empty; names are its bytes
 };
 
 // Writes the structure set; throws std::runtime_error when DCMTK cannot write.

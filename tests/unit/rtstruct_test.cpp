@@ -7,12 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <tuple>
 
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/cell_cases.h"
@@ -272,6 +274,29 @@ TEST_F(Dicom, ARenamedDuplicateNeverTakesAnotherRoisName) {
   for (const Feature& f : r->contours.features) names.push_back(f.name);
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"A", "A #3", "A #3 (2)"}));
+}
+
+// Names follow the Specific Character Set into UTF-8; without one, Latin-1 bytes are read as
+// Latin-1 with a warning; UTF-8 stays as it is.
+TEST_F(Dicom, NamesAreDecodedFromTheirCharacterSet) {
+  const std::string latin1 = "L\xE8vre", utf8 = "L\xC3\xA8vre";
+  for (const auto& [charset, name, warned] : std::vector<std::tuple<std::string, std::string, bool>>{
+           {"ISO_IR 100", latin1, false}, {"", latin1, true}, {"ISO_IR 192", utf8, false}}) {
+    SCOPED_TRACE("Specific Character Set '" + charset + "'");
+    TestRtStruct rt;
+    rt.specificCharacterSet = charset;
+    TestRoi roi{1, name, "ORGAN", std::nullopt, {}};
+    for (double z : {0.0, 2.0}) roi.contours.push_back(closedContour(square(0, 0, 5, 5), z));
+    rt.rois.push_back(roi);
+    auto r = readBack(rt);
+    ASSERT_TRUE(r) << r.error().message;
+    ASSERT_EQ(r->contours.features.size(), 1u);
+    EXPECT_EQ(r->contours.features[0].name, utf8);
+    EXPECT_EQ(r->rois[0].name, utf8);
+    const bool hasWarning = std::any_of(r->warnings.begin(), r->warnings.end(),
+                                        [](const std::string& w) { return w.find("read as Latin-1") != std::string::npos; });
+    EXPECT_EQ(hasWarning, warned);
+  }
 }
 
 TEST_F(Dicom, UnevenSlicesBecomeUnevenLayers) {

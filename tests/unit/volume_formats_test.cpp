@@ -411,6 +411,38 @@ TEST_F(DicomSeg, SegmentsFramesAndReferencesReadBackWithDcmseg) {
   }
 }
 
+// Names beyond ASCII: the ROI's from its ISO_IR 100 structure set, the patient's from a CT
+// that declares no character set (Latin-1 bytes, read as Latin-1 with a warning); the SEG
+// holds both in UTF-8 and says ISO_IR 192.
+TEST_F(DicomSeg, NamesBeyondAsciiAreWrittenInUtf8) {
+  ct_.patientName = "M\xFCller^Hans";
+  test::writeTestCtSeries(ct_, ctDir());
+  test::TestRtStruct rt = structureSet();
+  rt.specificCharacterSet = "ISO_IR 100";
+  rt.rois[0].name = "L\xE8vre";
+  const Case c = build(rt);
+  ASSERT_EQ(c.contours.features[0].name, "L\xC3\xA8vre");
+  const fs::path path = dir_ / "seg.dcm";
+  auto written = writeDicomSeg(path, c.contours, c.volume, ctDir());
+  ASSERT_TRUE(written) << written.error().message;
+  EXPECT_TRUE(std::any_of(written->warnings.begin(), written->warnings.end(),
+                          [](const std::string& w) { return w.find("read as Latin-1 (ISO_IR 100)") != std::string::npos; }));
+  DcmFileFormat file;
+  ASSERT_TRUE(file.loadFile(path.c_str()).good());
+  OFString charset, patient;
+  file.getDataset()->findAndGetOFStringArray(DCM_SpecificCharacterSet, charset);
+  file.getDataset()->findAndGetOFStringArray(DCM_PatientName, patient);
+  EXPECT_EQ(std::string(charset.c_str()), "ISO_IR 192");
+  EXPECT_EQ(std::string(patient.c_str()), "M\xC3\xBCller^Hans");
+  DcmSegmentation* loaded = nullptr;
+  ASSERT_TRUE(DcmSegmentation::loadFile(path.c_str(), loaded).good());
+  std::unique_ptr<DcmSegmentation> seg(loaded);
+  OFString label;
+  ASSERT_NE(seg->getSegment(1), nullptr);
+  seg->getSegment(1)->getSegmentLabel(label);
+  EXPECT_EQ(std::string(label.c_str()), "L\xC3\xA8vre");
+}
+
 // dicom3tools' IOD validator finds no error (warnings about optional attributes are allowed).
 TEST_F(DicomSeg, DciodvfyFindsNoError) {
   const int found = std::system("command -v dciodvfy > /dev/null 2>&1");
