@@ -398,14 +398,15 @@ constexpr std::pair<Uint16, Uint16> kPatientAndStudyTags[] = {
     {0x0010, 0x21D0},
     {0x0038, 0x0500}};
 
-// Each of those the CT has and the SEG lacks (or holds empty), copied.
+// Each of those the CT has and the SEG lacks (or holds empty), copied; one the CT has empty
+// too, so that both instances of the study say the same (dcentvfy compares them).
 Result<void> copyPatientAndStudy(DcmItem& ct, DcmItem& seg) {
   for (const auto& [group, element] : kPatientAndStudyTags) {
     const DcmTagKey tag(group, element);
     DcmElement* source = nullptr;
-    if (ct.findAndGetElement(tag, source).bad() || !source || source->isEmpty()) continue;
+    if (ct.findAndGetElement(tag, source).bad() || !source) continue;
     DcmElement* present = nullptr;
-    if (seg.findAndGetElement(tag, present).good() && present && !present->isEmpty()) continue;
+    if (seg.findAndGetElement(tag, present).good() && present && (!present->isEmpty() || source->isEmpty())) continue;
     if (const OFCondition c = seg.insert(static_cast<DcmElement*>(source->clone()), OFTrue); c.bad())
       return dcmtkError("the CT's " + std::string(DcmTag(tag).getTagName()), c);
   }
