@@ -46,3 +46,11 @@ def test_the_batch_examples_run_as_written(here, cli):
     command = section_blocks("sh")[0].strip().replace("./build/cli/scansurf", cli)
     subprocess.run(command.split(), check=True, stdout=subprocess.DEVNULL)
     assert (here / "out" / "cohort" / "batch.json").exists()
+
+
+def test_the_contours_snippet_of_the_python_page_runs_as_written(capsys):
+    page = (ROOT / "docs" / "python.md").read_text()
+    block = [b for b in re.findall(r"```python\n(.*?)```", page, re.S) if "scansurf.contours(" in b][0]
+    exec(block, {})
+    assert capsys.readouterr().out.strip() == "['ball', 'ring'] ['ball']"
+
