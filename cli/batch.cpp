@@ -279,26 +279,35 @@ void addRows(std::ostringstream& csv, const Task& t) {
   };
   const std::string seconds = nlohmann::json(std::round(t.seconds * 1000) / 1000).dump();
   if (t.status == "failed") {
-    csv << field(t.input) << ",,,,,,," << field("failed: " + t.error) << "," << seconds << "\r\n";
+    csv << field(t.input) << ",,,,,,,," << field("failed: " + t.error) << "," << seconds << "\r\n";
     return;
   }
   std::ifstream in(t.folder / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
   if (report.is_discarded() || !report.contains("features") || !report["features"].is_array()) return;
   const auto value = [](const nlohmann::json& f, const char* key) { return f.contains(key) ? f[key].dump() : std::string(); };
+  const auto volume = [](const nlohmann::json& f, const char* key) {  // 7 significant digits, as Python's ".7g"
+    if (!f.contains(key) || !f[key].is_number()) return std::string();
+    char text[32];
+    std::snprintf(text, sizeof text, "%.7g", f[key].get<double>());
+    return std::string(text);
+  };
+  const std::string unit =
+      report.contains("volume_unit") && report["volume_unit"].is_string() ? report["volume_unit"].get<std::string>() : "";
+  const bool skipped = t.status == "skipped";
   for (const auto& f : report["features"]) {
     if (!f.is_object()) continue;
     csv << field(t.input) << ","
         << field(f.contains("name") && f["name"].is_string() ? f["name"].get<std::string>() : std::string()) << ","
-        << value(f, "label") << "," << value(f, "contour_volume") << "," << value(f, "labelled_volume") << ","
-        << value(f, "surface_volume") << "," << value(f, "triangles") << ",done," << (t.status == "skipped" ? "0.0" : seconds)
-        << "\r\n";
+        << value(f, "label") << "," << field(unit) << "," << volume(f, "contour_volume") << "," << volume(f, "labelled_volume")
+        << "," << volume(f, "surface_volume") << "," << value(f, "triangles") << "," << (skipped ? "skipped," : "done,")
+        << (skipped ? "" : seconds) << "\r\n";
   }
 }
 
 Result<void> writeSummary(const BatchArgs& a, const std::vector<Task>& tasks) {
   std::ostringstream csv;
-  csv << "input,roi,label,contour_volume,voxel_volume,surface_volume,triangles,status,seconds\r\n";
+  csv << "input,roi,label,volume_unit,contour_volume,voxel_volume,surface_volume,triangles,status,seconds\r\n";
   nlohmann::ordered_json entries = nlohmann::ordered_json::array();
   for (const Task& t : tasks) {
     addRows(csv, t);

@@ -21,8 +21,8 @@ import tempfile
 import time
 
 
-SUMMARY_COLUMNS = ["input", "roi", "label", "contour_volume", "voxel_volume", "surface_volume", "triangles",
-                   "status", "seconds"]
+SUMMARY_COLUMNS = ["input", "roi", "label", "volume_unit", "contour_volume", "voxel_volume", "surface_volume",
+                   "triangles", "status", "seconds"]
 INPUT_SUFFIXES = (".json", ".dcm", ".ser", ".mod")
 
 
@@ -67,13 +67,20 @@ def _names(tasks):
     return _scansurf._file_stems(stems)
 
 
+def _volume(value):
+    """A volume as the summary writes it: 7 significant digits (the CLI's %.7g)."""
+    return format(value, ".7g") if isinstance(value, (int, float)) and not isinstance(value, bool) else ""
+
+
 def _rows_of_report(input_path, report, status, seconds):
+    """One row per structure; a skipped input's rows say so and took no time."""
     rows = []
     for f in report.get("features", []):
         rows.append({"input": input_path, "roi": f.get("name", ""), "label": f.get("label", ""),
-                     "contour_volume": f.get("contour_volume", ""), "voxel_volume": f.get("labelled_volume", ""),
-                     "surface_volume": f.get("surface_volume", ""), "triangles": f.get("triangles", ""),
-                     "status": status, "seconds": round(seconds, 3)})
+                     "volume_unit": report.get("volume_unit", ""), "contour_volume": _volume(f.get("contour_volume")),
+                     "voxel_volume": _volume(f.get("labelled_volume")), "surface_volume": _volume(f.get("surface_volume")),
+                     "triangles": f.get("triangles", ""), "status": status,
+                     "seconds": "" if status == "skipped" else round(seconds, 3)})
     return rows
 
 
@@ -96,7 +103,7 @@ def run_one(task, folder, formats, options):
     record = {"input": task["input"], "output": folder, "status": "done", "error": "", "rows": []}
     report = _report_of(folder)
     if report is not None:
-        record["rows"] = _rows_of_report(task["input"], report, "done", 0.0)
+        record["rows"] = _rows_of_report(task["input"], report, "skipped", 0.0)
         record["status"], record["seconds"] = "skipped", 0.0
         return record
     try:
@@ -134,8 +141,8 @@ def write_summary(out_dir, records):
     rows = []
     for r in records:
         if r["status"] == "failed":
-            rows.append({"input": r["input"], "roi": "", "label": "", "contour_volume": "", "voxel_volume": "",
-                         "surface_volume": "", "triangles": "", "status": "failed: " + r["error"],
+            rows.append({"input": r["input"], "roi": "", "label": "", "volume_unit": "", "contour_volume": "",
+                         "voxel_volume": "", "surface_volume": "", "triangles": "", "status": "failed: " + r["error"],
                          "seconds": round(r.get("seconds", 0), 3)})
         rows.extend(r["rows"])
 

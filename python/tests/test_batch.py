@@ -118,8 +118,8 @@ def test_a_folder_with_an_older_report_is_skipped_without_breaking_the_summary(t
     run = subprocess.run([cli, "batch", paths[0], "-o", str(tmp_path), "-q"], capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     rows = list(csv.DictReader(open(tmp_path / "summary.csv")))
-    assert rows == [{"input": paths[0], "roi": "Body", "label": "", "contour_volume": "", "voxel_volume": "",
-                     "surface_volume": "", "triangles": "", "status": "done", "seconds": "0.0"}]
+    assert rows == [{"input": paths[0], "roi": "Body", "label": "", "volume_unit": "", "contour_volume": "",
+                     "voxel_volume": "", "surface_volume": "", "triangles": "", "status": "skipped", "seconds": ""}]
     again = scansurf.batch(paths[:1], tmp_path, client="serial", progress=False)
     assert again.inputs[0]["status"] == "skipped" and again[0]["roi"] == "Body"
 
