@@ -255,6 +255,10 @@ void warnAboutFileStem(const std::string& name, const std::string& stem, const s
                        (same(plain, "multilabel") ? std::string("multi-label mesh's files (multilabel.*)")
                                                   : "scene files, named after the input (" + sceneName + ".glb, .seg.vtm)") +
                        "; its files are " + stem + ".*");
+  else if (stem != plain && plain.size() > sceneName.size() + 5 &&
+           same(plain.substr(0, sceneName.size() + 5), sceneName + ".seg_"))
+    warnings.push_back("feature \"" + name + "\": its name is that of a block of the Slicer segmentation (" + sceneName +
+                       ".seg_N.vtp); its files are " + stem + ".*");
   else if (stem != plain && stem.rfind(plain + "_", 0) == 0)
     warnings.push_back("feature \"" + name +
                        "\": another feature's file name differs only in case or in characters a file name "
@@ -278,6 +282,11 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
   std::vector<CompactMesh> compact;  // kept for the GLB scene
   SurfaceCompactor compactor(surfaces.mesh);
   std::vector<std::string> used{"multilabel", plan.sceneName};
+  // The Slicer segmentation's blocks (slicerSegmentPath) are taken too: a feature named like
+  // one gets another file name (with fileStem's warning) instead of a clash found after the build.
+  if (!plan.dir.empty() && has(plan.formats, MeshFormat::SegVtm))
+    for (std::size_t b = 0; b < featureCount; ++b)
+      used.push_back(slicerSegmentPath(plan.dir / (plan.sceneName + ".seg.vtm"), b).stem().string());
   const std::vector<Rgb> colors = featureColors(contours);
   for (std::size_t f = 0; f < featureCount; ++f) {
     const std::string& name = contours.features[f].name;

@@ -291,6 +291,13 @@ file(WRITE "${OUT}/ball.json" "{\"version\": 1, \"units\": \"mm\", \"features\":
 run_scansurf(0 "${OUT}/ball.json" -o "${OUT}/ball" --voxel-size 1 --format ply,glb)
 expect_output("feature \"ball\": its name is that of the scene files, named after the input \\(ball.glb, .seg.vtm\\); its files are ball_2")
 expect_files("${OUT}/ball" ball_2.ply ball.glb)
+# A feature named as a block of the Slicer segmentation (ball.seg_0.vtp) gets other files, told
+# before anything is written rather than refused after the build.
+file(WRITE "${OUT}/blocks.json" "{\"version\": 1, \"units\": \"mm\", \"features\": [{\"name\": \"blocks.seg_0\", \"slices\": [
+  {\"z\": 0, \"contours\": [[[0, 0], [4, 0], [4, 4], [0, 4]]]}, {\"z\": 2, \"contours\": [[[0, 0], [4, 0], [4, 4], [0, 4]]]}]}]}")
+run_scansurf(0 "${OUT}/blocks.json" -o "${OUT}/blocks" --voxel-size 1 --format vtp,seg.vtm)
+expect_output("feature \"blocks.seg_0\": its name is that of a block of the Slicer segmentation \\(blocks.seg_N.vtp\\); its files are blocks.seg_0_2")
+expect_files("${OUT}/blocks" blocks.seg_0_2.vtp blocks.seg_0.vtp blocks.seg.vtm)
 file(GLOB long_names "${OUT}/names/LLLL*.ply")
 list(LENGTH long_names long_count)
 file(READ "${OUT}/names/r.json" names_report)
