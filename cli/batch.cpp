@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -208,10 +209,27 @@ Result<Child> spawnRun(const BatchArgs& a, const Task& t, std::size_t index, con
   return c;
 }
 
+// A folder is complete when its report (written last) reads as one: a report cut short or
+// damaged since means the input is surfaced again, not skipped with no row.
+bool completeFolder(const fs::path& folder) {
+  std::ifstream in(folder / "report.json");
+  if (!in) return false;
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  return !report.is_discarded() && report.is_object() && report.contains("features") && report["features"].is_array();
+}
+
+// A run fails on a folder another run (a second batch into the same output) holds; runs are
+// all or nothing, so a folder complete after such a failure was completed by the other run:
+// the input is skipped, not failed.
+void completedElsewhere(Task& t) {
+  if (t.status == "failed" && t.exitCode == 4 && completeFolder(t.folder)) t.status = "skipped", t.error.clear(), t.exitCode = 0;
+}
+
 void finish(Task& t, const Child& c, int status, bool quiet, std::size_t done, std::size_t total) {
   t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - c.start).count();
   t.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   if (t.exitCode != 0) t.status = "failed", t.error = categoryOf(t.exitCode) + ": " + errorOf(c.log);
+  completedElsewhere(t);
   std::error_code ec;
   fs::remove(c.log, ec);
   if (!quiet)
@@ -222,41 +240,52 @@ void finish(Task& t, const Child& c, int status, bool quiet, std::size_t done, s
   std::fflush(stdout);
 }
 
-// A folder is complete when its report (written last) reads as one: a report cut short or
-// damaged since means the input is surfaced again, not skipped with no row.
-bool completeFolder(const fs::path& folder) {
-  std::ifstream in(folder / "report.json");
-  if (!in) return false;
-  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
-  return !report.is_discarded() && report.is_object() && report.contains("features") && report["features"].is_array();
+// Runs the tasks not yet complete, `workers` at a time.
+// Whether a run failed only because another run (a second batch into the same output) holds
+// its folder: the input waits for that run instead of failing.
+bool heldElsewhere(int status, const fs::path& log) {
+  return WIFEXITED(status) && WEXITSTATUS(status) == 4 && errorOf(log).find("another scansurf run") != std::string::npos;
 }
 
-// Runs the tasks not yet complete, `workers` at a time.
+// Runs the tasks not yet complete, `workers` at a time. An input whose folder another run
+// holds is tried again once that run has let it go (then usually complete: skipped).
 Result<void> runAll(const BatchArgs& a, std::vector<Task>& tasks) {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::string threads = std::to_string(std::max(1u, cores / static_cast<unsigned>(a.workers)));
   std::map<pid_t, Child> running;
-  std::size_t next = 0, done = 0;
-  for (Task& t : tasks)
-    if (completeFolder(t.folder)) {
-      t.status = "skipped";
-      ++done;
-      if (!a.quiet) std::printf("[%zu/%zu] %s: skipped (its folder is complete)\n", done, tasks.size(), t.input.c_str());
+  std::deque<std::size_t> pending;
+  std::set<std::size_t> waiting;  // held by another run: tried again after a pause
+  std::size_t done = 0;
+  for (std::size_t i = 0; i < tasks.size(); ++i) {
+    if (!completeFolder(tasks[i].folder)) {
+      pending.push_back(i);
+      continue;
     }
+    tasks[i].status = "skipped";
+    ++done;
+    if (!a.quiet) std::printf("[%zu/%zu] %s: skipped (its folder is complete)\n", done, tasks.size(), tasks[i].input.c_str());
+  }
   while (true) {
-    while (next < tasks.size() && running.size() < static_cast<std::size_t>(a.workers)) {
-      if (tasks[next].status == "skipped") {
-        ++next;
-        continue;
+    while (!pending.empty() && running.size() < static_cast<std::size_t>(a.workers)) {
+      const std::size_t i = pending.front();
+      pending.pop_front();
+      if (waiting.erase(i) > 0) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        if (completeFolder(tasks[i].folder)) {
+          tasks[i].status = "skipped";
+          ++done;
+          if (!a.quiet)
+            std::printf("[%zu/%zu] %s: skipped (another run completed it)\n", done, tasks.size(), tasks[i].input.c_str());
+          continue;
+        }
       }
-      Result<Child> c = spawnRun(a, tasks[next], next, threads);
+      Result<Child> c = spawnRun(a, tasks[i], i, threads);
       if (!c) {  // this input fails; the running ones and the rest go on
-        tasks[next].status = "failed", tasks[next].error = "IoError: " + c.error().message, tasks[next].exitCode = 4;
-        ++done, ++next;
+        tasks[i].status = "failed", tasks[i].error = "IoError: " + c.error().message, tasks[i].exitCode = 4;
+        ++done;
         continue;
       }
       running.emplace(c->pid, *c);
-      ++next;
     }
     if (running.empty()) return {};
     int status = 0;
@@ -264,8 +293,16 @@ Result<void> runAll(const BatchArgs& a, std::vector<Task>& tasks) {
     if (pid < 0) return makeError(Errc::Internal, std::string("waitpid: ") + std::strerror(errno));
     const auto it = running.find(pid);
     if (it == running.end()) continue;
-    finish(tasks[it->second.task], it->second, status, a.quiet, ++done, tasks.size());
+    const Child child = it->second;
     running.erase(it);
+    if (heldElsewhere(status, child.log)) {
+      std::error_code ec;
+      fs::remove(child.log, ec);
+      waiting.insert(child.task);
+      pending.push_back(child.task);
+      continue;
+    }
+    finish(tasks[child.task], child, status, a.quiet, ++done, tasks.size());
   }
 }
 
@@ -305,7 +342,8 @@ void addRows(std::ostringstream& csv, const Task& t) {
   }
 }
 
-Result<void> writeSummary(const BatchArgs& a, const std::vector<Task>& tasks) {
+Result<void> writeSummary(const BatchArgs& a, std::vector<Task>& tasks) {
+  for (Task& t : tasks) completedElsewhere(t);  // the other run may have finished since
   std::ostringstream csv;
   csv << "input,roi,label,volume_unit,contour_volume,voxel_volume,surface_volume,triangles,status,seconds\r\n";
   nlohmann::ordered_json entries = nlohmann::ordered_json::array();

@@ -98,7 +98,7 @@ def _report_of(folder):
 def run_one(task, folder, formats, options):
     """Surfaces one input into `folder` on this process's engine; never raises for the input's
     own failure (it is returned as the record's error)."""
-    from . import build, engine, read  # imported on the worker
+    from . import IoError, build, engine, read  # imported on the worker
     start = time.perf_counter()
     record = {"input": task["input"], "output": folder, "status": "done", "error": "", "rows": []}
     report = _report_of(folder)
@@ -109,7 +109,19 @@ def run_one(task, folder, formats, options):
     try:
         cs = read(task["input"], reference=task.get("reference"), rois=task.get("rois"), objects=task.get("objects"))
         result = build(cs, engine=engine(options.pop("device", None)), **options)
-        result.write(folder, formats=formats, report="report.json")
+        while True:
+            try:
+                result.write(folder, formats=formats, report="report.json")
+                break
+            except IoError as e:  # another run (a second batch into this output) holds the folder: wait for it
+                if "another scansurf run" not in str(e):
+                    raise
+                time.sleep(0.25)
+                report = _report_of(folder)
+                if report is not None:  # it completed the folder
+                    record["rows"] = _rows_of_report(task["input"], report, "skipped", 0.0)
+                    record["status"], record["seconds"] = "skipped", 0.0
+                    return record
         seconds = time.perf_counter() - start
         with open(os.path.join(folder, "report.json"), encoding="utf-8", errors="surrogateescape") as f:
             record["rows"] = _rows_of_report(task["input"], json.load(f), "done", seconds)
@@ -117,6 +129,19 @@ def run_one(task, folder, formats, options):
         record["status"], record["error"] = "failed", "%s: %s" % (type(e).__name__, e)
     record["seconds"] = time.perf_counter() - start
     return record
+
+
+def _completed_elsewhere(records):
+    """A run fails on a folder another run (a second batch into the same output) holds; runs are
+    all or nothing, so a folder complete after such a failure was completed by the other run:
+    the input is skipped, not failed."""
+    for r in records:
+        if r["status"] != "failed" or not r["error"].startswith("IoError"):
+            continue
+        report = _report_of(r["output"])
+        if report is not None:
+            r.update(status="skipped", error="", seconds=0.0, rows=_rows_of_report(r["input"], report, "skipped", 0.0))
+    return records
 
 
 def _write_atomically(path, write):
@@ -243,6 +268,7 @@ def batch(inputs, out_dir, client=None, workers=None, formats=("ply",), progress
         for task, folder in zip(tasks, folders):
             records.append(run_one(task, folder, formats, dict(options)))
             bar.step(records[-1])
+        _completed_elsewhere(records)
         return BatchSummary(write_summary(out_dir, records), records)
     owned = None
     if client is None:
@@ -255,6 +281,7 @@ def batch(inputs, out_dir, client=None, workers=None, formats=("ply",), progress
         if owned is not None:
             client.close()
             owned.close()
+    _completed_elsewhere(records)
     return BatchSummary(write_summary(out_dir, records), records)
 
 

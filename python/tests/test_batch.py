@@ -221,3 +221,18 @@ def test_the_module_command_passes_every_run_option_on(tmp_path, cohort, cli):
     bad = subprocess.run([sys.executable, "-m", "scansurf", "batch", paths[0], "-o", str(tmp_path / "bad"), "--voxel-sise",
                           "1"], capture_output=True, text=True, env=os.environ.copy())
     assert bad.returncode == 2 and "--voxel-sise is not a run option" in bad.stderr and not (tmp_path / "bad").exists()
+
+
+def test_two_batches_into_one_output_at_once_fail_nothing(tmp_path, cohort, cli):
+    paths, _ = cohort
+    out = tmp_path / "out"
+    command = [cli, "batch", *paths[:4], "-o", str(out), "-q", "--workers", "1", "--voxel-size", "1.5"]
+    first = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
+    second = subprocess.run([sys.executable, "-m", "scansurf", "batch", *paths[:4], "-o", str(out), "-q", "--serial",
+                             "--voxel-size", "1.5"], capture_output=True, text=True, env=os.environ.copy())
+    first_err = first.communicate()[1]
+    assert first.returncode == 0, first_err
+    assert second.returncode == 0, second.stderr
+    assert {r["status"] for r in json.load(open(out / "batch.json"))["inputs"]} <= {"done", "skipped"}
+    rows = list(csv.DictReader(open(out / "summary.csv")))
+    assert len(rows) == 4 * 3 and not [r for r in rows if r["status"].startswith("failed")]
