@@ -392,6 +392,122 @@ def second_round(exe, work, outcome, args):
                 "exit %d, left %s" % (code, left))
 
 
+# ---------------------------------------------------------------------------------------------
+# Third round (issue 55): the batches, the Python API, character sets and names, resources.
+
+def third_round(exe, work, outcome, args):
+    r3 = work / "round3"
+    r3.mkdir()
+    cap = args.cap_gib << 30
+    python_dir = Path(args.python) if args.python else Path(exe).parent.parent / "python"
+    env = dict(os.environ, PYTHONPATH=str(python_dir))
+
+    def check(category, case, ok, detail):
+        outcome.add(category, case, "ok" if ok else "wrong result", detail)
+
+    def batch_inputs(name, count=2):
+        folder = r3 / name
+        folder.mkdir()
+        for i in range(count):
+            ball_json(folder / ("in%d.json" % i), "mm", [0, 2, 4], 5 + i)
+        return folder
+
+    # Batch: its own record, a damaged report, a pipe, an empty folder, two batches at once, a
+    # link at the log, a file name that is not UTF-8.
+    d = batch_inputs("own-output")
+    codes = [run([exe, "batch", str(d), "-o", str(d), "-q"], args.timeout, cap)[0] for _ in range(2)]
+    check("batch", "output-is-input-twice", codes == [0, 0] and not (d / "batch").exists(), "exits %s" % codes)
+    d = batch_inputs("damaged-report", 1)
+    run([exe, "batch", str(d), "-o", str(d / "out"), "-q"], args.timeout, cap)
+    (d / "out" / "in0" / "report.json").write_text('{"cut')
+    code, text, _, _ = run([exe, "batch", str(d), "-o", str(d / "out"), "-q"], args.timeout, cap)
+    status = json.loads((d / "out" / "batch.json").read_text())["inputs"][0]["status"]
+    check("batch", "damaged-report-rerun", code == 0 and status == "done", "exit %d, %s" % (code, status))
+    os.mkfifo(r3 / "pipe.json")
+    code, text, _, _ = run([exe, "batch", str(r3 / "pipe.json"), "-o", str(r3 / "pipe-out"), "-q"], args.timeout, cap)
+    check("batch", "fifo-input", code == 4 and "not a regular file" in text, "exit %d: %s" % (code, text[-200:]))
+    (r3 / "empty").mkdir()
+    code, text, _, _ = run([exe, "batch", str(r3 / "empty"), "-o", str(r3 / "empty-out"), "-q"], args.timeout, cap)
+    check("batch", "empty-folder", code == 2, "exit %d" % code)
+    d = batch_inputs("at-once", 4)
+    cmd = [exe, "batch", str(d), "-o", str(d / "out"), "-q", "--workers", "1"]
+    first = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    code, text, _, _ = run(cmd, args.timeout, cap)
+    statuses = {r["status"] for r in json.loads((d / "out" / "batch.json").read_text())["inputs"]}
+    check("batch", "two-batches-at-once", first.wait() == 0 and code == 0 and statuses <= {"done", "skipped"},
+          "exits %d, %d; %s" % (first.returncode, code, sorted(statuses)))
+    d = batch_inputs("log-link", 1)
+    victim = r3 / "precious.txt"
+    victim.write_text("precious")
+    (d / "out").mkdir()
+    (d / "out" / ".scansurf-batch-in0.log").symlink_to(victim)
+    run([exe, "batch", str(d), "-o", str(d / "out"), "-q"], args.timeout, cap)
+    check("security", "batch-log-link", victim.read_text() == "precious", victim.read_text()[:40])
+    d = batch_inputs("not-utf8", 0)
+    shutil.copy(EXAMPLE, os.path.join(os.fsencode(d), b"caf\xe9.json"))
+    code, _, _, _ = run([exe, "batch", str(d), "-o", str(d / "cli"), "-q"], args.timeout, cap)
+    check("charsets", "not-utf8-file-name-cli", code == 0 and (d / "cli" / "caf_").is_dir(), "exit %d" % code)
+
+    # Names and resources.
+    nul = r3 / "nul.json"
+    nul.write_text(json.dumps({"version": 1, "features": [feature("le\u0000ft", [0, 2], circle(5))]}))
+    judge(outcome, "names", "nul-in-name", [exe, str(nul), "-o", str(r3 / "nul-out"), "--format", "vtp,seg.vtm", "-q"],
+          r3 / "nul-out", {3}, args, mention="NUL")
+    blocks = ball_json(r3 / "blocks.json", "mm", [0, 2, 4], 5, name="blocks.seg_0")
+    code, text, _, _ = run([exe, str(blocks), "-o", str(r3 / "blocks"), "--format", "vtp,seg.vtm", "-q"], args.timeout, cap)
+    check("names", "feature-named-as-a-segmentation-block", code == 0, "exit %d: %s" % (code, text[-200:]))
+    judge(outcome, "options", "preview-8192-over-max-memory",
+          [exe, str(EXAMPLE), "-o", str(r3 / "big-preview"), "--max-memory", "1G", "--preview", str(r3 / "big.png"),
+           "--preview-size", "8192", "8192", "-q"], r3 / "big-preview", {9}, args, mention="preview")
+
+    # The Python package: skipped, saying so, where it cannot be imported.
+    probe = subprocess.run([sys.executable, "-c", "import scansurf"], env=env, capture_output=True)
+    if probe.returncode != 0:
+        outcome.add("python", "import", "ok", "skipped: scansurf not importable from %s" % python_dir)
+        return
+    script = r3 / "python_cases.py"
+    script.write_text("""
+import os, sys, json, scansurf
+cs = scansurf.read(%r)
+res = {}
+for name, options in [("snap-off-stage", dict(smooth=False, snap=0.9)), ("iterations-huge", dict(smooth_iterations=10**7)),
+                      ("threads-huge", dict(threads=100000)), ("interpolate-0", dict(interpolate=0)),
+                      ("tolerance-0", dict(overlap_tolerance=0))]:
+    try:
+        scansurf.build(cs, voxel_size=2.0, **options); res[name] = "accepted"
+    except scansurf.InvalidArgument:
+        res[name] = "refused"
+built = scansurf.build(cs, voxel_size=2.0)
+try:
+    built.write(%r, scene_name="../../x"); res["scene-name-path"] = "accepted"
+except scansurf.InvalidArgument:
+    res["scene-name-path"] = "refused"
+print(json.dumps(res))
+""" % (str(EXAMPLE), str(r3 / "py-out")))
+    p = subprocess.run([sys.executable, str(script)], env=env, capture_output=True, text=True, timeout=args.timeout)
+    try:
+        results = json.loads(p.stdout.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        results = {}
+        outcome.add("python", "options", "crash", p.stderr[-300:])
+    for name, verdict in results.items():
+        check("python", name, verdict == "refused", verdict)
+    code = subprocess.run([sys.executable, "-m", "scansurf", "batch", str(r3 / "empty"), "-o", str(r3 / "py-empty"), "-q"],
+                          env=env, capture_output=True).returncode
+    check("python", "batch-empty-folder", code == 2, "exit %d" % code)
+    d = r3 / "not-utf8"
+    code = subprocess.run([sys.executable, "-m", "scansurf", "batch", str(d), "-o", str(d / "py"), "-q", "--serial"],
+                          env=env, capture_output=True).returncode
+    check("python", "batch-not-utf8-file-name", code == 0 and (d / "py" / "caf_").is_dir(), "exit %d" % code)
+    unguarded = r3 / "unguarded.py"
+    unguarded.write_text("import scansurf\nscansurf.batch(%r, %r)\n" % (str(EXAMPLE), str(r3 / "unguarded-out")))
+    try:
+        p = subprocess.run([sys.executable, str(unguarded)], env=env, capture_output=True, text=True, timeout=60)
+        check("python", "batch-from-unguarded-script", p.returncode != 0 and "__main__" in p.stderr, "exit %d" % p.returncode)
+    except subprocess.TimeoutExpired:
+        outcome.add("python", "batch-from-unguarded-script", "hang", "over 60 s")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--scansurf", required=True)
@@ -400,6 +516,8 @@ def main():
     ap.add_argument("--cap-gib", type=int, default=6)
     ap.add_argument("--quick", action="store_true", help="skip the slowest cases")
     ap.add_argument("--round2-only", action="store_true", help="only the second round's cases (issue 32)")
+    ap.add_argument("--round3-only", action="store_true", help="only the third round's cases (issue 55)")
+    ap.add_argument("--python", default=None, help="the Python package's folder (default: build/python beside the CLI)")
     args = ap.parse_args()
     exe = str(Path(args.scansurf).resolve())
     work = Path(args.work)
@@ -411,12 +529,12 @@ def main():
 
     # 1. Input files: valid ones must surface (exit 0); the rest exit 3 (or 9 when too big for
     # the memory cap), naming the file.
-    for name, path in ({} if args.round2_only else write_json_cases(work)).items():
+    for name, path in ({} if (args.round2_only or args.round3_only) else write_json_cases(work)).items():
         if args.quick and name in ("slices-20000", "nested-3000", "too-many-features-70000"):
             continue
         extra = ["--label-volume", str(out / "labels.nrrd")] if name == "z-gap-1e12" else []
         judge(outcome, "json", name, [exe, str(path), "-o", str(out), "-q"] + extra, out, {0, 3, 9}, args, mention=None)
-    for name, path in ({} if args.round2_only else write_dicom_cases(work, rng)).items():
+    for name, path in ({} if (args.round2_only or args.round3_only) else write_dicom_cases(work, rng)).items():
         judge(outcome, "dicom", name + " --list-rois", [exe, str(path), "--list-rois"], out, {0, 3}, args)
         judge(outcome, "dicom", name, [exe, str(path), "-o", str(out), "-q"], out, {0, 3, 9}, args)
 
@@ -438,10 +556,10 @@ def main():
         "dicom-seg-no-ref": ["--dicom-seg", str(out / "s.dcm")], "view-junk": ["--view", "sideways"],
         "tolerance-long-arg": ["--voxel-size", "1" * 5000],
     }
-    for name, opts in ({} if args.round2_only else option_cases).items():
+    for name, opts in ({} if (args.round2_only or args.round3_only) else option_cases).items():
         judge(outcome, "options", name, [exe, ex, "-o", str(out), "-q"] + opts, out, {0, 2, 3, 4, 5, 9}, args)
 
-    if not args.round2_only:
+    if not (args.round2_only or args.round3_only):
         # 3. Output clashes: nothing may be replaced when any target cannot be written.
         clash = work / "clash"
         clash.mkdir()
@@ -485,8 +603,10 @@ def main():
             outcome.add("signals", "SIGKILL@%.1fs then a run" % at, "ok" if code == 0 and not left else "partial output",
                         "exit %d, left %s" % (code, left))
 
-    # 5. The second round's causes (issue 32).
-    second_round(exe, work, outcome, args)
+    # 5. The second round's causes (issue 32); 6. the third round's (issue 55).
+    if not args.round3_only:
+        second_round(exe, work, outcome, args)
+    third_round(exe, work, outcome, args)
 
     # Every row, for the record; then the summary.
     with open(work / "results.tsv", "w") as f:
