@@ -200,22 +200,45 @@ GridReference gridReferenceOf(const CtSeries& ct) {
   return ref;
 }
 
-Result<void> placeOnCtSlices(ContourSet& contours, const CtSeries& ct, double tolerance) {
+namespace {
+
+// Whether the series has a slice missing at z: z lies beyond its first or last slice, or in a
+// gap between two slices wider than 1.5 times its median spacing (or the series is one slice).
+bool missingSliceAt(const std::vector<double>& zs, double z) {
+  if (zs.size() < 2 || z < zs.front() || z > zs.back()) return true;
+  std::vector<double> gaps;
+  for (std::size_t k = 1; k < zs.size(); ++k) gaps.push_back(zs[k] - zs[k - 1]);
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+  const double median = gaps[gaps.size() / 2];
+  const auto it = std::lower_bound(zs.begin(), zs.end(), z);
+  return *it - *(it - 1) > 1.5 * median;
+}
+
+}  // namespace
+
+Result<std::vector<double>> placeOnCtSlices(ContourSet& contours, const CtSeries& ct, double tolerance) {
   const auto& zs = ct.sliceZ;
+  std::vector<double> off;
   for (int f = 0; f < static_cast<int>(contours.features.size()); ++f) {
     for (int s = 0; s < static_cast<int>(contours.features[f].slices.size()); ++s) {
       FeatureSlice& slice = contours.features[f].slices[s];
       const auto it = std::lower_bound(zs.begin(), zs.end(), slice.z);
       double nearest = it == zs.end() ? zs.back() : *it;
       if (it != zs.begin() && std::abs(*(it - 1) - slice.z) < std::abs(nearest - slice.z)) nearest = *(it - 1);
-      if (std::abs(nearest - slice.z) > tolerance)
+      if (std::abs(nearest - slice.z) <= tolerance) {
+        slice.z = nearest;
+      } else if (missingSliceAt(zs, slice.z)) {
+        off.push_back(slice.z);  // a partial series: the plane keeps its own z
+      } else {
         return invalid(describeSlice(contours, f, s, slice.z) + ": not on a slice of the reference series " + ct.directory +
                        " (nearest z=" + formatNumber(nearest) + ", " + std::to_string(zs.size()) +
                        " slices from z=" + formatNumber(zs.front()) + " to " + formatNumber(zs.back()) + ")");
-      slice.z = nearest;
+      }
     }
   }
-  return {};
+  std::sort(off.begin(), off.end());
+  off.erase(std::unique(off.begin(), off.end()), off.end());
+  return off;
 }
 
 }  // namespace scansurf

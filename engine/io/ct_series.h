@@ -45,8 +45,11 @@ Result<CtSeries> readCtSeries(const std::filesystem::path& directory);
 GridReference gridReferenceOf(const CtSeries& ct);
 
 // Moves every slice of `contours` onto the CT slice within `tolerance` (mm) of it. A slice
-// with no CT slice that close is an error naming the feature, its z and the nearest CT z
-// (Errc::InvalidInput): contours drawn between CT slices have no voxel layer to go to.
-Result<void> placeOnCtSlices(ContourSet& contours, const CtSeries& ct, double tolerance);
+// where the series has none (beyond its ends, in a gap where slices are missing, or a series
+// of one slice: a partial series, as many plans carry) keeps its z; those z are returned,
+// sorted. A slice between two neighbouring CT slices is an error naming the feature, its z
+// and the nearest CT z (Errc::InvalidInput): contours drawn between CT slices have no voxel
+// layer to go to.
+Result<std::vector<double>> placeOnCtSlices(ContourSet& contours, const CtSeries& ct, double tolerance);
 
 }  // namespace scansurf

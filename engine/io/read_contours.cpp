@@ -64,8 +64,18 @@ Result<ContourSet> readStructureSet(const std::filesystem::path& path, const Rea
   const std::string ctDir = options.referenceSeries.string();
   SCANSURF_ASSIGN_OR_RETURN(const CtSeries ct, readCtSeries(options.referenceSeries));
   SCANSURF_TRY(checkReference(rt, ct, path.string(), ctDir, contours.warnings));
-  SCANSURF_TRY(placeOnCtSlices(contours, ct, rtOptions.sliceTolerance));
+  SCANSURF_ASSIGN_OR_RETURN(const std::vector<double> off, placeOnCtSlices(contours, ct, rtOptions.sliceTolerance));
   contours.reference = gridReferenceOf(ct);
+  if (!off.empty()) {  // a partial series: its lattice in-plane, the contours' own planes in z
+    std::vector<double>& zs = contours.reference->sliceZ;
+    zs.insert(zs.end(), off.begin(), off.end());
+    std::sort(zs.begin(), zs.end());
+    contours.warnings.push_back(path.string() + ": the reference series " + ctDir + " has no slice at " +
+                                std::to_string(off.size()) + " contour plane(s) (z=" + formatNumber(off.front()) +
+                                (off.size() > 1 ? " to " + formatNumber(off.back()) : std::string()) +
+                                "): its pixel lattice places the surfaces in-plane, the contours their planes; a DICOM "
+                                "SEG holds only the series' own slices");
+  }
   contours.notes.push_back(describeReference(ct, ctDir));
   // The report's input files: the structure set first (withFiles), then every CT file read.
   contours.files.push_back(path.string());

@@ -122,7 +122,8 @@ Verdict ctSeries(std::span<const std::uint8_t> input) {
     feature.slices.push_back({ct->sliceZ.front(), {{square}}});
     if (ct->sliceZ.size() > 1) feature.slices.push_back({ct->sliceZ.back(), {{square}}});
     contours.features.push_back(std::move(feature));
-    return placeOnCtSlices(contours, *ct, 0.01);
+    SCANSURF_TRY(placeOnCtSlices(contours, *ct, 0.01));
+    return {};
   });
   isBug(placed, verdict, "placeOnCtSlices");
   return verdict;

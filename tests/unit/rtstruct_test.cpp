@@ -688,6 +688,43 @@ TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
   EXPECT_FALSE(makeGrid(between->contours, o));
 }
 
+// A partial reference series (one slice, as many shared plans carry): its lattice places the
+// surfaces in-plane, the contours keep their planes, with a warning; a plane between two
+// neighbouring slices of a whole series is still an error.
+TEST_F(Dicom, APartialReferenceSeriesGivesTheLatticeAndTheContoursThePlanes) {
+  test::TestCt ct;
+  ct.columns = 40;
+  ct.rows = 30;
+  ct.spacingX = 0.8;
+  ct.spacingY = 0.9;
+  ct.originX = -15.2;
+  ct.originY = -12.6;
+  ct.sliceZ = {0};
+  test::writeTestCtSeries(ct, dir_ / "ct");
+  TestRtStruct rtFile;
+  TestRoi roi{1, "organ", "ORGAN", std::nullopt, {}};
+  for (double z : {-2.5, 0.0, 2.5, 5.0}) roi.contours.push_back(closedContour(square(-6, -5, 7, 6), z));
+  rtFile.rois = {roi};
+  write(rtFile, "rt.dcm");
+  ReadOptions read;
+  read.referenceSeries = dir_ / "ct";
+  auto contours = readContours(dir_ / "rt.dcm", read);
+  ASSERT_TRUE(contours) << contours.error().message;
+  EXPECT_TRUE(std::any_of(contours->warnings.begin(), contours->warnings.end(), [](const std::string& w) {
+    return w.find("has no slice at 3 contour plane(s) (z=-2.5 to 5)") != std::string::npos;
+  }));
+  ASSERT_TRUE(contours->reference);
+  GridOptions o;
+  o.reference = contours->reference;  // as build() takes it
+  auto grid = makeGrid(*contours, o);
+  ASSERT_TRUE(grid) << grid.error().message;
+  EXPECT_DOUBLE_EQ(grid->originX, -15.2 - 0.8);
+  EXPECT_DOUBLE_EQ(grid->spacingY, 0.9);
+  EXPECT_EQ(grid->layerZ, (std::vector<double>{-5, -2.5, 0, 2.5, 5, 7.5}));
+  const Built b = buildCpu(*contours, o);
+  expectClosed(b, *contours);
+}
+
 // A CT twice as fine as the contours (1 mm slices, contours every 2 mm): the CT slices between
 // contour planes are the between-slice model's (the slab rule here), never background. Each
 // structure is one piece, and its mask on the CT grid has no empty slice and the slab rule's
