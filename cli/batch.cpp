@@ -30,6 +30,7 @@
 #include <thread>
 #include <vector>
 
+#include "interrupts.h"
 #include "options.h"
 #include "safe_text.h"
 #include "scansurf/outputs.h"
@@ -286,6 +287,10 @@ Result<void> runAll(const BatchArgs& a, std::vector<Task>& tasks) {
         continue;
       }
       running.emplace(c->pid, *c);
+      if (!a.quiet) {  // progress before the first input finishes
+        std::printf("[%zu/%zu] %s: started\n", done, tasks.size(), printable(tasks[i].input).c_str());
+        std::fflush(stdout);
+      }
     }
     if (running.empty()) return {};
     int status = 0;
@@ -383,6 +388,8 @@ int runBatch(int argc, char** argv) {
   if (!tasks) return failWith(tasks.error());
   if (tasks->empty()) return failWith({Errc::InvalidArgument, "no contour set (.json, .dcm, .ser, .mod) among the inputs"});
   if (!runOptionsParse(*args, tasks->front())) return 2;
+  setInterruptMessage("scansurf batch",
+                      "the inputs finished so far are kept, and a rerun skips them; those running were not written");
   std::error_code ec;
   fs::create_directories(args->output, ec);
   if (ec) return failWith({Errc::Io, "cannot create '" + args->output + "': " + ec.message()});

@@ -14,6 +14,8 @@ namespace {
 
 std::mutex gMutex;                  // held while a commit moves files
 OutputStaging* gStaging = nullptr;  // the run's staged outputs, if any
+const char* gProgram = "scansurf";
+const char* gMessage = "no output was written or replaced";
 
 sigset_t interruptSignals() {
   sigset_t set;
@@ -31,7 +33,7 @@ sigset_t interruptSignals() {
   }
   std::lock_guard lock(gMutex);
   if (gStaging) gStaging->discard();
-  std::fprintf(stderr, "\nscansurf: interrupted (signal %d): no output was written or replaced\n", signal);
+  std::fprintf(stderr, "\n%s: interrupted (signal %d): %s\n", gProgram, signal, gMessage);
   std::fflush(stderr);
   ::_exit(128 + signal);
 }
@@ -46,6 +48,12 @@ void installInterruptHandling() {
   const sigset_t set = interruptSignals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);  // inherited by every thread created after this
   std::thread(watch).detach();
+}
+
+void setInterruptMessage(const char* program, const char* message) {
+  std::lock_guard lock(gMutex);
+  gProgram = program;
+  gMessage = message;
 }
 
 InterruptScope::InterruptScope(OutputStaging& staging) : staging_(staging) {

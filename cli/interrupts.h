@@ -11,6 +11,10 @@ namespace scansurf::cli {
 // Call first in main, before any thread exists (Vulkan drivers start their own).
 void installInterruptHandling();
 
+// What an interrupt says after "interrupted (signal N): " (a string that lives as long as the
+// process); by default that no output was written or replaced.
+void setInterruptMessage(const char* program, const char* message);
+
 // While alive, an interrupt discards `staging`; commit under it (Commit) so an interrupt
 // waits for the moves to finish.
 class InterruptScope {

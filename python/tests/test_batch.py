@@ -236,3 +236,19 @@ def test_two_batches_into_one_output_at_once_fail_nothing(tmp_path, cohort, cli)
     assert {r["status"] for r in json.load(open(out / "batch.json"))["inputs"]} <= {"done", "skipped"}
     rows = list(csv.DictReader(open(out / "summary.csv")))
     assert len(rows) == 4 * 3 and not [r for r in rows if r["status"].startswith("failed")]
+
+
+def test_an_interrupted_command_line_batch_says_what_it_kept(tmp_path, cohort, cli):
+    paths, _ = cohort
+    out = tmp_path / "out"
+    run = subprocess.Popen([cli, "batch", *paths, "-o", str(out), "--workers", "1", "--voxel-size", "1.5"],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 120
+    while time.time() < deadline and not (out / os.path.basename(paths[0])[:-5] / "report.json").exists():
+        time.sleep(0.05)
+    run.send_signal(signal.SIGINT)
+    stdout, stderr = run.communicate()
+    assert run.returncode == 128 + signal.SIGINT
+    assert ": started" in stdout  # progress before an input finishes
+    assert "the inputs finished so far are kept, and a rerun skips them" in stderr
+    assert "no output was written" not in stderr.split("scansurf batch: interrupted")[-1]
