@@ -71,6 +71,8 @@ void store(PairPlan pair, int m, int x, int y, int slot, uint label, uint cleara
     label = planeLabel(pair.planeA, x, y);
   else if (m == pair.factor)
     label = planeLabel(pair.planeA + 1, x, y);
+  else if (x == 0 || y == 0 || x == int(push.nx) - 1 || y == int(push.ny) - 1)
+    label = 0u, clearance = 0u;  // the border stays background, as on the planes: every surface closes inside
   outputLabels.labels[slot] = label | (clearance << 16);
 }
 

@@ -57,6 +57,7 @@ struct Case {
 std::vector<Case> cases() {
   return {{"sphere", sphereContours(8, 2.0), 2.0},
           {"torus", torusContours(8, 3, 1.5), 1.5},
+          {"tilted torus", tiltedTorusContours(8, 3, 15, 1.5), 1.5},
           {"ellipsoid halves", ellipsoidHalves(9, 6, 9, 2.0), 2.0},
           {"Y branch", yBranchContours(), 2.0},
           {"nested shells", nestedSpheresContours(10, 4, 2.0), 2.0},

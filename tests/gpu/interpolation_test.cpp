@@ -502,7 +502,10 @@ TEST_F(InterpolatedShapesTest, TiltedCylinderWithSlicesFourPixelsThickFollowsIts
   const Accuracy a = accuracy(off, side, 5, 25), b = accuracy(on, side, 5, 25);
   printFigure("cylinder r6 tilted 34 deg, 0.5 mm pixels, 2 mm slices, side", a, b);
   EXPECT_LE(b.mean, 0.05);  // as the cone: straight walls already fit a cylinder
-  EXPECT_LE(b.max, 1.1 * a.max);
+  // Every ellipse spans y = -6 .. 6, so the grid's one-pixel border lies just beyond; between
+  // the planes the area-keeping blend reaches it and is held there (the border stays
+  // background, so the surface closes), about half a pixel at the widest points.
+  EXPECT_LE(b.max, 1.1 * a.max + 0.5 * 0.5);
   expectLabelsWithinOneVoxel(set, 0.5, side);
 }
 

@@ -109,6 +109,63 @@ ContourSet torusContours(double majorRadius, double tubeRadius, double sliceSpac
   return set;
 }
 
+ContourSet tiltedTorusContours(double majorRadius, double tubeRadius, double tiltDegrees, double sliceSpacing) {
+  ContourSet set;
+  set.source = "tilted_torus";
+  Feature f;
+  f.name = "torus";
+  f.color = Rgb{80, 160, 220};
+  const double tilt = tiltDegrees * std::numbers::pi / 180, st = std::sin(tilt), ct = std::cos(tilt);
+  constexpr int kSamples = 720;
+  // The torus point of angles (u, v), turned by the tilt about x; on the plane z = c the tube
+  // angles are the two v with st (R + r cos v) sin u + ct r sin v = c.
+  const auto point = [&](double u, double v) {
+    const double ring = majorRadius + tubeRadius * std::cos(v);
+    const double y = ring * std::sin(u), z = tubeRadius * std::sin(v);
+    return Point2{ring * std::cos(u), ct * y - st * z};
+  };
+  const double reach = majorRadius * st + tubeRadius;
+  for (double c : symmetricPlanes(0, reach, sliceSpacing)) {
+    std::vector<double> plus(kSamples), minus(kSamples);
+    std::vector<char> valid(kSamples);
+    for (int k = 0; k < kSamples; ++k) {
+      const double u = 2 * std::numbers::pi * k / kSamples;
+      const double a = st * tubeRadius * std::sin(u), b = ct * tubeRadius, rhs = c - st * majorRadius * std::sin(u);
+      const double q = rhs / std::hypot(a, b);
+      valid[k] = std::abs(q) < 1;
+      if (!valid[k]) continue;
+      const double phase = std::atan2(b, a), spread = std::acos(q);
+      plus[k] = phase + spread, minus[k] = phase - spread;
+    }
+    std::vector<Contour> contours;
+    const int firstInvalid = static_cast<int>(std::find(valid.begin(), valid.end(), 0) - valid.begin());
+    if (firstInvalid == kSamples) {  // the plane cuts the whole ring: two loops, one inside the other
+      Contour outer, inner;
+      for (int k = 0; k < kSamples; ++k) {
+        const double u = 2 * std::numbers::pi * k / kSamples;
+        outer.points.push_back(point(u, plus[k])), inner.points.push_back(point(u, minus[k]));
+      }
+      contours = {outer, inner};
+    } else {  // arcs of the ring: each run of valid u closes through both tube angles
+      for (int step = 1; step <= kSamples; ++step) {
+        const int k0 = (firstInvalid + step) % kSamples;
+        if (!valid[k0] || valid[(k0 + kSamples - 1) % kSamples]) continue;
+        std::vector<int> run;
+        for (int k = k0; valid[k]; k = (k + 1) % kSamples) run.push_back(k);
+        if (run.size() < 3) continue;
+        Contour loop;
+        for (int k : run) loop.points.push_back(point(2 * std::numbers::pi * k / kSamples, plus[k]));
+        for (auto it = run.rbegin(); it != run.rend(); ++it)
+          loop.points.push_back(point(2 * std::numbers::pi * *it / kSamples, minus[*it]));
+        contours.push_back(loop);
+      }
+    }
+    if (!contours.empty()) f.slices.push_back(sliceOf(c, contours));
+  }
+  set.features.push_back(std::move(f));
+  return set;
+}
+
 ContourSet yBranchContours(double trunkRadius, double branchOffset, double branchRadius, double sliceSpacing, int trunkSlices,
                            int branchSlices) {
   ContourSet set;

@@ -22,6 +22,10 @@ ContourSet sphereContours(double radius, double sliceSpacing, Point2 centre = {}
 // r < R: each slice is an annulus, outer circle plus a hole. Genus 1.
 ContourSet torusContours(double majorRadius, double tubeRadius, double sliceSpacing);
 
+// The same torus turned by `tiltDegrees` about the x axis: near its middle a slice is two nested
+// loops, higher and lower two crescents or one arc. Genus 1.
+ContourSet tiltedTorusContours(double majorRadius, double tubeRadius, double tiltDegrees, double sliceSpacing);
+
 // One feature "vessel" shaped like trousers: a trunk circle on `trunkSlices` slices, then two
 // branch circles (overlapping the trunk in xy, so they connect) on `branchSlices` slices.
 // Slices at z = (k + 0.5) * sliceSpacing, k = 0 .. trunkSlices + branchSlices - 1.

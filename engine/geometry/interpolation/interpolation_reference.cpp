@@ -174,6 +174,8 @@ struct Sampler {
 
   // The label | clearance << 16 word of the voxel (as interpolate.comp writes it).
   std::uint32_t word(const shared::PairPlan& pair, int m, int x, int y) const {
+    const Grid& g = volume.grid;
+    if (m > 0 && m < pair.factor && (x == 0 || y == 0 || x == g.nx - 1 || y == g.ny - 1)) return 0u;  // the border
     const int tile = x / kTileSize + batch.tilesX * (y / kTileSize);
     const std::int32_t first = batch.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile)];
     const std::int32_t flagged = batch.tileRanges[2 * static_cast<std::size_t>(pair.tileStart + tile) + 1];
