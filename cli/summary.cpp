@@ -152,6 +152,13 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
                 formatVolume(v.contour).c_str(), s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO",
                 volumeFlag(s.volume, v.contour).c_str());
   }
+  std::size_t empty = 0;
+  for (const MeshStats& s : facts.stats) empty += s.triangles == 0;
+  if (empty > 0)
+    std::printf(
+        "%zu of %zu features have no surface: they cover no voxel centre of this grid (%g %s pixels); a finer "
+        "--voxel-size gives them one\n",
+        empty, set.features.size(), g.spacingX, printable(set.units).c_str());
   printOverlaps(set, built.overlaps);
   if (const TriangleShapeReport& r = built.surfaces.triangleShape; r.ran)
     std::printf(

@@ -291,6 +291,12 @@ file(WRITE "${OUT}/ball.json" "{\"version\": 1, \"units\": \"mm\", \"features\":
 run_scansurf(0 "${OUT}/ball.json" -o "${OUT}/ball" --voxel-size 1 --format ply,glb)
 expect_output("feature \"ball\": its name is that of the scene files, named after the input \\(ball.glb, .seg.vtm\\); its files are ball_2")
 expect_files("${OUT}/ball" ball_2.ply ball.glb)
+# A feature smaller than a pixel: its row says 0 triangles, and one line says why and what to do.
+file(WRITE "${OUT}/speck.json" "{\"version\": 1, \"units\": \"mm\", \"features\": [{\"name\": \"ball\", \"slices\": [
+  {\"z\": 0, \"contours\": [[[0, 0], [40, 0], [40, 40], [0, 40]]]}, {\"z\": 2, \"contours\": [[[0, 0], [40, 0], [40, 40], [0, 40]]]}]},
+  {\"name\": \"dot\", \"slices\": [{\"z\": 0, \"contours\": [[[10.01, 10.01], [10.02, 10.01], [10.02, 10.02]]]}]}]}")
+run_scansurf(0 "${OUT}/speck.json" -o "${OUT}/speck" --voxel-size 2)
+expect_output("1 of 2 features have no surface: they cover no voxel centre of this grid \\(2 mm pixels\\); a finer --voxel-size gives them one")
 # A feature named as a block of the Slicer segmentation (ball.seg_0.vtp) gets other files, told
 # before anything is written rather than refused after the build.
 file(WRITE "${OUT}/blocks.json" "{\"version\": 1, \"units\": \"mm\", \"features\": [{\"name\": \"blocks.seg_0\", \"slices\": [
