@@ -27,6 +27,7 @@ struct Image {
   int rows = 0, columns = 0;
   double position[3] = {0, 0, 0};
   double spacing[2] = {0, 0};  // row spacing (y), column spacing (x)
+  double thickness = 0;        // Slice Thickness, 0 when absent
 };
 
 Result<double> getDouble(DcmDataset& ds, const DcmTagKey& tag, unsigned long pos, const std::string& file, const char* name) {
@@ -96,6 +97,7 @@ Result<Image> imageOf(DcmDataset& ds, const std::filesystem::path& path) {
     SCANSURF_ASSIGN_OR_RETURN(image.spacing[i], getDouble(ds, DCM_PixelSpacing, i, file, "Pixel Spacing (0028,0030)"));
     if (!(image.spacing[i] > 0)) return invalid(file + ": Pixel Spacing (0028,0030) is not positive");
   }
+  if (Float64 t = 0; ds.findAndGetFloat64(DCM_SliceThickness, t).good() && std::isfinite(t) && t > 0) image.thickness = t;
   SCANSURF_TRY(checkAxial(ds, file));
   return image;
 }
@@ -167,6 +169,7 @@ CtSeries seriesOf(const std::vector<Image>& images, const std::string& dir) {
   ct.spacingY = first.spacing[0];
   ct.originX = first.position[0];
   ct.originY = first.position[1];
+  ct.sliceThickness = first.thickness;
   for (const Image& image : images) {
     ct.sliceZ.push_back(image.position[2]);
     ct.files.push_back(image.file);
@@ -203,15 +206,17 @@ GridReference gridReferenceOf(const CtSeries& ct) {
 namespace {
 
 // Whether the series has a slice missing at z: z lies beyond its first or last slice, or in a
-// gap between two slices wider than 1.5 times its median spacing (or the series is one slice).
-bool missingSliceAt(const std::vector<double>& zs, double z) {
+// gap between two slices wider than 1.5 times its spacing (or the series is one slice). The
+// spacing is its Slice Thickness where given, else its smallest gap: a series of two or three
+// slices has no usual gap.
+bool missingSliceAt(const CtSeries& ct, double z) {
+  const std::vector<double>& zs = ct.sliceZ;
   if (zs.size() < 2 || z < zs.front() || z > zs.back()) return true;
-  std::vector<double> gaps;
-  for (std::size_t k = 1; k < zs.size(); ++k) gaps.push_back(zs[k] - zs[k - 1]);
-  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-  const double median = gaps[gaps.size() / 2];
+  double spacing = zs[1] - zs[0];
+  for (std::size_t k = 2; k < zs.size(); ++k) spacing = std::min(spacing, zs[k] - zs[k - 1]);
+  if (ct.sliceThickness > 0) spacing = std::min(spacing, ct.sliceThickness);
   const auto it = std::lower_bound(zs.begin(), zs.end(), z);
-  return *it - *(it - 1) > 1.5 * median;
+  return *it - *(it - 1) > 1.5 * spacing;
 }
 
 }  // namespace
@@ -227,8 +232,12 @@ Result<std::vector<double>> placeOnCtSlices(ContourSet& contours, const CtSeries
       if (it != zs.begin() && std::abs(*(it - 1) - slice.z) < std::abs(nearest - slice.z)) nearest = *(it - 1);
       if (std::abs(nearest - slice.z) <= tolerance) {
         slice.z = nearest;
-      } else if (missingSliceAt(zs, slice.z)) {
-        off.push_back(slice.z);  // a partial series: the plane keeps its own z
+      } else if (missingSliceAt(ct, slice.z)) {  // a partial series: the plane keeps its own z,
+        const auto same = std::find_if(off.begin(), off.end(), [&](double o) { return std::abs(o - slice.z) <= tolerance; });
+        if (same != off.end())
+          slice.z = *same;  // shared with the other structures drawn on it
+        else
+          off.push_back(slice.z);
       } else {
         return invalid(describeSlice(contours, f, s, slice.z) + ": not on a slice of the reference series " + ct.directory +
                        " (nearest z=" + formatNumber(nearest) + ", " + std::to_string(zs.size()) +

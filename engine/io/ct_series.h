@@ -25,6 +25,7 @@ struct CtSeries {
   double originX = 0;   // Image Position (Patient) x, y: the centre of the first pixel
   double originY = 0;
   std::vector<double> sliceZ;  // Image Position (Patient) z of each image, increasing
+  double sliceThickness = 0;   // Slice Thickness of the first image; 0 when absent
   // Per image, in sliceZ order: its file and SOP Class / SOP Instance UIDs (for references
   // to the images from derived objects such as a DICOM SEG).
   std::vector<std::string> files;

@@ -75,7 +75,11 @@ bool looksLikeDicomDataSet(const std::filesystem::path& path) {
 void decodeTextToUtf8(const std::string& file, DcmDataset& dataset, std::vector<std::string>& warnings) {
   OFString charset;
   dataset.findAndGetOFStringArray(DCM_SpecificCharacterSet, charset);
-  if (dataset.convertToUTF8().good()) return;
+  DcmDataset converted(dataset);  // a failed conversion may have changed some values: keep none of it
+  if (converted.convertToUTF8().good()) {
+    dataset = converted;
+    return;
+  }
   const std::string declared = charset.empty() ? "none, so ASCII" : "'" + std::string(charset.c_str()) + "'";
   if (dataset.convertCharacterSet("ISO_IR 100", "ISO_IR 192", 0, OFTrue).good())
     warnings.push_back(file + ": text that its Specific Character Set (" + declared +

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -416,14 +417,22 @@ Result<void> copyPatientAndStudy(DcmItem& ct, DcmItem& seg) {
 // DCMTK's IOD classes check each string they copy and write as ASCII (they pass no character
 // set to the check); the document's text is UTF-8 under ISO_IR 192, so the VR checker's
 // character test is off while the document is made and written, and restored after.
+// The setting is the process's: one document at a time (Python writes on several threads).
 class Utf8Strings {
  public:
-  Utf8Strings() : was_(dcmEnableVRCheckerForStringValues.get()) { dcmEnableVRCheckerForStringValues.set(OFFalse); }
+  Utf8Strings() : hold_(mutex()), was_(dcmEnableVRCheckerForStringValues.get()) {
+    dcmEnableVRCheckerForStringValues.set(OFFalse);
+  }
   ~Utf8Strings() { dcmEnableVRCheckerForStringValues.set(was_); }
   Utf8Strings(const Utf8Strings&) = delete;
   Utf8Strings& operator=(const Utf8Strings&) = delete;
 
  private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> hold_;
   OFBool was_;
 };
 

@@ -224,10 +224,18 @@ def _unguarded_script():
 
 
 def _in_respawned_script():
-    """Whether this is a spawned process importing the main script again (see _unguarded_script)."""
+    """Whether this call comes from the top level of the main script as a spawned process imports
+    it again (see _unguarded_script); not from a worker's own code that calls batch()."""
     import multiprocessing
     main = sys.modules.get("__main__")
-    return multiprocessing.parent_process() is not None and getattr(main, "__name__", "") == "__mp_main__"
+    if multiprocessing.parent_process() is None or getattr(main, "__name__", "") != "__mp_main__":
+        return False
+    frame = sys._getframe(1)
+    while frame is not None:
+        if frame.f_globals is vars(main) and frame.f_code.co_name == "<module>":
+            return True
+        frame = frame.f_back
+    return False
 
 
 def _local_client(workers):
@@ -355,6 +363,27 @@ def run_options(tokens):
     return options
 
 
+_ON_OFF = {"smooth", "simplify", "remesh", "contour_fit", "junction_smoothing", "keep_volume", "curvature_sizing"}
+
+
+def _split_run_options(argv):
+    """argv's run options with their values, wherever they stand (before the inputs too), apart
+    from the batch's own arguments."""
+    from . import _scansurf
+    names = set(_scansurf._option_names())
+    own, run, i = [], [], 0
+    while i < len(argv):
+        name = argv[i][2:].partition("=")[0].replace("-", "_") if argv[i].startswith("--") else ""
+        if name not in names and not (name.startswith("no_") and name[3:] in names):
+            own.append(argv[i])
+            i += 1
+            continue
+        takes = 0 if "=" in argv[i] or name.startswith("no_") or name in _ON_OFF else 2 if name == "grid" else 1
+        run.extend(argv[i:i + 1 + takes])
+        i += 1 + takes
+    return own, run
+
+
 def main(argv):
     """python3 -m scansurf batch INPUT... -o OUT [--workers N] [--serial] [--format F] [run options]"""
     p = argparse.ArgumentParser(prog="python3 -m scansurf batch", description="Surface many contour sets on Dask.")
@@ -367,9 +396,10 @@ def main(argv):
     p.add_argument("--format", default="ply", help="comma-separated output formats (as scansurf --format)")
     p.add_argument("-q", "--quiet", action="store_true")
     p.epilog = "Any other --option is a run option, as scansurf --help lists them (e.g. --voxel-size 1 --no-smooth)."
-    a, rest = p.parse_known_args(argv)
+    own, rest = _split_run_options(argv)
+    a, unknown = p.parse_known_args(own)
     try:
-        options = run_options(rest)
+        options = run_options(unknown + rest)
     except Exception as e:  # an unknown name, a bad value: a usage error, before any input
         sys.stderr.write("scansurf batch: error: %s\n" % e)
         return 2

@@ -723,6 +723,24 @@ TEST_F(Dicom, APartialReferenceSeriesGivesTheLatticeAndTheContoursThePlanes) {
   EXPECT_EQ(grid->layerZ, (std::vector<double>{-5, -2.5, 0, 2.5, 5, 7.5}));
   const Built b = buildCpu(*contours, o);
   expectClosed(b, *contours);
+
+  // Two slices 30 mm apart of a 3 mm series (its Slice Thickness says so): the planes between
+  // lie where slices are missing; two structures drawn on one plane off the series, their z
+  // within the tolerance, share it.
+  fs::remove_all(dir_ / "ct");
+  ct.sliceZ = {0, 30};
+  ct.sliceThickness = 3;
+  test::writeTestCtSeries(ct, dir_ / "ct");
+  TestRoi other{2, "other", "ORGAN", std::nullopt, {}};
+  for (double z : {6.0, 9.004}) other.contours.push_back(closedContour(square(8, 8, 12, 12), z));
+  roi.contours.clear();
+  for (double z : {0.0, 3.0, 6.0, 9.0}) roi.contours.push_back(closedContour(square(-6, -5, 7, 6), z));
+  rtFile.rois = {roi, other};
+  write(rtFile, "rt.dcm");
+  auto sparse = readContours(dir_ / "rt.dcm", read);
+  ASSERT_TRUE(sparse) << sparse.error().message;
+  ASSERT_TRUE(sparse->reference);
+  EXPECT_EQ(sparse->reference->sliceZ, (std::vector<double>{0, 3, 6, 9, 30}));
 }
 
 // A CT twice as fine as the contours (1 mm slices, contours every 2 mm): the CT slices between

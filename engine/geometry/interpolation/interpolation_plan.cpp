@@ -16,9 +16,10 @@ std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptio
   if (options.factor != InterpolationOptions::kAuto)
     return std::vector<int>(gaps, std::clamp(options.factor, 1, InterpolationOptions::kMaxFactor));
   const double pixel = std::min(grid.spacingX, grid.spacingY);
-  // Thin gaps get layers by the outlines' largest step, the same in every gap (surfaces whose
-  // layer spacing changes from gap to gap smooth unevenly), but no more than about one per pixel
-  // of gap: thinner layers cost their volume and leave the in-plane staircase less smoothed.
+  // Thin gaps get layers by the outlines' largest step over the whole file (one count, not one
+  // per gap: surfaces whose layer spacing changes from gap to gap smooth unevenly), but no gap
+  // more than about one per pixel of it: thinner layers cost their volume and leave the
+  // in-plane staircase less smoothed.
   double byStep = 1;
   for (double s : steps) byStep = std::max(byStep, std::ceil(s - 1e-6));
   std::vector<int> wanted(gaps);
