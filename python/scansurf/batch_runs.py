@@ -417,4 +417,14 @@ def main(argv):
                     progress=not a.quiet, **options)
     for r in summary.failed:
         sys.stderr.write("scansurf batch: %s failed: %s\n" % (r["input"], r["error"]))
-    return 1 if summary.failed else 0
+    return _exit_code(summary.failed)
+
+
+def _exit_code(failed):
+    """As the command line's batch: the first failed input's exit code (its error class's), 0
+    when none failed; 1 for a failure that is no scansurf error (a worker that died)."""
+    from . import _errors
+    if not failed:
+        return 0
+    error = getattr(_errors, failed[0]["error"].split(":", 1)[0], None)
+    return error.exit_code if isinstance(error, type) and issubclass(error, _errors.Error) else 1

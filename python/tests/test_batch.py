@@ -252,3 +252,13 @@ def test_an_interrupted_command_line_batch_says_what_it_kept(tmp_path, cohort, c
     assert ": started" in stdout  # progress before an input finishes
     assert "the inputs finished so far are kept, and a rerun skips them" in stderr
     assert "no output was written" not in stderr.split("scansurf batch: interrupted")[-1]
+
+
+def test_both_batches_exit_with_the_failed_inputs_code(tmp_path, cohort, cli):
+    paths, broken = cohort
+    codes = []
+    for command in ([cli, "batch", paths[0], broken, "-o", str(tmp_path / "cli"), "-q", "--voxel-size", "1.5"],
+                    [sys.executable, "-m", "scansurf", "batch", paths[0], broken, "-o", str(tmp_path / "py"), "-q", "--serial",
+                     "--voxel-size", "1.5"]):
+        codes.append(subprocess.run(command, capture_output=True, env=os.environ.copy()).returncode)
+    assert codes == [3, 3]  # invalid input, as a single run's exit
