@@ -19,7 +19,6 @@
 #include "geometry/grid/contour_layers.h"
 #include "geometry/grid/coverage.h"
 #include "geometry/grid/footprint.h"
-#include "geometry/grid/outline_steps.h"
 #include "geometry/interpolation/interpolated_volume.h"
 #include "geometry/overlaps/overlap_analysis.h"
 #include "geometry/overlaps/overlap_split.h"
@@ -603,7 +602,7 @@ Result<BuildResult> Engine::build(const ContourSet& givenContours, const BuildOp
     clock.begin("grid");
     // The grid and the budget first: a run that cannot fit is refused before any real work.
     SCANSURF_ASSIGN_OR_RETURN(const Grid grid, makeGrid(input, options.grid));
-    const std::vector<int> factors = interpolationFactors(grid, options.interpolation, outlineSteps(input, grid));
+    const std::vector<int> factors = interpolationFactors(grid, options.interpolation);
     out.interpolation = summarizeInterpolation(grid, factors, options.interpolation.caps);
     SCANSURF_TRY(checkEdgeLength(options.remeshing, grid));
     SCANSURF_TRY(checkMemoryBudget(input, grid, out.interpolation.surfacedLayers, options, impl_->context->info(), out));

@@ -52,10 +52,8 @@
 
 namespace scansurf {
 
-// factors[k]: the volume gets factors[k] - 1 layers between grid layers k and k+1. steps[k]: how
-// far outlines move between them, in pixels (outline_steps.h; empty: by the gap alone).
-std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options,
-                                      const std::vector<double>& steps = {});
+// factors[k]: the volume gets factors[k] - 1 layers between grid layers k and k+1.
+std::vector<int> interpolationFactors(const Grid& grid, const InterpolationOptions& options);
 bool interpolates(const std::vector<int>& factors);
 // The layer of the interpolated grid that grid layer k becomes.
 std::vector<int> fineLayerOfPlane(const std::vector<int>& factors);

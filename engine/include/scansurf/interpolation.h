@@ -22,10 +22,8 @@ enum class CapShape {
 
 struct InterpolationOptions {
   // Interpolated layers between two consecutive layers of the grid: factor - 1 of them.
-  // kAuto: by need. Each gap of at least kAutoMinimum in-plane pixels gets about one layer per
-  // pixel (factor = round(gap / pixel), at most kMaxFactor); where outlines move by more than a
-  // pixel between planes, a gap of about two pixels gets one layer too (factor = ceil(largest
-  // step), at most round(gap / pixel)); as long as the volume stays within autoVoxelLimit
+  // kAuto: each gap of at least kAutoMinimum in-plane pixels gets about one layer per pixel
+  // (factor = round(gap / pixel), at most kMaxFactor), as long as the volume stays within autoVoxelLimit
   // voxels (the largest factors are lowered until it does, down to kAutoMinimum; below that
   // auto is off). 1: off (only the contour planes, as the seed).
   // Off by default in the library (Engine::build); the command-line tool uses kAuto.
