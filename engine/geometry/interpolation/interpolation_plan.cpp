@@ -181,10 +181,12 @@ class BatchPlanner {
     for (int p = 0; p < batch_.planes; ++p) {
       const int k = batch_.firstPlane + p;
       const bool halo = p < batch_.haloBefore || p >= batch_.planes - batch_.haloAfter;
-      const auto& neighbour = census_[static_cast<std::size_t>(p < batch_.haloBefore ? k + 1 : k - 1)];
+      // Only a halo plane has a neighbour to consult; an inner first plane (k = 0) has none below.
+      const std::vector<LabelCensus>* neighbour =
+          halo ? &census_[static_cast<std::size_t>(p < batch_.haloBefore ? k + 1 : k - 1)] : nullptr;
       planeFields_.push_back(batch_.fields.size());
       for (const LabelCensus& c : census_[static_cast<std::size_t>(k)]) {
-        if (halo && !find(neighbour, c.label)) continue;
+        if (neighbour && !find(*neighbour, c.label)) continue;
         const Box b = fieldWindow(g_, census_, k, c.label);
         shared::DistanceField f{b.x0, b.y0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1, p, c.label, 0, 0};
         const std::size_t area = static_cast<std::size_t>(f.w) * static_cast<std::size_t>(f.h);
