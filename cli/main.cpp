@@ -275,6 +275,7 @@ struct ReportInputs {
   const std::vector<std::vector<fs::path>>& files;
   const std::vector<StageTime>& timings;
   const std::string& started;
+  const VolumeUnit& volumeUnit;
 };
 
 Result<void> stageReport(OutputStaging& staging, const cli::CliOptions& o, const ReportInputs& in) {
@@ -284,6 +285,7 @@ Result<void> stageReport(OutputStaging& staging, const cli::CliOptions& o, const
   ReportContext context{o.input, runParameters(settings, in.result), in.timings, in.files, outputs};
   context.commandLine = o.commandLine;
   context.started = in.started;
+  context.volumeUnit = in.volumeUnit;
   const RunReport report = makeReport(in.contours, in.result, in.device, std::move(context));
   return staging.stage(o.report, [&](const fs::path& p) { return writeReport(p, report); });
 }
@@ -321,6 +323,8 @@ int run(const cli::CliOptions& o) {
   if (!o.quiet)
     for (const std::string& note : contours->notes) std::printf("%s\n", cli::printable(note).c_str());
   laps.lap("read");
+  const auto volumeUnit = volumeUnitFor(o.volumeUnit, contours->units);
+  if (!volumeUnit) return fail({volumeUnit.error().code, "--volume-unit: " + volumeUnit.error().message});
 
   auto built = buildSurfaces(o, *contours, laps);
   if (!built && built.error().code == Errc::ResourceLimit)
@@ -340,7 +344,7 @@ int run(const cli::CliOptions& o) {
     laps.lap("preview");
   }
   if (!o.report.empty()) {
-    const ReportInputs inputs{*contours, result, built->engine.device(), files->files, laps.timings, started};
+    const ReportInputs inputs{*contours, result, built->engine.device(), files->files, laps.timings, started, *volumeUnit};
     if (auto ok = stageReport(staging, o, inputs); !ok) return fail(ok.error());
   }
   // With --validation, a validation message means the device's results are suspect: write nothing.
@@ -353,7 +357,8 @@ int run(const cli::CliOptions& o) {
   const bool defective = result.audit.defective();
   progress.finish(defective ? exitCode(Errc::DefectiveSurface) : 0);
   if (!o.quiet)
-    cli::printSummary({o.input, &*contours, &result, o.build.convention, result.audit.stats, laps.timings}, *written, o.output);
+    cli::printSummary({o.input, &*contours, &result, o.build.convention, result.audit.stats, laps.timings, *volumeUnit},
+                      *written, o.output);
   if (defective)
     return fail({Errc::DefectiveSurface, "a surface is defective (see the warnings above); written as --keep-defective asks"});
   return 0;

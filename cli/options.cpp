@@ -66,6 +66,7 @@ constexpr std::pair<const char*, const char*> kValueNames[] = {
     {"--label-volume", "F"},
     {"--dicom-seg", "F.dcm"},
     {"--report", "F.json"},
+    {"--volume-unit", "U"},
     {"--preview", "F.png"},
     {"--view", "V"},
     {"--preview-size", "W H"},
@@ -327,6 +328,11 @@ void addOutputs(CLI::App& app, CliOptions& o, Flags& f) {
                  "write the label volume as a DICOM Segmentation (.dcm) on the --reference CT's grid, one segment per "
                  "feature, referencing the CT images");
   app.add_option("--report", o.report, "write a JSON report: per-feature statistics, parameters, device, timings");
+  app.add_option("--volume-unit", o.volumeUnit,
+                 "unit of the volumes in the summary and the report: input (the input's unit cubed), mm3, cm3 "
+                 "(or cc, ml), um3, nm3")
+      ->check(CLI::IsMember({"input", "mm3", "cm3", "cc", "ml", "um3", "nm3"}))
+      ->capture_default_str();
   app.add_option("--preview", o.preview, "render a picture of the surfaces on the Vulkan device (.png)");
   app.add_option("--view", o.view, "preview camera")
       ->check(CLI::IsMember({"oblique", "front", "back", "left", "right", "top", "bottom"}))

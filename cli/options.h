@@ -30,6 +30,7 @@ struct CliOptions {
   std::vector<std::string> formats;  // --format, before parsing into MeshFormat
   SceneOptions scene;
   std::string labelVolume, dicomSeg, report, preview;
+  std::string volumeUnit = "input";  // of the summary's and the report's volumes (volumeUnitFor)
   std::string view = "oblique";
   std::vector<unsigned> previewSize;
 };

@@ -71,30 +71,39 @@ std::string verdictOf(const OverlapReport& report, const SharedVolume& s) {
   return "real: separate layers (too deep)";
 }
 
-void printOverlaps(const ContourSet& set, const OverlapReport& report) {
+// "mm3" for the input's unit cubed, else the chosen unit ("cm^3" printed "cm3").
+std::string volumeUnitText(const ContourSet& set, const VolumeUnit& unit) {
+  if (unit.name.empty()) return printable(set.units) + "3";
+  std::string text = unit.name;
+  std::erase(text, '^');
+  return text;
+}
+
+void printOverlaps(const ContourSet& set, const OverlapReport& report, const VolumeUnit& unit) {
   const std::vector<std::string> names = printableNames(set);
   const auto name = [&](int f) { return names[static_cast<std::size_t>(f)].c_str(); };
-  const std::string unitText = printable(set.units);
-  const char* units = unitText.c_str();
+  const std::string unitText = printable(set.units), volumeText = volumeUnitText(set, unit);
+  const char* units = volumeText.c_str();
+  const auto volume = [&](double v) { return formatVolume(v * unit.scale); };
   for (const SharedVolume& s : report.partialOverlaps()) {
     const std::string share = shareOfSmaller(report, s, names);
     const std::string depth = s.depthMeasured
                                   ? "at most " + formatVolume(s.depth) + " " + unitText + " deep"
                                   : "deeper, in regions of at most " + formatVolume(report.tolerance.percent / 2) + " %";
     if (s.incidental && report.mode == OverlapMode::Layers)
-      std::printf("overlap: %s and %s share %s %s3 (%s, %s): incidental, split between them (%s gave up %s %s3, %s %s %s3)\n",
-                  name(s.a), name(s.b), formatVolume(s.volume).c_str(), units, share.c_str(), depth.c_str(), name(s.a),
-                  formatVolume(s.givenUpByA).c_str(), units, name(s.b), formatVolume(s.givenUpByB).c_str(), units);
+      std::printf("overlap: %s and %s share %s %s (%s, %s): incidental, split between them (%s gave up %s %s, %s %s %s)\n",
+                  name(s.a), name(s.b), volume(s.volume).c_str(), units, share.c_str(), depth.c_str(), name(s.a),
+                  volume(s.givenUpByA).c_str(), units, name(s.b), volume(s.givenUpByB).c_str(), units);
     else
-      std::printf("overlap: %s and %s share %s %s3 (%s): %s\n", name(s.a), name(s.b), formatVolume(s.volume).c_str(), units,
+      std::printf("overlap: %s and %s share %s %s (%s): %s\n", name(s.a), name(s.b), volume(s.volume).c_str(), units,
                   share.c_str(),
                   report.mode == OverlapMode::Layers ? "surfaced in separate layers" : "the partition gives it to one");
   }
   for (const VolumeLoss& l : report.losses) {
     if (l.nested) continue;  // a container's shell around what it holds: the convention, not a loss
     const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
-    std::printf("partition: %s lost %s %s3 (%.2f %% of its contour volume) to %s\n", name(l.feature),
-                formatVolume(l.volume).c_str(), units, contour > 0 ? 100.0 * l.volume / contour : 0.0,
+    std::printf("partition: %s lost %s %s (%.2f %% of its contour volume) to %s\n", name(l.feature),
+                volume(l.volume).c_str(), units, contour > 0 ? 100.0 * l.volume / contour : 0.0,
                 l.to >= 0 ? name(l.to) : "background");
   }
 }
@@ -141,15 +150,16 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
   std::printf("\nsurfaces (%s convention, overlaps as %s: %d layer%s): %zu vertices, %zu triangles in the multi-label mesh\n",
               conventionName(facts.convention), overlapModeName(built.overlaps.mode), built.overlaps.layers,
               built.overlaps.layers == 1 ? "" : "s", built.surfaces.mesh.vertexCount(), built.surfaces.mesh.triangleCount());
+  const std::string volumeText = volumeUnitText(set, facts.volumeUnit);
+  const double scale = facts.volumeUnit.scale;
   std::printf("  %-20s %6s %5s %10s %14s %14s %10s %6s %s\n", "feature", "label", "layer", "triangles",
-              ("volume " + printable(set.units) + "3").c_str(), ("contour " + printable(set.units) + "3").c_str(), "components",
-              "genus", "closed");
+              ("volume " + volumeText).c_str(), ("contour " + volumeText).c_str(), "components", "genus", "closed");
   for (std::size_t f = 0; f < set.features.size(); ++f) {
     const MeshStats& s = facts.stats[f];
     const FeatureVolumes& v = built.overlaps.features[f];
     std::printf("  %-20s %6d %5d %10zu %14s %14s %10d %6d %s%s\n", printable(set.features[f].name).c_str(),
-                labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, formatVolume(s.volume).c_str(),
-                formatVolume(v.contour).c_str(), s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO",
+                labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, formatVolume(s.volume * scale).c_str(),
+                formatVolume(v.contour * scale).c_str(), s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO",
                 volumeFlag(s.volume, v.contour).c_str());
   }
   std::size_t empty = 0;
@@ -159,7 +169,7 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
         "%zu of %zu features have no surface: they cover no voxel centre of this grid (%g %s pixels); a finer "
         "--voxel-size gives them one\n",
         empty, set.features.size(), g.spacingX, printable(set.units).c_str());
-  printOverlaps(set, built.overlaps);
+  printOverlaps(set, built.overlaps, facts.volumeUnit);
   if (const TriangleShapeReport& r = built.surfaces.triangleShape; r.ran)
     std::printf(
         "triangle shape: %zu of %zu crowded voxel centres snapped, %zu vertices merged into them, %zu triangles gone; "

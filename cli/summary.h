@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scansurf/engine.h"
+#include "scansurf/report.h"
 
 namespace scansurf::cli {
 
@@ -18,6 +19,7 @@ struct RunFacts {
   SurfaceConvention convention = SurfaceConvention::Enclosing;
   std::vector<MeshStats> stats;  // per feature
   std::vector<StageTime> timings;
+  VolumeUnit volumeUnit;  // of the volumes printed (empty name: the input's unit cubed)
 };
 
 const char* conventionName(SurfaceConvention c);

@@ -18,6 +18,7 @@
 #include "core/utf8.h"
 #include "io/atomic_file.h"
 #include "io/glb_container.h"
+#include "io/length_units.h"
 #include "scansurf/version.h"
 
 namespace scansurf {
@@ -144,17 +145,6 @@ void adjustScene(nlohmann::json& gltf, const GlbOptions& options) {
 double srgbToLinear(std::uint8_t c) {
   const double v = c / 255.0;
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-
-double metresPerUnit(const std::string& units) {
-  std::string u;
-  for (unsigned char c : units) u += static_cast<char>(std::tolower(c));
-  if (u == "mm") return 1e-3;
-  if (u == "cm") return 1e-2;
-  if (u == "m") return 1;
-  if (u == "um" || u == "\u00b5m" || u == "\u03bcm" || u == "micron" || u == "microns") return 1e-6;
-  if (u == "nm") return 1e-9;
-  return 0;
 }
 
 Result<void> writeGlb(const std::filesystem::path& path, std::span<const GltfFeature> features, const GlbOptions& options) {

@@ -30,10 +30,6 @@ struct GlbOptions {
   CoordinateFrame coordinates = CoordinateFrame::PatientLps;  // what the vertices are, as asset.extras says
 };
 
-// Metres per input unit for the glTF root scale: mm, cm, m, um/µm/micron(s), nm; 0 when the
-// unit is not one of these (the root node then only turns the axes).
-double metresPerUnit(const std::string& units);
-
 // Writes one node and mesh per feature, each with its own material (baseColorFactor, matte;
 // translucent features blended) and smooth per-vertex normals, under a root node that puts the
 // scene in glTF's frame (see GlbOptions::frame); asset.generator names scansurf and its version.

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "io/file_hash.h"
+#include "io/length_units.h"
 #include "scansurf/palette.h"
 #include "scansurf/version.h"
 
@@ -68,6 +69,27 @@ std::string utcTimestamp() {
   return text;
 }
 
+Result<VolumeUnit> volumeUnitFor(const std::string& choice, const std::string& inputUnits) {
+  static constexpr struct {
+    const char* choice;
+    const char* name;
+    double metres;  // the unit's length
+  } units[] = {{"mm3", "mm^3", 1e-3}, {"cm3", "cm^3", 1e-2}, {"cc", "cm^3", 1e-2}, {"ml", "cm^3", 1e-2},
+               {"um3", "um^3", 1e-6}, {"nm3", "nm^3", 1e-9}};
+  if (choice == "input") return VolumeUnit{};
+  for (const auto& u : units) {
+    if (choice != u.choice) continue;
+    const double metres = metresPerUnit(inputUnits);
+    if (metres <= 0)
+      return makeError(Errc::InvalidArgument, "volume unit " + choice + ": the input's unit '" + inputUnits +
+                                                  "' has no known length; use the input's own (\"input\")");
+    const double ratio = metres / u.metres;
+    return VolumeUnit{u.name, ratio * ratio * ratio};
+  }
+  return makeError(Errc::InvalidArgument,
+                   "unknown volume unit '" + choice + "': choose input, mm3, cm3 (cc, ml), um3 or nm3");
+}
+
 namespace {
 
 InputFile hashedFile(const std::string& path) {
@@ -77,6 +99,17 @@ InputFile hashedFile(const std::string& path) {
   if (ec) file.bytes = 0;
   if (auto digest = sha256OfFile(path)) file.sha256 = std::move(*digest);
   return file;
+}
+
+// Every volume of the report in the chosen unit (areas and lengths stay in the input's).
+void scaleVolumes(RunReport& r, double scale) {
+  if (scale == 1) return;
+  for (ReportFeature& f : r.features) {
+    f.volumes.contour *= scale, f.volumes.ownVolume *= scale, f.stats.volume *= scale;
+    for (auto& o : f.overlaps) o.second *= scale;
+  }
+  for (RunReport::Loss& l : r.losses) l.volume *= scale;
+  for (RunReport::Overlap& o : r.partialOverlaps) o.volume *= scale, o.givenUpByA *= scale, o.givenUpByB *= scale;
 }
 
 }  // namespace
@@ -89,6 +122,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.commandLine = std::move(context.commandLine);
   r.started = std::move(context.started);
   r.units = contours.units;
+  r.volumeUnit = context.volumeUnit.name.empty() ? contours.units + "^3" : context.volumeUnit.name;
   for (const std::string& file : contours.files) r.inputFiles.push_back(hashedFile(file));
   r.frameOfReferenceUid = contours.frameOfReferenceUid;
   r.reference = contours.reference;
@@ -121,6 +155,7 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
   r.estimatedMemory = built.estimatedMemory;
   r.memoryLimit = built.memoryLimit;
   r.interpolation = built.interpolation;
+  scaleVolumes(r, context.volumeUnit.scale);
   for (const StageTime& t : context.timings) r.timings.emplace_back(t.stage, t.seconds);
   r.remeshing = built.surfaces.remeshing;
   r.simplification = built.surfaces.simplification;
@@ -302,7 +337,7 @@ std::string reportJson(const RunReport& report) {
   j["units"] = report.units;
   j["length_unit"] = report.units;
   j["area_unit"] = report.units + "^2";
-  j["volume_unit"] = report.units + "^3";
+  j["volume_unit"] = report.volumeUnit;
   ordered_json params = ordered_json::object();
   for (const auto& parameter : report.parameters)
     std::visit([&](const auto& v) { params[parameter.first] = v; }, parameter.second);

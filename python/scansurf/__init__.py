@@ -145,7 +145,8 @@ def build(contour_set, engine=None, device=None, validation=None, **options):
     smooth_strength, contour_fit, junction_smoothing, keep_volume, min_angle, snap, simplify (True),
     simplify_tolerance, simplify_edge_length, simplify_min_angle, remesh (False), edge_length,
     curvature_sizing, threads (0: all cores; more than the cores count as the cores), max_memory
-    (bytes). Every option is checked against the command line's range, whether its stage is on
+    (bytes), volume_unit ("input", "mm3", "cm3" or "cc" or "ml", "um3", "nm3": the report's
+    volumes; Surface.volume stays in the input's unit cubed). Every option is checked against the command line's range, whether its stage is on
     or not: a bad one raises InvalidArgument naming it.
     engine: a scansurf.Engine to build on; else the one kept for `device` and `validation`.
     """

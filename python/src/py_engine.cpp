@@ -149,15 +149,27 @@ const std::map<std::string, Setter>& setters() {
   return table;
 }
 
+// The options that are not the build's: the report's volume unit.
+constexpr const char* kVolumeUnit = "volume_unit";
+
 // The recommended options with the given keywords applied; None leaves a default.
-BuildOptions optionsFrom(const py::dict& keywords) {
+// `volumeUnit` receives the volume_unit keyword's choice, checked by name.
+BuildOptions optionsFrom(const py::dict& keywords, std::string* volumeUnit = nullptr) {
   BuildOptions options = BuildOptions::recommended();
   for (const auto& [key, value] : keywords) {
     const auto name = key.cast<std::string>();
+    if (name == kVolumeUnit) {
+      if (value.is_none()) continue;
+      const std::string choice = as<std::string>(value, kVolumeUnit, "a str");
+      if (auto known = volumeUnitFor(choice, "mm"); !known) raiseInvalidArgument("volume_unit: " + known.error().message);
+      if (volumeUnit) *volumeUnit = choice;
+      continue;
+    }
     const auto setter = setters().find(name);
     if (setter == setters().end()) {
       std::string known;
       for (const auto& [k, s] : setters()) known += (known.empty() ? "" : ", ") + k;
+      known += std::string(", ") + kVolumeUnit;
       raiseInvalidArgument("build() got an unknown option '" + name + "'; the options are " + known);
     }
     if (!value.is_none()) setter->second(options, value);
@@ -167,8 +179,10 @@ BuildOptions optionsFrom(const py::dict& keywords) {
 
 std::shared_ptr<PyResult> build(PyEngine& engine, std::shared_ptr<PyContours> contours, const py::dict& keywords) {
   auto result = std::make_shared<PyResult>();
-  result->options = optionsFrom(keywords);
+  std::string volumeUnit = "input";
+  result->options = optionsFrom(keywords, &volumeUnit);
   result->contours = std::move(contours);
+  result->volumeUnit = valueOrRaise(volumeUnitFor(volumeUnit, result->contours->set.units));
   result->started = utcTimestamp();
   result->validation = engine.validation;
   std::uint64_t messages = 0;  // validation messages during this build (the engine counts since it began)
@@ -234,6 +248,7 @@ void registerEngine(py::module_& m) {
   m.def("_option_names", [] {
     std::vector<std::string> names;
     for (const auto& [k, s] : setters()) names.push_back(k);
+    names.push_back(kVolumeUnit);
     return names;
   });
 }

@@ -100,6 +100,7 @@ RunReport reportOf(PyResult& r, const std::vector<std::vector<fs::path>>& files,
   const RunSettings settings{r.options, scene, r.contours->referenceSeries, r.validation};
   ReportContext context{r.contours->input, runParameters(settings, r.built), r.built.timings, files, std::move(outputs)};
   context.started = r.started;
+  context.volumeUnit = r.volumeUnit;
   return makeReport(r.contours->set, r.built, r.device, std::move(context));
 }
 

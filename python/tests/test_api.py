@@ -247,3 +247,18 @@ def test_a_device_by_index_and_no_bool_for_a_number(phantom):
 def test_options_are_checked_against_the_command_lines_ranges_whatever_is_on(phantom, options, option):
     with pytest.raises(scansurf.InvalidArgument, match="option " + option):
         scansurf.build(phantom, voxel_size=2.0, **options)
+
+
+def test_volume_unit_gives_the_reports_volumes_in_it():
+    cs = scansurf.contours({"ball": sphere()}, units="mm")
+    mm = scansurf.build(cs, voxel_size=1.0)
+    cc = scansurf.build(cs, voxel_size=1.0, volume_unit="cc")
+    assert mm.report["volume_unit"] == "mm^3" and cc.report["volume_unit"] == "cm^3"
+    a, b = mm.report["features"][0], cc.report["features"][0]
+    assert b["surface_volume"] == pytest.approx(a["surface_volume"] / 1000, rel=1e-12)
+    assert b["contour_volume"] == pytest.approx(a["contour_volume"] / 1000, rel=1e-12)
+    assert cc.surfaces["ball"].volume == pytest.approx(mm.surfaces["ball"].volume)  # the surface's own unit
+    with pytest.raises(scansurf.InvalidArgument, match="volume_unit"):
+        scansurf.build(cs, volume_unit="litres")
+    with pytest.raises(scansurf.InvalidArgument, match="'px'"):
+        scansurf.build(scansurf.contours({"ball": sphere()}, units="px"), volume_unit="cm3")

@@ -900,5 +900,25 @@ TEST_F(OutputFormatsTest, ObjCarriesNormalsAndItsColourInAMaterial) {
     EXPECT_GT(normals[v][0] * expected[3 * v] + normals[v][1] * expected[3 * v + 1] + normals[v][2] * expected[3 * v + 2], 0.99f);
 }
 
+// A volume unit is the input's length cubed, converted: mm³ to cm³ is a thousandth, µm³ to nm³
+// a billion times; an input of unknown length converts to nothing but its own unit.
+TEST(VolumeUnits, ConvertFromTheInputsLengthUnit) {
+  const auto cc = volumeUnitFor("cc", "mm");
+  ASSERT_TRUE(cc);
+  EXPECT_EQ(cc->name, "cm^3");
+  EXPECT_DOUBLE_EQ(cc->scale, 1e-3);
+  const auto nm = volumeUnitFor("nm3", "\xC2\xB5m");
+  ASSERT_TRUE(nm);
+  EXPECT_NEAR(nm->scale, 1e9, 1e-3);
+  const auto own = volumeUnitFor("input", "px");
+  ASSERT_TRUE(own);
+  EXPECT_TRUE(own->name.empty());
+  EXPECT_EQ(own->scale, 1);
+  const auto unknownLength = volumeUnitFor("mm3", "px");
+  ASSERT_FALSE(unknownLength);
+  EXPECT_NE(unknownLength.error().message.find("'px'"), std::string::npos);
+  EXPECT_FALSE(volumeUnitFor("litres", "mm"));
+}
+
 }  // namespace
 }  // namespace scansurf

@@ -53,6 +53,7 @@ struct RunReport {
   std::vector<std::string> commandLine;
   std::string started;
   std::string units = "mm";
+  std::string volumeUnit = "mm^3";  // every volume below is in it
   std::vector<std::pair<std::string, ReportValue>> parameters;
   std::string deviceName, deviceType, driver;
   Grid grid;
@@ -92,6 +93,18 @@ struct RunReport {
   std::vector<std::string> outputs;
 };
 
+// The unit of the report's and the summary's volumes: `name` as the report states it ("cm^3";
+// empty: the input's length unit cubed) and `scale`, one cubed input unit in it.
+struct VolumeUnit {
+  std::string name;
+  double scale = 1;
+};
+
+// The unit `choice` names for volumes in `inputUnits` cubed: "input" (the input's unit cubed),
+// "mm3", "cm3" (also "cc", "ml"), "um3", "nm3". Errors: Errc::InvalidArgument for another
+// choice, or for a conversion from an input unit of unknown length (pixels).
+Result<VolumeUnit> volumeUnitFor(const std::string& choice, const std::string& inputUnits);
+
 // What makeReport needs beyond the run's results.
 struct ReportContext {
   std::string input;                                            // the input as the user named it
@@ -101,6 +114,7 @@ struct ReportContext {
   std::vector<std::filesystem::path> outputs;                   // every file the run writes
   std::vector<std::string> commandLine;                         // the program's arguments, when it has them
   std::string started;                                          // when the run started, ISO 8601 UTC
+  VolumeUnit volumeUnit;                                        // of every volume in the report
 };
 
 // The report of a build: statistics of every feature surface (computeMeshStats), the grid,
@@ -110,7 +124,8 @@ RunReport makeReport(const ContourSet& contours, const BuildResult& built, const
                      std::vector<MeshStats> stats = {});
 
 // Writes the report as JSON (format "scansurf-report", version 1): the unit of lengths, areas
-// and volumes stated (length_unit, area_unit, volume_unit: areas in units², volumes in units³),
+// and volumes stated (length_unit, area_unit, volume_unit: areas in units², volumes in units³
+// or the context's volume unit),
 // times in seconds, the command line and start time when known. Staged and renamed. Errors: Errc::Io naming the path.
 Result<void> writeReport(const std::filesystem::path& path, const RunReport& report);
 // The time now as ISO 8601 UTC ("2026-12-01T22:07:11Z"), for ReportContext::started.
