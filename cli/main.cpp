@@ -357,8 +357,8 @@ int run(const cli::CliOptions& o) {
   const bool defective = result.audit.defective();
   progress.finish(defective ? exitCode(Errc::DefectiveSurface) : 0);
   if (!o.quiet)
-    cli::printSummary({o.input, &*contours, &result, o.build.convention, result.audit.stats, laps.timings, *volumeUnit},
-                      *written, o.output);
+    cli::printSummary({o.input, &*contours, &result, o.build.convention, result.audit.stats, laps.timings, *volumeUnit}, *written,
+                      o.output);
   if (defective)
     return fail({Errc::DefectiveSurface, "a surface is defective (see the warnings above); written as --keep-defective asks"});
   return 0;

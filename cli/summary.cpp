@@ -102,9 +102,8 @@ void printOverlaps(const ContourSet& set, const OverlapReport& report, const Vol
   for (const VolumeLoss& l : report.losses) {
     if (l.nested) continue;  // a container's shell around what it holds: the convention, not a loss
     const double contour = report.features[static_cast<std::size_t>(l.feature)].contour;
-    std::printf("partition: %s lost %s %s (%.2f %% of its contour volume) to %s\n", name(l.feature),
-                volume(l.volume).c_str(), units, contour > 0 ? 100.0 * l.volume / contour : 0.0,
-                l.to >= 0 ? name(l.to) : "background");
+    std::printf("partition: %s lost %s %s (%.2f %% of its contour volume) to %s\n", name(l.feature), volume(l.volume).c_str(),
+                units, contour > 0 ? 100.0 * l.volume / contour : 0.0, l.to >= 0 ? name(l.to) : "background");
   }
 }
 
@@ -159,8 +158,8 @@ void printSummary(const RunFacts& facts, const std::vector<fs::path>& written, c
     const FeatureVolumes& v = built.overlaps.features[f];
     std::printf("  %-20s %6d %5d %10zu %14s %14s %10d %6d %s%s\n", printable(set.features[f].name).c_str(),
                 labelOfFeature(static_cast<int>(f)), v.layer, s.triangles, formatVolume(s.volume * scale).c_str(),
-                formatVolume(v.contour * scale).c_str(), s.components, s.genus, s.closed && s.manifold && s.oriented ? "yes" : "NO",
-                volumeFlag(s.volume, v.contour).c_str());
+                formatVolume(v.contour * scale).c_str(), s.components, s.genus,
+                s.closed && s.manifold && s.oriented ? "yes" : "NO", volumeFlag(s.volume, v.contour).c_str());
   }
   std::size_t empty = 0;
   for (const MeshStats& s : facts.stats) empty += s.triangles == 0;

@@ -74,8 +74,8 @@ Result<VolumeUnit> volumeUnitFor(const std::string& choice, const std::string& i
     const char* choice;
     const char* name;
     double metres;  // the unit's length
-  } units[] = {{"mm3", "mm^3", 1e-3}, {"cm3", "cm^3", 1e-2}, {"cc", "cm^3", 1e-2}, {"ml", "cm^3", 1e-2},
-               {"um3", "um^3", 1e-6}, {"nm3", "nm^3", 1e-9}};
+  } units[] = {{"mm3", "mm^3", 1e-3}, {"cm3", "cm^3", 1e-2}, {"cc", "cm^3", 1e-2},
+               {"ml", "cm^3", 1e-2},  {"um3", "um^3", 1e-6}, {"nm3", "nm^3", 1e-9}};
   if (choice == "input") return VolumeUnit{};
   for (const auto& u : units) {
     if (choice != u.choice) continue;
@@ -86,8 +86,7 @@ Result<VolumeUnit> volumeUnitFor(const std::string& choice, const std::string& i
     const double ratio = metres / u.metres;
     return VolumeUnit{u.name, ratio * ratio * ratio};
   }
-  return makeError(Errc::InvalidArgument,
-                   "unknown volume unit '" + choice + "': choose input, mm3, cm3 (cc, ml), um3 or nm3");
+  return makeError(Errc::InvalidArgument, "unknown volume unit '" + choice + "': choose input, mm3, cm3 (cc, ml), um3 or nm3");
 }
 
 namespace {

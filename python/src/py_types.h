@@ -45,7 +45,7 @@ struct PyResult {
   DeviceInfo device;
   bool validation = false;
   std::string started;
-  VolumeUnit volumeUnit;  // of the report's volumes
+  VolumeUnit volumeUnit;                                // of the report's volumes
   std::vector<std::optional<CompactSurface>> surfaces;  // per feature, when first asked for
   std::optional<LabelImage> labelImage;
   std::mutex mutex;  // guards the lazily made members
