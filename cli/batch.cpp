@@ -46,7 +46,9 @@ constexpr const char* kUsage =
     "  INPUT: contour sets, or folders of them (their .json, .dcm, .ser and .mod files)\n"
     "  Each input is surfaced into OUT/<name>/ with its report.json; OUT/summary.csv has a row per\n"
     "  structure, OUT/batch.json an entry per input. A rerun skips inputs whose folder is complete.\n"
-    "  --workers N: inputs at a time (default: the cores); the run options (scansurf --help) apply to each.\n";
+    "  --workers N: inputs at a time (default: the cores); the run options (scansurf --help) apply to each.\n"
+    "  Progress: a line as each input starts and ends, and one naming any stage that runs over 2 s;\n"
+    "  -q: only failed inputs.\n";
 
 struct BatchArgs {
   std::vector<std::string> inputs;
@@ -157,27 +159,76 @@ std::string categoryOf(int exitCode) {
   return exitCode > 128 ? "Killed by signal " + std::to_string(exitCode - 128) : "Exit " + std::to_string(exitCode);
 }
 
-// The last "scansurf: error: ..." line a child printed.
+// A child's progress record ({"event": ...} of --json-progress), or a discarded value for a
+// plain line (an error printed before the run's progress began).
+nlohmann::json recordOf(const std::string& line) {
+  return line.starts_with("{") ? nlohmann::json::parse(line, nullptr, false) : nlohmann::json(nlohmann::json::value_t::discarded);
+}
+
+// The error a child ended with: its last error record or "scansurf: error: ..." line.
 std::string errorOf(const fs::path& log) {
   std::ifstream in(log);
   std::string line, last;
-  while (std::getline(in, line))
+  while (std::getline(in, line)) {
     if (line.rfind("scansurf: error: ", 0) == 0) last = line.substr(17);
+    const nlohmann::json r = recordOf(line);
+    if (r.is_object() && r.value("event", "") == "error" && r.contains("message") && r["message"].is_string())
+      last = r["message"].get<std::string>();
+  }
   return last.empty() ? "failed without a message" : last;
 }
+
+using Clock = std::chrono::steady_clock;
 
 struct Child {
   pid_t pid = -1;
   std::size_t task = 0;
   fs::path log;
-  std::chrono::steady_clock::time_point start;
+  Clock::time_point start;
+  // The stage it works on, from its log's progress records.
+  std::streamoff logRead = 0;
+  std::string stage;
+  Clock::time_point stageSince;
+  bool stageShown = false;
 };
+
+// Reads the records a child appended since the last call; a stage's "begin" makes it current.
+void followStages(Child& c) {
+  std::ifstream in(c.log, std::ios::binary);
+  if (!in.seekg(c.logRead)) return;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (in.eof()) break;  // a line still being written: read it whole next time
+    c.logRead += static_cast<std::streamoff>(line.size()) + 1;
+    const nlohmann::json r = recordOf(line);
+    if (!r.is_object() || r.value("event", "") != "begin" || !r.contains("stage") || !r["stage"].is_string()) continue;
+    c.stage = r["stage"].get<std::string>();
+    if (const int layers = r.value("layers", 1); layers > 1)
+      c.stage += " (surface layer " + std::to_string(r.value("layer", 0) + 1) + " of " + std::to_string(layers) + ")";
+    c.stageSince = Clock::now(), c.stageShown = false;
+  }
+}
+
+// Progress within the inputs: a stage that has run a while is named once, so a long input says
+// where it is while short stages and short inputs stay quiet.
+void showStages(std::map<pid_t, Child>& running, const std::vector<Task>& tasks, std::size_t done) {
+  constexpr auto kWhile = std::chrono::seconds(2);
+  for (auto& [pid, c] : running) {
+    followStages(c);
+    if (c.stage.empty() || c.stageShown || Clock::now() - c.stageSince < kWhile) continue;
+    c.stageShown = true;
+    std::printf("[%zu/%zu] %s: %s (%.0f s in)\n", done, tasks.size(), printable(tasks[c.task].input).c_str(),
+                printable(c.stage).c_str(), std::chrono::duration<double>(Clock::now() - c.start).count());
+    std::fflush(stdout);
+  }
+}
 
 // Starts this program on one input, its stderr into `log`, SCANSURF_THREADS shared out among
 // the workers unless the user set it.
 Result<Child> spawnRun(const BatchArgs& a, const Task& t, std::size_t index, const std::string& threads) {
-  std::vector<std::string> args{"scansurf", t.input, "-o", t.folder.string(), "--report", (t.folder / "report.json").string(),
-                                "-q"};
+  std::vector<std::string> args{
+      "scansurf", t.input,          "-o", t.folder.string(), "--report", (t.folder / "report.json").string(),
+      "-q",       "--json-progress"};  // stages and the error as records in the log
   args.insert(args.end(), a.runOptions.begin(), a.runOptions.end());
   std::vector<char*> argv;
   for (std::string& s : args) argv.push_back(s.data());
@@ -188,7 +239,7 @@ Result<Child> spawnRun(const BatchArgs& a, const Task& t, std::size_t index, con
   std::vector<char*> envp;
   for (std::string& s : env) envp.push_back(s.data());
   envp.push_back(nullptr);
-  Child c{-1, index, fs::path(a.output) / (".scansurf-batch-" + t.name + ".log"), std::chrono::steady_clock::now()};
+  Child c{-1, index, fs::path(a.output) / (".scansurf-batch-" + t.name + ".log"), Clock::now()};
   posix_spawn_file_actions_t files;
   posix_spawn_file_actions_init(&files);
   // A fresh file of our own: whatever a previous run (or anyone) left at that name, a link
@@ -294,8 +345,13 @@ Result<void> runAll(const BatchArgs& a, std::vector<Task>& tasks) {
     }
     if (running.empty()) return {};
     int status = 0;
-    const pid_t pid = ::waitpid(-1, &status, 0);
+    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid < 0) return makeError(Errc::Internal, std::string("waitpid: ") + std::strerror(errno));
+    if (pid == 0) {  // all still running
+      if (!a.quiet) showStages(running, tasks, done);
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      continue;
+    }
     const auto it = running.find(pid);
     if (it == running.end()) continue;
     const Child child = it->second;

@@ -262,3 +262,13 @@ def test_both_batches_exit_with_the_failed_inputs_code(tmp_path, cohort, cli):
                      "--voxel-size", "1.5"]):
         codes.append(subprocess.run(command, capture_output=True, env=os.environ.copy()).returncode)
     assert codes == [3, 3]  # invalid input, as a single run's exit
+
+
+def test_the_command_line_batch_names_a_long_stage_while_an_input_runs(tmp_path, cli):
+    from conftest import EXAMPLE
+    run = subprocess.run([cli, "batch", EXAMPLE, "-o", str(tmp_path / "out")], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    lines = run.stdout.splitlines()
+    stages = [line for line in lines if line.endswith(" s in)")]  # e.g. "[0/1] .../phantom.json: interpolation (2 s in)"
+    assert stages, run.stdout  # the bundled example's interpolation alone runs for seconds on lavapipe
+    assert lines.index(stages[0]) > 0 and ": started" in lines[0] and ": done" in lines[-1]
