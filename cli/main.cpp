@@ -119,12 +119,10 @@ int fail(const Error& error) {
 // overwrite the contours with the report).
 Result<void> refuseInputAsOutput(const OutputPlan& plan, const cli::CliOptions& o) {
   std::error_code ec;
-  const std::pair<const char*, fs::path> targets[] = {{"-o", plan.glbFile},
-                                                      {"-o", plan.dir},
-                                                      {"--report", plan.report},
-                                                      {"--preview", plan.preview},
-                                                      {"--label-volume", plan.labelVolume},
-                                                      {"--dicom-seg", plan.dicomSeg}};
+  const std::pair<const char*, fs::path> targets[] = {
+      {"-o", plan.glbFile},          {"-o", plan.meshFile},       {"-o", plan.dir},
+      {"--report", plan.report},     {"--preview", plan.preview}, {"--label-volume", plan.labelVolume},
+      {"--dicom-seg", plan.dicomSeg}};
   for (const auto& [option, target] : targets)
     if (!target.empty() && fs::exists(target, ec) && fs::equivalent(target, o.input, ec))
       return makeError(Errc::InvalidArgument,
@@ -132,8 +130,8 @@ Result<void> refuseInputAsOutput(const OutputPlan& plan, const cli::CliOptions& 
   return {};
 }
 
-// The outputs of the command line: `-o x.glb` writes one GLB scene; otherwise -o is a
-// directory for the per-feature files.
+// The outputs of the command line: `-o x.glb` writes one GLB scene, `-o x.stl` (.ply, .vtp, .obj,
+// .drc) one file with every structure; otherwise -o is a directory for the per-feature files.
 Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
   OutputPlan plan;
   const std::string ext = fs::path(o.output).extension().string();
@@ -141,14 +139,12 @@ Result<OutputPlan> planOutputs(const cli::CliOptions& o) {
     if (!o.formats.empty())
       return makeError(Errc::InvalidArgument, "--format needs an output directory, not the file " + o.output);
     plan.glbFile = o.output;
+  } else if (const auto named = parseMeshFormat(ext); named && !ext.empty() && *named != MeshFormat::SegVtm) {
+    // NAME.ply, .vtp, .stl, .obj, .drc: every structure in that one file.
+    if (!o.formats.empty())
+      return makeError(Errc::InvalidArgument, "--format needs an output directory, not the file " + o.output);
+    plan.meshFile = o.output;
   } else {
-    // A file name of a per-structure format: each file holds one structure, so -o cannot name
-    // one file for all of them; said rather than made into a folder of something else.
-    if (const auto named = parseMeshFormat(ext); named && !ext.empty())
-      return makeError(Errc::InvalidArgument,
-                       "-o " + o.output + " names a " + ext.substr(1) +
-                           " file, but those hold one structure each: use -o OUTDIR --format " + ext.substr(1) +
-                           " for one file per structure, or -o NAME.glb for one file with every structure");
     plan.dir = o.output;
     for (const std::string& f : o.formats.empty() ? std::vector<std::string>{"ply"} : o.formats) {
       SCANSURF_ASSIGN_OR_RETURN(const MeshFormat format, parseMeshFormat(f));

@@ -27,8 +27,9 @@ namespace {
 constexpr const char* kFooter =
     "Outputs: OUTDIR/<feature>.ply (one closed surface per feature, outward) and OUTDIR/multilabel.ply (every "
     "separating surface, each face with its two labels; label = feature index + 1); other formats with --format; "
-    "-o NAME.glb writes one Draco-compressed glTF scene instead; --label-volume and --dicom-seg write the label "
-    "volume.\n"
+    "-o NAME.glb writes one Draco-compressed glTF scene instead; -o NAME.ply or .vtp one file with the "
+    "multi-label mesh, -o NAME.stl, .obj or .drc one file with every closed surface; --label-volume and "
+    "--dicom-seg write the label volume.\n"
     "Many inputs: scansurf batch INPUT... -o OUT (scansurf batch --help).\n"
     "Exit codes: 0 ok, 2 usage, 3 invalid input, 4 I/O, 5 no Vulkan device, 6 Vulkan failure, 7 internal, 8 out "
     "of memory, 9 over --max-memory, 10 defective surface (docs/limits.md).\n"
@@ -147,9 +148,9 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
                  "(.ser or one of its section files), IMOD model (.mod)")
       ->required()
       ->check(CLI::ExistingFile);
-  app.add_option(
-      "-o,--output", o.output,
-      "output directory (created if missing) or NAME.glb; required unless --list-rois, --list-objects or --list-overlaps");
+  app.add_option("-o,--output", o.output,
+                 "output directory (created if missing), or one file: NAME.glb, .ply, .vtp, .stl, .obj, .drc; required unless "
+                 "--list-rois, --list-objects or --list-overlaps");
   auto* voxel =
       app.add_option("--voxel-size", o.build.grid.voxelSize,
                      "in-plane pixel size, input units (default: the reference CT's with --reference, else 256 pixels along "

@@ -130,7 +130,7 @@ std::vector<fs::path> outputDirectories(const OutputPlan& plan) {
     if (std::find(dirs.begin(), dirs.end(), d) == dirs.end()) dirs.push_back(d);
   };
   if (!plan.dir.empty()) add(plan.dir);
-  for (const fs::path* file : {&plan.glbFile, &plan.labelVolume, &plan.dicomSeg, &plan.report, &plan.preview})
+  for (const fs::path* file : {&plan.glbFile, &plan.meshFile, &plan.labelVolume, &plan.dicomSeg, &plan.report, &plan.preview})
     if (!file->empty()) add(file->parent_path());
   return dirs;
 }
@@ -139,6 +139,13 @@ Result<void> checkOutputs(const OutputPlan& plan) {
   std::vector<fs::path> seen;
   if (!plan.dir.empty()) SCANSURF_TRY(ensureWritableDirectory(plan.dir));
   SCANSURF_TRY(checkFile(plan.glbFile, "GLB output", ".glb", seen));
+  if (!plan.meshFile.empty()) {
+    const auto format = parseMeshFormat(plan.meshFile.extension().string());
+    if (!format || *format == MeshFormat::Glb || *format == MeshFormat::SegVtm)
+      return makeError(Errc::InvalidArgument, "mesh output '" + plan.meshFile.string() +
+                                                  "': unknown format (expected a .ply, .vtp, .stl, .obj or .drc file)");
+    SCANSURF_TRY(checkFile(plan.meshFile, "mesh output", "", seen));
+  }
   if (!plan.labelVolume.empty()) {
     auto format = volumeFormatOf(plan.labelVolume);
     if (!format) return makeError(Errc::InvalidArgument, "label volume " + format.error().message);

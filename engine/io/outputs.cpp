@@ -163,6 +163,37 @@ Result<void> stageSlicerSegmentation(OutputStaging& staging, const fs::path& vtm
   return staging.stage(vtm, [&](const fs::path& p) { return writeSlicerSegmentationVtm(p, blocks); });
 }
 
+// Every feature's closed surface in one mesh, one after another.
+CompactMesh mergedSurfaces(const std::vector<CompactMesh>& meshes) {
+  CompactMesh merged;
+  for (const CompactMesh& m : meshes) {
+    const auto first = static_cast<std::uint32_t>(merged.vertexCount());
+    merged.positions.insert(merged.positions.end(), m.positions.begin(), m.positions.end());
+    for (std::uint32_t v : m.triangles) merged.triangles.push_back(first + v);
+  }
+  return merged;
+}
+
+// Every structure in one file (OutputPlan::meshFile).
+Result<void> stageMeshFile(OutputStaging& staging, const fs::path& target, const ContourSet& contours, const Surfaces& surfaces,
+                           const std::vector<CompactMesh>& meshes, const DracoOptions& draco, SurfaceOutputs& out) {
+  SCANSURF_ASSIGN_OR_RETURN(const MeshFormat format, parseMeshFormat(target.extension().string()));
+  const std::string& units = contours.units;
+  const auto write = [&](const fs::path& p) -> Result<void> {
+    if (format == MeshFormat::Ply) return writeMultiLabelPly(p, surfaces.mesh, units);
+    if (format == MeshFormat::Vtp) return writeMultiLabelVtp(p, surfaces.mesh, units);
+    const CompactMesh merged = mergedSurfaces(meshes);
+    if (merged.triangles.empty())
+      return makeError(Errc::InvalidArgument, "no feature has a surface: " + target.string() + " cannot hold an empty mesh");
+    if (format == MeshFormat::Obj) return writeObj(p, merged, target.stem().string(), units);
+    return writeCompact(p, merged, 0, format, target.stem().string(), units, draco);
+  };
+  SCANSURF_TRY(staging.stage(target, write));
+  for (std::size_t f = 0; f < meshes.size(); ++f)
+    if (!meshes[f].triangles.empty()) out.files[f].push_back(target);
+  return {};
+}
+
 std::vector<fs::path> sceneTargets(const OutputPlan& plan) {
   std::vector<fs::path> targets;
   if (!plan.glbFile.empty()) targets.push_back(plan.glbFile);
@@ -297,8 +328,9 @@ Result<SurfaceOutputs> stageSurfaceOutputs(OutputStaging& staging, const OutputP
       SCANSURF_TRY(
           stageFeatureFiles(staging, plan, mesh, static_cast<int>(f), name, stem, colors[f], contours.units, draco, out));
     }
-    if (!scenes.empty() || has(plan.formats, MeshFormat::SegVtm)) compact.push_back(std::move(mesh));
+    if (!scenes.empty() || has(plan.formats, MeshFormat::SegVtm) || !plan.meshFile.empty()) compact.push_back(std::move(mesh));
   }
+  if (!plan.meshFile.empty()) SCANSURF_TRY(stageMeshFile(staging, plan.meshFile, contours, surfaces, compact, draco, out));
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::SegVtm))
     SCANSURF_TRY(stageSlicerSegmentation(staging, plan.dir / (plan.sceneName + ".seg.vtm"), contours, compact, out));
   if (!plan.dir.empty() && has(plan.formats, MeshFormat::Ply) && plan.multilabel)

@@ -160,7 +160,11 @@ struct OutputPlan {
   std::filesystem::path dir;        // per-feature files and multilabel.ply; empty = none
   std::vector<MeshFormat> formats;  // in dir: Glb = one scene dir/<sceneName>.glb, others per feature
   std::string sceneName = "surfaces";
-  std::filesystem::path glbFile;          // a scene at this exact path; empty = none
+  std::filesystem::path glbFile;  // a scene at this exact path; empty = none
+  // Every structure in this one file, by its extension: .ply and .vtp the multi-label mesh (every
+  // separating surface once, each face with its two labels); .stl, .obj and .drc each feature's
+  // closed surface, all in one mesh. Empty = none.
+  std::filesystem::path meshFile;
   bool multilabel = true;                 // dir/multilabel.ply when Ply is among the formats
   SceneOptions scene;                     // GLB (dracoOptions also for .drc; maxError from the grid when 0)
   std::filesystem::path labelVolume;      // .nrrd/.seg.nrrd/.nii/.nii.gz (+ its label table); empty = none
