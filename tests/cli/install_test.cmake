@@ -75,4 +75,9 @@ print(scansurf.__file__, end='')
     message(FATAL_ERROR "the Python package was imported from ${output}, not from the installed prefix")
   endif()
   message("Python package: ${output}")
+  # Every Python snippet of README and docs/python.md, as written, from this prefix.
+  run("the documented snippets" "${PYTHON}" "${SOURCE_DIR}/tests/cli/docs_snippets.py" --root "${SOURCE_DIR}"
+      --prefix "${prefix}" --python-dir "${PYTHON_DIR}" --work "${WORK}/snippets" --cmake "${CMAKE_COMMAND}"
+      --generator "${GENERATOR}")
+  message("${output}")
 endif()
