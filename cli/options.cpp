@@ -296,7 +296,8 @@ void addRemeshing(CLI::App& app, CliOptions& o, Flags& f) {
 
 void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--roi", o.read.roiPatterns,
-                 "RTSTRUCT: surface only the ROIs whose name matches (glob, case-insensitive; repeatable)")
+                 "RTSTRUCT, Slicer segmentation: surface only the ROIs (segments) whose name matches (glob, "
+                 "case-insensitive; repeatable)")
       ->expected(1)
       ->take_all();
   app.add_flag("--list-rois", o.listRois, "RTSTRUCT: list the file's ROIs and exit");

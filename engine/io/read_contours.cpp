@@ -1,4 +1,6 @@
 // scansurf: readContours, listRois and listObjects, the public entry to every contour reader.
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -7,6 +9,7 @@
 
 #include "core/guard.h"
 #include "core/memory.h"
+#include "geometry/contours/polygon.h"
 #include "geometry/contours/validate.h"
 #include "io/contours_json.h"
 #include "io/ct_series.h"
@@ -122,11 +125,15 @@ Unexpected unrecognised(const std::filesystem::path& path) {
 Result<void> checkOptionsApply(InputFormat format, const std::filesystem::path& path, const ReadOptions& options) {
   const bool dicom = format == InputFormat::RtStruct;
   const bool objects = format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel;
-  if (!dicom && (!options.roiPatterns.empty() || !options.referenceSeries.empty()))
+  const bool segments = format == InputFormat::SlicerSegmentation;
+  if (!dicom && !segments && !options.roiPatterns.empty())
     return makeError(Errc::InvalidArgument,
-                     std::string("ROI selection and a reference series apply to DICOM RTSTRUCT input, not to ") +
+                     std::string("ROI selection applies to DICOM RTSTRUCT and 3D Slicer segmentation input, not to ") +
                          inputFormatName(format) + " " + path.string() +
                          (objects ? " (select its objects with an object pattern)" : ""));
+  if (!dicom && !options.referenceSeries.empty())
+    return makeError(Errc::InvalidArgument, std::string("a reference series applies to DICOM RTSTRUCT input, not to ") +
+                                                inputFormatName(format) + " " + path.string());
   if (!objects && !options.objectPatterns.empty())
     return makeError(Errc::InvalidArgument, std::string("object selection applies to Reconstruct and IMOD input, not to ") +
                                                 inputFormatName(format) + " " + path.string() +
@@ -167,6 +174,30 @@ void numberObjects(const std::vector<ObjectInfo>& objects, ContourSet& contours)
       contours.features[static_cast<std::size_t>(o.feature)].sourceNumber = o.number;
 }
 
+// A Slicer segmentation's segments whose name matches a pattern (glob, any case), as an
+// RTSTRUCT's ROIs are selected: every pattern must match one, and the file's extent is kept so
+// that the default grid, and so each surface, does not depend on the selection.
+Result<ContourSet> selectSegments(ContourSet set, const std::vector<std::string>& patterns) {
+  if (patterns.empty()) return set;
+  const auto matches = [](const std::string& pattern, const std::string& name) {
+    return fnmatch(pattern.c_str(), name.c_str(), FNM_CASEFOLD) == 0;
+  };
+  for (const std::string& pattern : patterns) {
+    if (std::any_of(set.features.begin(), set.features.end(), [&](const Feature& f) { return matches(pattern, f.name); }))
+      continue;
+    std::string names;
+    for (const Feature& f : set.features) names += (names.empty() ? "\"" : ", \"") + f.name + "\"";
+    return makeError(Errc::InvalidArgument,
+                     set.source + ": the segment pattern \"" + pattern + "\" matches no segment; the file holds " + names);
+  }
+  set.fileExtent = extentOf(boundingBox(set));
+  std::erase_if(set.features, [&](const Feature& f) {
+    return std::none_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return matches(p, f.name); });
+  });
+  set.order.clear();  // the file's order named features now gone: computed again
+  return set;
+}
+
 Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions& options) {
   SCANSURF_TRY(checkInputFile(path));
   const InputFormat format = detectInputFormat(path);
@@ -188,7 +219,10 @@ Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions&
       model.contours.frame = CoordinateFrame::Specimen;
       return withFiles(std::move(model.contours), path);
     }
-    case InputFormat::SlicerSegmentation: return readSlicerSegmentation(path);
+    case InputFormat::SlicerSegmentation: {
+      SCANSURF_ASSIGN_OR_RETURN(ContourSet segmentation, readSlicerSegmentation(path));
+      return selectSegments(std::move(segmentation), options.roiPatterns);
+    }
     default: return withFiles(readContoursJson(path), path);
   }
 }

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import scansurf
-from conftest import EXAMPLE, sphere
+from conftest import EXAMPLE, ROOT, sphere
 
 
 def test_devices_lists_the_default_device():
@@ -262,3 +262,23 @@ def test_volume_unit_gives_the_reports_volumes_in_it():
         scansurf.build(cs, volume_unit="litres")
     with pytest.raises(scansurf.InvalidArgument, match="'px'"):
         scansurf.build(scansurf.contours({"ball": sphere()}, units="px"), volume_unit="cm3")
+
+
+def test_a_segment_surfaced_alone_is_the_one_surfaced_with_all():
+    seg = ROOT.parent / "shared" / "data" / "slicer" / "EclipseEnt_Structures.seg.vtm"
+    if not seg.exists():
+        pytest.skip("the shared Slicer segmentation is absent (%s)" % seg)
+    everything = scansurf.build(scansurf.read(seg))
+    alone = scansurf.build(scansurf.read(seg, rois=["Optic Nerve*"]))
+    assert sorted(alone.surfaces) == ["Optic Nerve - Rt", "Optic Nerve-Lt"]
+    voxels = {f["name"]: f["labelled_voxels"] for f in everything.report["features"]}
+    for f in alone.report["features"]:  # the same grid: the same voxels
+        assert f["labelled_voxels"] == voxels[f["name"]], f["name"]
+    for name, s in alone.surfaces.items():
+        whole = everything.surfaces[name]
+        # Alone, a nerve keeps its contours' volume; among the others, the stretches it shares
+        # with BODY, optBRAIN or optOptic are interfaces that volume restoration leaves where
+        # smoothing put them (volume_restoration.h), which costs up to 1 %.
+        assert s.volume == pytest.approx(s.contour_volume, rel=2e-3), name
+        assert whole.volume == pytest.approx(s.volume, rel=1e-2), name
+        assert (s.components, s.genus) == (whole.components, whole.genus), name

@@ -132,6 +132,30 @@ TEST_F(SlicerReader, AMultiblockFileReadsEverySegmentItNames) {
   EXPECT_EQ(read->files.size(), 3u);  // the multiblock file and both blocks, for the report's hashes
 }
 
+// --roi selects segments as it selects an RTSTRUCT's ROIs: the file's extent kept (the default
+// grid follows the whole file), a pattern that matches nothing refused naming the segments.
+TEST_F(SlicerReader, RoiPatternsSelectSegments) {
+  std::filesystem::create_directories(dir_ / "seg");
+  write("seg/a.vtp", segmentFile("Orbit", Encoding::Zlib));
+  write("seg/b.vtp", segmentFile("Optic Chiasm", Encoding::Binary));
+  const auto path = write("s.seg.vtm",
+                          "<?xml version=\"1.0\"?><VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet>"
+                          "<DataSet index=\"0\" file=\"seg/a.vtp\"/><DataSet index=\"1\" file=\"seg/b.vtp\"/>"
+                          "</vtkMultiBlockDataSet></VTKFile>");
+  ReadOptions options;
+  options.roiPatterns = {"optic*"};
+  auto read = readContours(path, options);
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_EQ(read->features.size(), 1u);
+  EXPECT_EQ(read->features[0].name, "Optic Chiasm");
+  EXPECT_TRUE(read->fileExtent);
+  options.roiPatterns = {"Lens*"};
+  auto none = readContours(path, options);
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().code, Errc::InvalidArgument);
+  EXPECT_NE(none.error().message.find("\"Orbit\", \"Optic Chiasm\""), std::string::npos) << none.error().message;
+}
+
 TEST_F(SlicerReader, FaultsNameTheFile) {
   const auto missing = write("m.seg.vtm",
                              "<?xml version=\"1.0\"?><VTKFile type=\"vtkMultiBlockDataSet\"><vtkMultiBlockDataSet>"
