@@ -277,8 +277,8 @@ def test_a_segment_surfaced_alone_is_the_one_surfaced_with_all():
     for name, s in alone.surfaces.items():
         whole = everything.surfaces[name]
         # Alone, a nerve keeps its contours' volume; among the others, the stretches it shares
-        # with BODY, optBRAIN or optOptic are interfaces that volume restoration leaves where
-        # smoothing put them (volume_restoration.h), which costs up to 1 %.
+        # with BODY and optBRAIN are interfaces that volume restoration leaves where smoothing
+        # put them (volume_restoration.h): the right nerve is 0.33 % under.
         assert s.volume == pytest.approx(s.contour_volume, rel=2e-3), name
-        assert whole.volume == pytest.approx(s.volume, rel=1e-2), name
+        assert whole.volume == pytest.approx(s.volume, rel=5e-3), name
         assert (s.components, s.genus) == (whole.components, whole.genus), name

@@ -22,7 +22,7 @@
 namespace scansurf {
 namespace {
 
-constexpr int kRounds = 4;
+constexpr int kRounds = 8;               // a step is at most kLargestStep: thin features need several
 constexpr double kClose = 1e-4;          // every feature this close to its target: done
 constexpr std::size_t kBlock = 1 << 16;  // triangles summed together
 constexpr double kLargestStep = 0.25;    // of the smallest voxel spacing, per round
@@ -136,27 +136,41 @@ class Restorer {
   bool movesFeature(std::size_t f) const { return moves_[f] != 0; }
 
  private:
-  // Sheet vertices off the contour planes all of whose triangles bound one and the same feature.
+  // Sheet vertices off the contour planes all of whose triangles bound the same features, all
+  // on one side: a feature's own surface, which may also bound the features that enclose it by
+  // the nesting (a structure reaching out of its container). Each moves for the innermost of
+  // them (a bound list starts with it); the others' volumes follow, and their own vertices take
+  // up the change in the next round. An interface between siblings (bounds on both sides) stays.
   void findMovable(const std::vector<bool>& onSheet, const std::vector<bool>& contourLayers, std::size_t features) {
     featureCount_ = features;
     const std::size_t n = mesh_.vertexCount();
-    std::vector<int> only(n, -1);  // -1: none yet, -2: not movable
+    constexpr const std::vector<Bound>* kNone = nullptr;
+    const std::vector<Bound> mixed;  // a vertex whose triangles bound different features
+    std::vector<const std::vector<Bound>*> only(n, kNone);
+    const auto same = [](const std::vector<Bound>& a, const std::vector<Bound>& b) {
+      return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                        [](const Bound& x, const Bound& y) { return x.feature == y.feature && x.sign == y.sign; });
+    };
     for (std::size_t t = 0; t < mesh_.triangleCount(); ++t) {
-      const std::vector<Bound>& b = *triangleBounds_[t];
+      const std::vector<Bound>* b = triangleBounds_[t];
       for (int k = 0; k < 3; ++k) {
-        int& o = only[mesh_.triangles[3 * t + k]];
-        if (b.size() != 1 || (o != -1 && o != b[0].feature))
-          o = -2;
-        else if (o == -1)
-          o = b[0].feature;
+        const std::vector<Bound>*& o = only[mesh_.triangles[3 * t + k]];
+        const bool oneSide =
+            !b->empty() && std::all_of(b->begin(), b->end(), [&](const Bound& x) { return x.sign == b->front().sign; });
+        if (!oneSide || (o != kNone && o != b && !same(*o, *b)))
+          o = &mixed;
+        else if (o == kNone)
+          o = b;
       }
     }
     incident_ = incidentTriangles(mesh_);
     moves_.assign(features, 0);
     for (std::size_t v = 0; v < n; ++v)
-      if (v < onSheet.size() && onSheet[v] && only[v] >= 0 && !onContourPlane(mesh_.keys[v], contourLayers)) {
-        movable_.push_back(static_cast<std::uint32_t>(v)), featureOf_.push_back(only[v]);
-        moves_[static_cast<std::size_t>(only[v])] = 1;
+      if (v < onSheet.size() && onSheet[v] && only[v] != kNone && only[v] != &mixed &&
+          !onContourPlane(mesh_.keys[v], contourLayers)) {
+        const int feature = only[v]->front().feature;
+        movable_.push_back(static_cast<std::uint32_t>(v)), featureOf_.push_back(feature);
+        moves_[static_cast<std::size_t>(feature)] = 1;
       }
   }
 

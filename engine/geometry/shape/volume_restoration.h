@@ -31,8 +31,9 @@ struct CubeDisks;
 // volume to restore (input units cubed; <= 0 or missing: leave it); onSheet[v]: vertex v is on
 // one label pair's sheet (SmoothingReport::onSheet); contourLayers[k]: layer k is a contour
 // plane, whose in-plane vertices stay on the contours. Only sheet vertices off the contour
-// planes and on exactly one feature's surface move (an interface between siblings, a junction
-// or a contour stays). A feature's region is its label's and its descendants'
+// planes whose triangles all bound the same features from one side move: one feature's surface,
+// and where it reaches out of a container, the container's too (an interface between siblings,
+// a junction or a contour stays). A feature's region is its label's and its descendants'
 // (Nesting::parent), among the labels in the mesh. Moves that would leave a triangle sharper
 // than minAngle degrees (and than it was) are shortened (geometry/smoothing/angle_guard.h; 0: off); moves
 // that would fold one of `disks` (retriangulateCubeFans's; null: none) are undone.
