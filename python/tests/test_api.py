@@ -282,3 +282,18 @@ def test_a_segment_surfaced_alone_is_the_one_surfaced_with_all():
         assert s.volume == pytest.approx(s.contour_volume, rel=2e-3), name
         assert whole.volume == pytest.approx(s.volume, rel=5e-3), name
         assert (s.components, s.genus) == (whole.components, whole.genus), name
+
+
+@pytest.mark.parametrize("inside", [10.0, 5.0])
+def test_a_thin_scar_across_the_bodys_edge_keeps_its_volume(inside):
+    def ellipse(rx, ry, n=96):
+        t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+        return np.column_stack([rx * np.cos(t), ry * np.sin(t)])
+    x0 = 150.0 - inside  # the BODY's edge at x = 150; the scar 13 x 3 mm on two 3 mm slices
+    scar = np.array([[x0, -12], [x0 + 13, -12], [x0 + 13, -9], [x0, -9]], float)
+    cs = scansurf.contours({"BODY": {z: [ellipse(150, 100)] for z in np.arange(-30, 30.1, 3.0)},
+                            "scar": {0.0: [scar], 3.0: [scar]}})
+    for options in ({}, {"voxel_size": 1.0}):  # the default grid (1.2 mm pixels) and a finer one
+        s = scansurf.build(cs, **options).surfaces["scar"]
+        assert s.volume == pytest.approx(234.0, rel=1e-2) and s.contour_volume == pytest.approx(234.0)
+        assert (s.components, s.genus, s.closed) == (1, 0, True)
