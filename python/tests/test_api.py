@@ -297,3 +297,19 @@ def test_a_thin_scar_across_the_bodys_edge_keeps_its_volume(inside):
         s = scansurf.build(cs, **options).surfaces["scar"]
         assert s.volume == pytest.approx(234.0, rel=1e-2) and s.contour_volume == pytest.approx(234.0)
         assert (s.components, s.genus, s.closed) == (1, 0, True)
+
+
+def test_an_roi_surfaced_alone_is_the_one_surfaced_with_all():
+    plan = ROOT.parent / "shared" / "data" / "rtstruct" / "slicerrt-prostate"
+    files = sorted(plan.glob("RS*.dcm")) if plan.exists() else []
+    if not files:
+        pytest.skip("the shared prostate plan is absent (%s)" % plan)
+    everything = scansurf.build(scansurf.read(files[0]))
+    whole = {f["name"]: f for f in everything.report["features"]}
+    for roi in ("Rectum", "PTV", "Bladder"):
+        alone = scansurf.build(scansurf.read(files[0], rois=[roi])).report["features"]
+        assert [f["name"] for f in alone] == [roi]
+        f, w = alone[0], whole[roi]
+        assert f["labelled_voxels"] == w["labelled_voxels"], roi  # the grid follows the whole file
+        assert f["surface_volume"] == pytest.approx(w["surface_volume"], rel=1e-3), roi
+        assert (f["components"], f["genus"], f["closed"]) == (w["components"], w["genus"], w["closed"]), roi
