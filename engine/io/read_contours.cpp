@@ -1,6 +1,4 @@
 // scansurf: readContours, listRois and listObjects, the public entry to every contour reader.
-#include <fnmatch.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -179,9 +177,7 @@ void numberObjects(const std::vector<ObjectInfo>& objects, ContourSet& contours)
 // that the default grid, and so each surface, does not depend on the selection.
 Result<ContourSet> selectSegments(ContourSet set, const std::vector<std::string>& patterns) {
   if (patterns.empty()) return set;
-  const auto matches = [](const std::string& pattern, const std::string& name) {
-    return fnmatch(pattern.c_str(), name.c_str(), FNM_CASEFOLD) == 0;
-  };
+  const auto matches = roiNameMatches;  // as an RTSTRUCT's ROI names
   for (const std::string& pattern : patterns) {
     if (std::any_of(set.features.begin(), set.features.end(), [&](const Feature& f) { return matches(pattern, f.name); }))
       continue;

@@ -92,6 +92,16 @@ class SlicerReader : public ScratchDirTest {
     std::ofstream(dir_ / name, std::ios::binary) << text;
     return dir_ / name;
   }
+  // A .seg.vtm naming two segments' .vtp files in a subfolder, as SlicerRT saves them.
+  std::filesystem::path writeTwoSegments(const std::string& a, const std::string& b) {
+    std::filesystem::create_directories(dir_ / "seg");
+    write("seg/a.vtp", segmentFile(a, Encoding::Zlib));
+    write("seg/b.vtp", segmentFile(b, Encoding::Binary));
+    return write("s.seg.vtm",
+                 "<?xml version=\"1.0\"?><VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet>"
+                 "<DataSet index=\"0\" file=\"seg/a.vtp\"/><DataSet index=\"1\" file=\"seg/b.vtp\"/>"
+                 "</vtkMultiBlockDataSet></VTKFile>");
+  }
 };
 
 TEST_F(SlicerReader, ReadsEachEncodingInLps) {
@@ -118,13 +128,7 @@ TEST_F(SlicerReader, ReadsEachEncodingInLps) {
 }
 
 TEST_F(SlicerReader, AMultiblockFileReadsEverySegmentItNames) {
-  std::filesystem::create_directories(dir_ / "seg");
-  write("seg/a.vtp", segmentFile("A", Encoding::Zlib));
-  write("seg/b.vtp", segmentFile("B", Encoding::Binary));
-  const auto path = write("s.seg.vtm",
-                          "<?xml version=\"1.0\"?><VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet>"
-                          "<DataSet index=\"0\" file=\"seg/a.vtp\"/><DataSet index=\"1\" file=\"seg/b.vtp\"/>"
-                          "</vtkMultiBlockDataSet></VTKFile>");
+  const auto path = writeTwoSegments("A", "B");
   auto read = readContours(path);
   ASSERT_TRUE(read) << read.error().message;
   ASSERT_EQ(read->features.size(), 2u);
@@ -135,13 +139,7 @@ TEST_F(SlicerReader, AMultiblockFileReadsEverySegmentItNames) {
 // --roi selects segments as it selects an RTSTRUCT's ROIs: the file's extent kept (the default
 // grid follows the whole file), a pattern that matches nothing refused naming the segments.
 TEST_F(SlicerReader, RoiPatternsSelectSegments) {
-  std::filesystem::create_directories(dir_ / "seg");
-  write("seg/a.vtp", segmentFile("Orbit", Encoding::Zlib));
-  write("seg/b.vtp", segmentFile("Optic Chiasm", Encoding::Binary));
-  const auto path = write("s.seg.vtm",
-                          "<?xml version=\"1.0\"?><VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet>"
-                          "<DataSet index=\"0\" file=\"seg/a.vtp\"/><DataSet index=\"1\" file=\"seg/b.vtp\"/>"
-                          "</vtkMultiBlockDataSet></VTKFile>");
+  const auto path = writeTwoSegments("Orbit", "Optic Chiasm");
   ReadOptions options;
   options.roiPatterns = {"optic*"};
   auto read = readContours(path, options);
