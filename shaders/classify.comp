@@ -35,28 +35,33 @@ uint partitionCode(uint a, uint b, uint c, uint d) {
   return r1 | (r2 << 1) | (r3 << 3);
 }
 
+// One invocation per (x, y) column of cells, up through the batch's layers: each layer's four
+// labels are read once and serve the cells below and above it (a cell per invocation read all
+// eight corners, every label eight times).
 void main() {
-  const uvec3 g = gl_GlobalInvocationID;
-  if (g.x >= push.nx - 1u || g.y >= push.ny - 1u || g.z >= push.cellLayers) return;
+  const uvec2 g = gl_GlobalInvocationID.xy;
+  if (g.x >= push.nx - 1u || g.y >= push.ny - 1u) return;
 
-  uint l[8];
-  bool uniformCell = true;
-  for (uint c = 0u; c < 8u; ++c) {
-    l[c] = labelAt(g.x + (c & 1u), g.y + ((c >> 1) & 1u), g.z + (c >> 2));
-    uniformCell = uniformCell && l[c] == l[0];
+  uint l[8];  // corner c at (x + (c & 1), y + (c >> 1 & 1), z + (c >> 2))
+  for (uint c = 0u; c < 4u; ++c) l[c] = labelAt(g.x + (c & 1u), g.y + ((c >> 1) & 1u), 0u);
+  for (uint z = 0u; z < push.cellLayers; ++z) {
+    for (uint c = 4u; c < 8u; ++c) l[c] = labelAt(g.x + (c & 1u), g.y + ((c >> 1) & 1u), z + 1u);
+    bool uniformCell = true;
+    for (uint c = 1u; c < 8u; ++c) uniformCell = uniformCell && l[c] == l[0];
+    if (!uniformCell) {
+      uint codes = 0u;
+      for (uint t = 0u; t < 6u; ++t)
+        codes |= partitionCode(l[kTets[4u * t]], l[kTets[4u * t + 1u]], l[kTets[4u * t + 2u]], l[kTets[4u * t + 3u]])
+                 << (SCANSURF_TET_CODE_BITS * t);
+      const uint slot = atomicAdd(counter.count, 1u);
+      if (slot < push.capacity) {  // else the host sees count > capacity and runs the batch again
+        CellCase record;
+        record.cell = g.x + (push.nx - 1u) * (g.y + (push.ny - 1u) * (push.firstCellLayer + z));
+        record.tetCodes = codes;
+        for (uint w = 0u; w < 4u; ++w) record.labels[w] = l[2u * w] | (l[2u * w + 1u] << 16);
+        cases.records[slot] = record;
+      }
+    }
+    for (uint c = 0u; c < 4u; ++c) l[c] = l[c + 4u];
   }
-  if (uniformCell) return;
-
-  uint codes = 0u;
-  for (uint t = 0u; t < 6u; ++t)
-    codes |= partitionCode(l[kTets[4u * t]], l[kTets[4u * t + 1u]], l[kTets[4u * t + 2u]], l[kTets[4u * t + 3u]])
-             << (SCANSURF_TET_CODE_BITS * t);
-
-  const uint slot = atomicAdd(counter.count, 1u);
-  if (slot >= push.capacity) return;  // the host sees count > capacity and runs the slab again
-  CellCase record;
-  record.cell = g.x + (push.nx - 1u) * (g.y + (push.ny - 1u) * (push.firstCellLayer + g.z));
-  record.tetCodes = codes;
-  for (uint w = 0u; w < 4u; ++w) record.labels[w] = l[2u * w] | (l[2u * w + 1u] << 16);
-  cases.records[slot] = record;
 }

@@ -205,7 +205,7 @@ void Classifier::recordBatch(VkCommandBuffer cmd, const Source& source, const gp
                                   source.upperIsData ? 1u : 0u};
   vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
   vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
-                (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, static_cast<std::uint32_t>(layers));
+                (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, 1);  // a column of cells each
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
