@@ -300,7 +300,7 @@ void addDicom(CLI::App& app, CliOptions& o, Flags& f) {
                  "case-insensitive; repeatable)")
       ->expected(1)
       ->take_all();
-  app.add_flag("--list-rois", o.listRois, "RTSTRUCT: list the file's ROIs and exit");
+  app.add_flag("--list-rois", o.listRois, "RTSTRUCT, Slicer segmentation: list the file's ROIs (segments) and exit");
   app.add_option("--reference", f.reference, "RTSTRUCT: folder of a CT series; the label volume lies on its voxel grid");
 }
 

@@ -581,7 +581,7 @@ endforeach()
 run_scansurf(2 "${DATA}/reconstruct/tiny.ser" -o "${OUT}/x" --object nucleus)
 expect_output("--object \"nucleus\" matches no object; the file holds \"axon\", \"note\", \"soma\"")
 run_scansurf(2 "${DATA}/reconstruct/tiny.ser" --list-rois)
-expect_output("--list-rois applies to DICOM RTSTRUCT input, not to Reconstruct series .*\\(use --list-objects\\)")
+expect_output("--list-rois applies to DICOM RTSTRUCT and 3D Slicer segmentation input, not to Reconstruct series .*\\(use --list-objects\\)")
 run_scansurf(2 "${EXAMPLES}/phantom.json" -o "${OUT}/x" --object BODY)
 expect_output("object selection applies to Reconstruct and IMOD input, not to contour-set JSON")
 

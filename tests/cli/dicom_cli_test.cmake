@@ -19,6 +19,15 @@ expect_output("1 +patient +EXTERNAL +3 CLOSED_PLANAR +3 +-200 \\.\\. -180 +yes")
 expect_output("2 +Isocenter 1 +ISOCENTER +1 POINT +0 ")
 run_scansurf(0 "${MIM}/rt.dcm" --list-rois --roi "roi-[12]")
 expect_output("3 +ROI-3 +- +3 CLOSED_PLANAR +3 +60 \\.\\. 70 +no")
+# A 3D Slicer segmentation lists its segments the same way (../shared/data/slicer, beside the
+# RTSTRUCT samples).
+set(SLICER "${SAMPLES}/../slicer/EclipseEnt_Structures.seg.vtm")
+if(EXISTS "${SLICER}")
+  run_scansurf(0 "${SLICER}" --list-rois --roi "Optic*")
+  expect_output("16 segments")
+  expect_output("9 +Optic Chiasm +3 +3 +137 \\.\\. 142 +yes")
+  expect_output("1 +BODY +136 +136 +-100\\.5 \\.\\. 237 +no")
+endif()
 
 # The file without a DICOM file header, with POINT ROIs skipped (one warning each).
 run_scansurf(0 "${SAMPLES}/pydicom-rtstruct.dcm" -o "${OUT}/pydicom" --voxel-size 4)
