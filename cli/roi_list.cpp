@@ -3,7 +3,6 @@
 
 #include "safe_text.h"
 
-#include <algorithm>
 #include <cstdio>
 
 #include "scansurf/input.h"
@@ -20,41 +19,21 @@ std::string formatZ(double z) {
 
 }  // namespace
 
-// A 3D Slicer segmentation's segments, as the RTSTRUCT listing gives ROIs: each one's contours,
-// planes and z range, and whether the patterns select it (one that matches none is an error).
-Result<void> printSegmentList(const std::string& path, const std::vector<std::string>& roiPatterns) {
-  SCANSURF_ASSIGN_OR_RETURN(const ContourSet all, readContours(path));
-  ReadOptions options;
-  options.roiPatterns = roiPatterns;
-  SCANSURF_ASSIGN_OR_RETURN(const ContourSet chosen, readContours(path, options));
-  std::printf("%s: 3D Slicer segmentation, %zu segments (z in %s, patient coordinates)\n", path.c_str(), all.features.size(),
-              printable(all.units).c_str());
-  std::printf("  %6s  %-24s %9s %9s  %-20s %s\n", "index", "name", "contours", "slices", "z range", "selected");
-  for (std::size_t i = 0; i < all.features.size(); ++i) {
-    const Feature& f = all.features[i];
-    std::size_t contours = 0;
-    for (const FeatureSlice& slice : f.slices) contours += slice.contours.size();
-    const std::string range = f.slices.empty() ? "-" : formatZ(f.slices.front().z) + " .. " + formatZ(f.slices.back().z);
-    const bool selected =
-        std::any_of(chosen.features.begin(), chosen.features.end(), [&](const Feature& c) { return c.name == f.name; });
-    std::printf("  %6zu  %-24s %9zu %9zu  %-20s %s\n", i + 1, printable(f.name).c_str(), contours, f.slices.size(), range.c_str(),
-                selected ? "yes" : "no");
-  }
-  return {};
-}
-
 Result<void> printRoiList(const std::string& path, const std::vector<std::string>& roiPatterns) {
   const InputFormat format = detectInputFormat(path);
-  if (format == InputFormat::SlicerSegmentation) return printSegmentList(path, roiPatterns);
-  if (format != InputFormat::RtStruct && format != InputFormat::Unknown)  // Unknown: listRois says why
+  const bool segments = format == InputFormat::SlicerSegmentation;
+  if (format != InputFormat::RtStruct && !segments && format != InputFormat::Unknown)  // Unknown: listRois says why
     return makeError(
         Errc::InvalidArgument,
         std::string("--list-rois applies to DICOM RTSTRUCT and 3D Slicer segmentation input, not to ") + inputFormatName(format) +
             " " + path +
             (format == InputFormat::ReconstructSeries || format == InputFormat::ImodModel ? " (use --list-objects)" : ""));
   SCANSURF_ASSIGN_OR_RETURN(const StructureSetInfo rt, listRois(path, roiPatterns));
-  std::printf("%s: RT Structure Set \"%s\", %zu ROIs (z in mm, patient coordinates)\n", path.c_str(), printable(rt.label).c_str(),
-              rt.rois.size());
+  if (segments)
+    std::printf("%s: 3D Slicer segmentation, %zu segments (z in mm, patient coordinates)\n", path.c_str(), rt.rois.size());
+  else
+    std::printf("%s: RT Structure Set \"%s\", %zu ROIs (z in mm, patient coordinates)\n", path.c_str(),
+                printable(rt.label).c_str(), rt.rois.size());
   std::printf("  %6s  %-24s %-12s %-28s %6s  %-20s %s\n", "number", "name", "type", "contours", "slices", "z range", "selected");
   for (const RoiInfo& roi : rt.rois) {
     std::string contours;

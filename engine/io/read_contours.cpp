@@ -172,26 +172,59 @@ void numberObjects(const std::vector<ObjectInfo>& objects, ContourSet& contours)
       contours.features[static_cast<std::size_t>(o.feature)].sourceNumber = o.number;
 }
 
-// A Slicer segmentation's segments whose name matches a pattern (glob, any case), as an
-// RTSTRUCT's ROIs are selected: every pattern must match one, and the file's extent is kept so
-// that the default grid, and so each surface, does not depend on the selection.
-Result<ContourSet> selectSegments(ContourSet set, const std::vector<std::string>& patterns) {
-  if (patterns.empty()) return set;
-  const auto matches = roiNameMatches;  // as an RTSTRUCT's ROI names
+// Whether any pattern selects a segment (a Slicer segmentation's, as an RTSTRUCT's ROI names).
+bool segmentSelected(const std::vector<std::string>& patterns, const std::string& name) {
+  return std::any_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return roiNameMatches(p, name); });
+}
+
+// Every pattern must select a segment; the error names the segments the file holds.
+Result<void> checkSegmentPatterns(const ContourSet& set, const std::vector<std::string>& patterns) {
   for (const std::string& pattern : patterns) {
-    if (std::any_of(set.features.begin(), set.features.end(), [&](const Feature& f) { return matches(pattern, f.name); }))
+    if (std::any_of(set.features.begin(), set.features.end(), [&](const Feature& f) { return roiNameMatches(pattern, f.name); }))
       continue;
     std::string names;
     for (const Feature& f : set.features) names += (names.empty() ? "\"" : ", \"") + f.name + "\"";
     return makeError(Errc::InvalidArgument,
                      set.source + ": the segment pattern \"" + pattern + "\" matches no segment; the file holds " + names);
   }
+  return {};
+}
+
+// A Slicer segmentation's segments that the patterns select, as an RTSTRUCT's ROIs are
+// selected; the file's extent is kept so that the default grid, and so each surface, does not
+// depend on the selection.
+Result<ContourSet> selectSegments(ContourSet set, const std::vector<std::string>& patterns) {
+  if (patterns.empty()) return set;
+  SCANSURF_TRY(checkSegmentPatterns(set, patterns));
   set.fileExtent = extentOf(boundingBox(set));
-  std::erase_if(set.features, [&](const Feature& f) {
-    return std::none_of(patterns.begin(), patterns.end(), [&](const std::string& p) { return matches(p, f.name); });
-  });
+  std::erase_if(set.features, [&](const Feature& f) { return !segmentSelected(patterns, f.name); });
   set.order.clear();  // the file's order named features now gone: computed again
   return set;
+}
+
+// A Slicer segmentation listed as an RTSTRUCT's ROIs: each segment numbered in file order, its
+// closed contours, planes and z range, and whether the patterns select it.
+Result<StructureSetInfo> listSegments(const std::filesystem::path& path, const std::vector<std::string>& patterns) {
+  SCANSURF_ASSIGN_OR_RETURN(const ContourSet set, readSlicerSegmentation(path));
+  SCANSURF_TRY(checkSegmentPatterns(set, patterns));
+  StructureSetInfo info;
+  int surfaced = 0;
+  for (std::size_t i = 0; i < set.features.size(); ++i) {
+    const Feature& f = set.features[i];
+    RoiInfo roi;
+    roi.number = static_cast<int>(i) + 1;
+    roi.name = f.name;
+    roi.color = f.color;
+    int contours = 0;
+    for (const FeatureSlice& slice : f.slices) contours += static_cast<int>(slice.contours.size());
+    roi.contoursByType["CLOSED_PLANAR"] = contours;
+    roi.slices = static_cast<int>(f.slices.size());
+    if (!f.slices.empty()) roi.zMin = f.slices.front().z, roi.zMax = f.slices.back().z;
+    roi.selected = patterns.empty() || segmentSelected(patterns, f.name);
+    roi.feature = roi.selected ? surfaced++ : -1;
+    info.rois.push_back(std::move(roi));
+  }
+  return info;
 }
 
 Result<ContourSet> readAny(const std::filesystem::path& path, const ReadOptions& options) {
@@ -292,9 +325,14 @@ Result<ObjectListing> listObjects(const std::filesystem::path& path, const std::
 Result<StructureSetInfo> listRois(const std::filesystem::path& path, const std::vector<std::string>& roiPatterns) {
   const InputFormat format = detectInputFormat(path);
   if (format == InputFormat::Unknown) return unrecognised(path);
+  if (format == InputFormat::SlicerSegmentation) {
+    SCANSURF_TRY(checkInputFile(path));
+    return listSegments(path, roiPatterns);
+  }
   if (format != InputFormat::RtStruct)
-    return makeError(Errc::InvalidArgument, std::string("listing ROIs applies to DICOM RTSTRUCT input, not to ") +
-                                                inputFormatName(format) + " " + path.string());
+    return makeError(Errc::InvalidArgument,
+                     std::string("listing ROIs applies to DICOM RTSTRUCT and 3D Slicer segmentation input, not to ") +
+                         inputFormatName(format) + " " + path.string());
   RtStructOptions options;
   options.roiPatterns = roiPatterns;
   options.requireFeatures = false;

@@ -25,8 +25,8 @@ set(SLICER "${SAMPLES}/../slicer/EclipseEnt_Structures.seg.vtm")
 if(EXISTS "${SLICER}")
   run_scansurf(0 "${SLICER}" --list-rois --roi "Optic*")
   expect_output("16 segments")
-  expect_output("9 +Optic Chiasm +3 +3 +137 \\.\\. 142 +yes")
-  expect_output("1 +BODY +136 +136 +-100\\.5 \\.\\. 237 +no")
+  expect_output("9 +Optic Chiasm +- +3 CLOSED_PLANAR +3 +137 \\.\\. 142 +yes")
+  expect_output("1 +BODY +- +136 CLOSED_PLANAR +136 +-100\\.5 \\.\\. 237 +no")
 endif()
 
 # The file without a DICOM file header, with POINT ROIs skipped (one warning each).

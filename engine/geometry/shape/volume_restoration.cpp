@@ -153,10 +153,10 @@ class Restorer {
     };
     for (std::size_t t = 0; t < mesh_.triangleCount(); ++t) {
       const std::vector<Bound>* b = triangleBounds_[t];
+      const bool oneSide =
+          !b->empty() && std::all_of(b->begin(), b->end(), [&](const Bound& x) { return x.sign == b->front().sign; });
       for (int k = 0; k < 3; ++k) {
         const std::vector<Bound>*& o = only[mesh_.triangles[3 * t + k]];
-        const bool oneSide =
-            !b->empty() && std::all_of(b->begin(), b->end(), [&](const Bound& x) { return x.sign == b->front().sign; });
         if (!oneSide || (o != kNone && o != b && !same(*o, *b)))
           o = &mixed;
         else if (o == kNone)

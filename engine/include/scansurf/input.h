@@ -84,8 +84,9 @@ struct StructureSetInfo {
   std::vector<RoiInfo> rois;  // in Structure Set ROI Sequence order
 };
 
-// The ROIs of an RTSTRUCT file, with whether `roiPatterns` select each; a file with nothing
-// to surface is not an error here. Errors: as readContours; JSON input is Errc::InvalidArgument.
+// The ROIs of an RTSTRUCT file (or the segments of a 3D Slicer segmentation, numbered in file
+// order, with no label), with whether `roiPatterns` select each; a file with nothing to
+// surface is not an error here. Errors: as readContours; JSON input is Errc::InvalidArgument.
 Result<StructureSetInfo> listRois(const std::filesystem::path& path, const std::vector<std::string>& roiPatterns = {});
 
 // One object of a Reconstruct series or an IMOD model as the file holds it.
