@@ -612,7 +612,8 @@ TEST_F(Dicom, NeverCrashesOnTruncatedFiles) {
 // ---------------------------------------------------------------------------------------
 // Reference CT
 
-TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
+// A 40 x 30 CT of 0.8 x 0.9 mm pixels off the origin, on the given slices.
+test::TestCt latticeCt(std::vector<double> sliceZ) {
   test::TestCt ct;
   ct.columns = 40;
   ct.rows = 30;
@@ -620,7 +621,12 @@ TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
   ct.spacingY = 0.9;
   ct.originX = -15.2;
   ct.originY = -12.6;
-  ct.sliceZ = {-5, -2.5, 0, 2.5, 5, 7.5};
+  ct.sliceZ = std::move(sliceZ);
+  return ct;
+}
+
+TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
+  test::TestCt ct = latticeCt({-5, -2.5, 0, 2.5, 5, 7.5});
   test::writeTestCtSeries(ct, dir_ / "ct");
   TestRtStruct rtFile;
   TestRoi roi{1, "organ", "ORGAN", std::nullopt, {}};
@@ -692,14 +698,7 @@ TEST_F(Dicom, ReferenceGridLiesOnTheCtLattice) {
 // surfaces in-plane, the contours keep their planes, with a warning; a plane between two
 // neighbouring slices of a whole series is still an error.
 TEST_F(Dicom, APartialReferenceSeriesGivesTheLatticeAndTheContoursThePlanes) {
-  test::TestCt ct;
-  ct.columns = 40;
-  ct.rows = 30;
-  ct.spacingX = 0.8;
-  ct.spacingY = 0.9;
-  ct.originX = -15.2;
-  ct.originY = -12.6;
-  ct.sliceZ = {0};
+  test::TestCt ct = latticeCt({0});
   test::writeTestCtSeries(ct, dir_ / "ct");
   TestRtStruct rtFile;
   TestRoi roi{1, "organ", "ORGAN", std::nullopt, {}};
