@@ -313,3 +313,15 @@ def test_an_roi_surfaced_alone_is_the_one_surfaced_with_all():
         assert f["labelled_voxels"] == w["labelled_voxels"], roi  # the grid follows the whole file
         assert f["surface_volume"] == pytest.approx(w["surface_volume"], rel=1e-3), roi
         assert (f["components"], f["genus"], f["closed"]) == (w["components"], w["genus"], w["closed"]), roi
+
+
+def test_a_self_crossing_spiral_keeps_its_even_odd_volume():
+    # IMOD's example: one spiral contour on each of two sections, each crossing itself, whose
+    # arms lie where the other section has none; the layers between them keep their area by
+    # growing their blended outline several pixels.
+    model = ROOT.parent / "shared" / "data" / "em" / "imod" / "two_contour_example.mod"
+    if not model.exists():
+        pytest.skip("the shared IMOD model is absent (%s)" % model)
+    s = scansurf.build(scansurf.read(model)).surfaces["object 1"]
+    assert s.volume == pytest.approx(s.contour_volume, rel=1e-2)
+    assert s.closed and s.components == 1

@@ -383,7 +383,7 @@ InterpolationBatch planInterpolationBatch(const LabelVolume& volume, const Plane
   batch.planes = planes + batch.haloBefore + batch.haloAfter;
   batch.tilesX = (volume.grid.nx + kTileSize - 1) / kTileSize;
   batch.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
-  batch.blendLimit = deepDistance(volume.grid) * 3 / 4;  // within the label's window (kWindowMargin)
+  batch.blendLimit = {deepDistance(volume.grid) * 3 / 4, deepDistance(volume.grid) * 4};
   BatchPlanner planner(volume, census, containers, batch);
   planner.addFields();
   for (int p = batch.haloBefore; p + 1 < batch.planes - batch.haloAfter; ++p)
@@ -448,10 +448,11 @@ double coveredArea(const std::int32_t* values, std::size_t count, double unit, s
   return area;
 }
 
-// The offset in [-limit, limit] at which the band's values less the offset cover `want`
+// The offset in [-shrink, grow] at which the band's values less the offset cover `want`
 // pixels (values in 1/unit pixel): the cover grows with the offset, so bisect.
-std::int32_t offsetCovering(const std::vector<std::int32_t>& band, double want, double unit, std::int32_t limit) {
-  std::int32_t lo = -limit, hi = limit;
+std::int32_t offsetCovering(const std::vector<std::int32_t>& band, double want, double unit, std::int32_t shrink,
+                            std::int32_t grow) {
+  std::int32_t lo = -shrink, hi = grow;
   while (hi - lo > 1) {
     const std::int32_t mid = lo + (hi - lo) / 2;
     (coveredArea(band.data(), band.size(), unit, mid) < want ? lo : hi) = mid;
@@ -501,14 +502,15 @@ double fieldArea(const shared::DistanceField* f, const std::int32_t* values) {
 
 }  // namespace
 
-void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int factor, std::int32_t limit, std::int32_t* out) {
+void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int factor, InterpolationBatch::OffsetLimits limits,
+                  std::int32_t* out) {
   const int n = factor;
   constexpr double unit = kFieldPixel;
   out[0] = out[n] = 0;
   double area[4];
   for (int i = 0; i < 4; ++i) area[i] = fieldArea(fields.field[i], fields.values[i]);
   const shared::DistanceField &fieldA = *fields.field[1], &fieldB = *fields.field[2];
-  const std::int32_t sure = limit + kFieldPixel;  // beyond: covered, or not, whatever the offset
+  const std::int32_t sure = std::max(limits.shrink, limits.grow) + kFieldPixel;  // beyond: covered, or not, whatever the offset
   std::vector<std::int32_t> band;
   for (int m = 1; m < n; ++m) {
     // As the interpolation samples a shifting label (interpolate.comp, entryValue).
@@ -526,7 +528,7 @@ void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int fac
           band.push_back(blendedValue(e, fields, m, n, x, y));
       }
     const double want = blendedArea(area, m, n) - static_cast<double>(inside);
-    out[m] = offsetCovering(band, want, n * unit, n * limit);
+    out[m] = offsetCovering(band, want, n * unit, n * limits.shrink, n * limits.grow);
   }
 }
 

@@ -120,7 +120,14 @@ struct InterpolationBatch {
     std::size_t table = 0;
   };
   std::vector<BlendedEntry> blendedEntries;
-  std::int32_t blendLimit = 0;  // how far an offset may move a boundary (1/16 of the smaller pixel)
+  // How far an offset may move a boundary (1/16 of the smaller pixel): inward (shrinking) and
+  // outward (growing). Shrinking stops short of deepDistance, where a voxel inside one label
+  // on both planes keeps it unasked; growing may go further, within the label's window, as
+  // where the outline turns or winds between the planes the blended fields lose most of it.
+  struct OffsetLimits {
+    std::int32_t shrink = 0, grow = 0;
+  };
+  OffsetLimits blendLimit;
   std::size_t layerInts = 0;    // ints of the layer table (PairEntry::layerTable)
   std::size_t deviceBytes(const Grid& grid) const;
 };
@@ -186,10 +193,11 @@ std::int32_t blendedValue(const shared::PairEntry& e, const BlendFields& f, int 
 // between the planes: 15 % of the volume of an ellipse turned a quarter turn). Its region at
 // layer m is {value < offset(m)}, value the blend as the interpolation samples it
 // (blendedValue); areas are the pixels' covers read off the signed distances, the offsets
-// solved near the boundary and bounded by n * limit, so that a voxel deep inside one label on
-// both planes still belongs to it. out gets factor + 1 offsets, the first and last 0 (the
-// planes are the contours).
-void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int factor, std::int32_t limit, std::int32_t* out);
+// solved near the boundary and bounded by n * limits (shrinking by limits.shrink, so that a
+// voxel deep inside one label on both planes still belongs to it). out gets factor + 1
+// offsets, the first and last 0 (the planes are the contours).
+void blendOffsets(const shared::PairEntry& e, const BlendFields& fields, int factor, InterpolationBatch::OffsetLimits limits,
+                  std::int32_t* out);
 
 // A field's value at grid pixel (x, y), kFarAway outside its window (values: the window).
 inline std::int32_t fieldValue(const shared::DistanceField& f, const std::int32_t* values, int x, int y) {
