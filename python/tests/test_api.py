@@ -274,13 +274,19 @@ def test_a_segment_surfaced_alone_is_the_one_surfaced_with_all():
     voxels = {f["name"]: f["labelled_voxels"] for f in everything.report["features"]}
     for f in alone.report["features"]:  # the same grid: the same voxels
         assert f["labelled_voxels"] == voxels[f["name"]], f["name"]
+    # Among the others, a nerve gives up the voxels of an incidental overlap (split medially,
+    # docs/overlaps.md: the right nerve's 7.4 mm3 with BRAIN and optBRAIN, 0.32 % of it), as the
+    # report says; nothing else changes.
+    given_up = {name: 0.0 for name in alone.surfaces}
+    for pair in everything.report["overlaps"]["partial"]:
+        for side in "ab":
+            if pair[side] in given_up:
+                given_up[pair[side]] += pair["given_up"][side]
+    assert given_up["Optic Nerve - Rt"] > 0.003 * alone.surfaces["Optic Nerve - Rt"].contour_volume
     for name, s in alone.surfaces.items():
         whole = everything.surfaces[name]
-        # Alone, a nerve keeps its contours' volume; among the others, the stretches it shares
-        # with BODY and optBRAIN are interfaces that volume restoration leaves where smoothing
-        # put them (volume_restoration.h): the right nerve is 0.33 % under.
-        assert s.volume == pytest.approx(s.contour_volume, rel=2e-3), name
-        assert whole.volume == pytest.approx(s.volume, rel=5e-3), name
+        assert s.volume == pytest.approx(s.contour_volume, rel=1e-3), name
+        assert whole.volume == pytest.approx(s.volume - given_up[name], rel=1e-3), name
         assert (s.components, s.genus) == (whole.components, whole.genus), name
 
 
