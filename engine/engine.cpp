@@ -19,7 +19,9 @@
 #include "geometry/grid/contour_layers.h"
 #include "geometry/grid/coverage.h"
 #include "geometry/grid/footprint.h"
+#include "geometry/grid/content_tiles.h"
 #include "geometry/interpolation/interpolated_volume.h"
+#include "geometry/interpolation/interpolation_plan.h"
 #include "geometry/overlaps/overlap_analysis.h"
 #include "geometry/overlaps/overlap_split.h"
 #include "geometry/overlaps/own_slabs.h"
@@ -241,12 +243,13 @@ Result<Surfaces> surfacesOfVolume(const SurfacingRun& run, const Volume& volume)
 // Classification of labels in one of scansurf's own device buffers, bound in place; the buffer
 // is released once classified: the CPU stages' peak memory need not hold it.
 // upperIsData: 32-bit label | clearance words (interpolation).
+// content: where the labels can be other than background (ContentTiles; empty: anywhere).
 Result<std::vector<CellCase>> classifyOwnBuffer(EngineState& impl, gpu::Buffer buffer, const Grid& grid, std::uint32_t bits,
-                                                bool upperIsData, StageClock& clock) {
+                                                bool upperIsData, const ContentTiles& content, StageClock& clock) {
   clock.begin("classification");
   SCANSURF_ASSIGN_OR_RETURN(passes::Classifier * classifier, impl.classifierPass());
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifier->runInPlace(DeviceLabelVolume{buffer.handle(), 0, bits, grid},
-                                                                                buffer.size(), upperIsData));
+                                                                                buffer.size(), upperIsData, &content));
   buffer = gpu::Buffer{};
   clock.lap("classification");
   return cells;
@@ -286,6 +289,10 @@ Result<Surfaces> interpolatedSurfaces(const SurfacingRun& run, const LabelVolume
       contours ? planeEdgeCrossings(planes, *contours, options.threads, run.targets.medial)
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
+  // Labels scan converted here from the contours lie near them (not so a caller's own volume).
+  const ContentTiles content = device && contours ? interpolatedContentTiles(contentTilesOf(planes.grid, *contours), factors,
+                                                                             kWindowMargin + 1)
+                                                  : ContentTiles{};
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Buffer words,
       gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,
@@ -295,7 +302,8 @@ Result<Surfaces> interpolatedSurfaces(const SurfacingRun& run, const LabelVolume
                                               {device ? &device->buffer : nullptr, &words}, containerLabels(run.nesting)));
   device.reset();
   clock.lap("interpolation");
-  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells, classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, clock));
+  SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
+                            classifyOwnBuffer(impl, std::move(words), fineGrid, 32, true, content, clock));
   return surfacesFromCells(run, std::move(cells), fineGrid, fine.clearance);
 }
 
@@ -305,8 +313,9 @@ Result<Surfaces> surfacesOfPlanes(const SurfacingRun& run, const LabelVolume& pl
                                   std::optional<passes::ScanConverter::DeviceLabels> device, const std::vector<int>& factors) {
   if (interpolates(factors)) return interpolatedSurfaces(run, planes, std::move(device), factors);
   if (!device) return surfacesOfVolume(run, planes);
+  const ContentTiles content = run.contours ? contentTilesOf(device->grid, *run.contours) : ContentTiles{};
   SCANSURF_ASSIGN_OR_RETURN(std::vector<CellCase> cells,
-                            classifyOwnBuffer(run.impl, std::move(device->buffer), device->grid, 16, false, run.clock));
+                            classifyOwnBuffer(run.impl, std::move(device->buffer), device->grid, 16, false, content, run.clock));
   return surfacesFromCells(run, std::move(cells), planes.grid);
 }
 

@@ -13,6 +13,9 @@ layout(std430, binding = 0) readonly buffer Labels { uint words[]; } labels;  //
 // which the host reports (records hold 16-bit labels).
 layout(std430, binding = 1) buffer Counter { uint count; uint largestLabel; } counter;
 layout(std430, binding = 2) writeonly buffer Cases { CellCase records[]; } cases;
+// With push.tiled: the tiles of cell columns the dispatch covers, one per workgroup; the others
+// lie where the volume is background (geometry/grid/content_tiles.h).
+layout(std430, binding = 3) readonly buffer Tiles { uint origins[]; } tiles;
 
 // Corners of the six tetrahedra; same order as kCellTets in engine/geometry/extraction/cell_cases.h.
 const uint kTets[24] = uint[24](0, 1, 3, 7,  0, 1, 5, 7,  0, 2, 3, 7,  0, 2, 6, 7,  0, 4, 5, 7,  0, 4, 6, 7);
@@ -39,7 +42,11 @@ uint partitionCode(uint a, uint b, uint c, uint d) {
 // labels are read once and serve the cells below and above it (a cell per invocation read all
 // eight corners, every label eight times).
 void main() {
-  const uvec2 g = gl_GlobalInvocationID.xy;
+  uvec2 g = gl_GlobalInvocationID.xy;
+  if (push.tiled != 0u) {
+    const uint t = tiles.origins[gl_WorkGroupID.x];
+    g = uvec2(t & 0xFFFFu, t >> 16) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
+  }
   if (g.x >= push.nx - 1u || g.y >= push.ny - 1u) return;
 
   uint l[8];  // corner c at (x + (c & 1), y + (c >> 1 & 1), z + (c >> 2))

@@ -29,6 +29,7 @@ struct Classifier::State {
   gpu::Owned<VkPipeline> pipeline;
   gpu::Owned<VkDescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
+  gpu::Buffer noTiles;  // bound as the tile list when every column is visited
   std::size_t batchBudget = std::size_t{64} << 20;
   int lastBatches = 0;
 };
@@ -42,16 +43,17 @@ Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) 
   auto s = std::make_unique<State>();
   s->ctx = &ctx;
   SCANSURF_ASSIGN_OR_RETURN(s->module, gpu::createShaderModule(ctx, shaders::spirv("classify.comp")));
-  SCANSURF_ASSIGN_OR_RETURN(s->setLayout, gpu::createStorageBufferSetLayout(ctx, 3, VK_SHADER_STAGE_COMPUTE_BIT));
+  SCANSURF_ASSIGN_OR_RETURN(s->setLayout, gpu::createStorageBufferSetLayout(ctx, 4, VK_SHADER_STAGE_COMPUTE_BIT));
   const VkDescriptorSetLayout setLayout = s->setLayout.get();
   SCANSURF_ASSIGN_OR_RETURN(s->layout, gpu::createPipelineLayout(ctx, std::span(&setLayout, 1), sizeof(shared::ClassifyPush),
                                                                  VK_SHADER_STAGE_COMPUTE_BIT));
   const std::uint32_t spec[] = {kGroupX, kGroupY};
   SCANSURF_ASSIGN_OR_RETURN(s->pipeline, gpu::createComputePipeline(ctx, s->layout.get(), s->module.get(), spec));
 
-  SCANSURF_ASSIGN_OR_RETURN(gpu::StorageBufferSet set, gpu::createStorageBufferSet(ctx, setLayout, 3));
+  SCANSURF_ASSIGN_OR_RETURN(gpu::StorageBufferSet set, gpu::createStorageBufferSet(ctx, setLayout, 4));
   s->pool = std::move(set.pool);
   s->set = set.set;
+  SCANSURF_ASSIGN_OR_RETURN(s->noTiles, gpu::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
   return std::unique_ptr<Classifier>(new Classifier(std::move(s)));
 }
 
@@ -65,12 +67,32 @@ struct Classifier::Source {
   VkDeviceSize size = 0;  // of `buffer` when known: batches are then bound in place
   std::uint32_t bits = 16;
   bool upperIsData = false;  // 32-bit words: the label is the lower half
+  const ContentTiles* content = nullptr;  // where labels can be other than background (none: anywhere)
 
   std::size_t layerBytes() const { return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8); }
   bool inPlace() const { return size > 0; }
 };
 
 namespace {
+
+static_assert(ContentTiles::kTile == kGroupX && ContentTiles::kTile == kGroupY, "a workgroup covers one content tile");
+
+// The tiles of cell columns whose cells in cell layers first .. first + layers - 1 may hold a
+// surface: a cell column reads the label columns x, x + 1 and y, y + 1, so a tile's cells need
+// a marked tile among the label tiles it and its neighbours at +x, +y hold, on a layer of the
+// batch. Packed x | y << 16.
+std::vector<std::uint32_t> batchTiles(const ContentTiles& content, int first, int layers) {
+  std::vector<std::uint32_t> tiles;
+  for (int ty = 0; ty < content.tilesY; ++ty)
+    for (int tx = 0; tx < content.tilesX; ++tx) {
+      bool any = false;
+      for (int k = first; k <= first + layers && !any; ++k)
+        any = content.marked(k, tx, ty) || content.marked(k, tx + 1, ty) || content.marked(k, tx, ty + 1) ||
+              content.marked(k, tx + 1, ty + 1);
+      if (any) tiles.push_back(static_cast<std::uint32_t>(tx) | static_cast<std::uint32_t>(ty) << 16);
+    }
+  return tiles;
+}
 
 // How the volume is cut into batches of cell layers that fit one storage buffer.
 struct BatchPlan {
@@ -175,9 +197,17 @@ Result<std::vector<CellCase>> Classifier::run(const DeviceLabelVolume& volume) {
   return classify(source);
 }
 
-Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData) {
+Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData,
+                                                     const ContentTiles* content) {
   SCANSURF_ASSIGN_OR_RETURN(Source source, deviceSource(volume));
   source.upperIsData = upperIsData && volume.bitsPerLabel == 32;
+  if (content && !content->empty()) {
+    const Grid& g = volume.grid;
+    if (content->layers != g.nz || content->tilesX != (g.nx + ContentTiles::kTile - 1) / ContentTiles::kTile ||
+        content->tilesY != (g.ny + ContentTiles::kTile - 1) / ContentTiles::kTile)
+      return makeError(Errc::InvalidArgument, "classification: the content tiles do not match the grid");
+    source.content = content;
+  }
   const VkDeviceSize need = volume.offset + volume.grid.voxelCount() * (volume.bitsPerLabel / 8);
   if (bufferSize < need)
     return makeError(Errc::InvalidArgument, "DeviceLabelVolume: the buffer holds " + std::to_string(bufferSize) +
@@ -187,7 +217,7 @@ Result<std::vector<CellCase>> Classifier::runInPlace(const DeviceLabelVolume& vo
 }
 
 void Classifier::recordBatch(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter,
-                             int first, int layers, std::size_t capacity, std::uint32_t labelOffset) const {
+                             int first, int layers, std::size_t capacity, std::uint32_t labelOffset, std::uint32_t tiles) const {
   const Grid& grid = source.grid;
   fillBatch(cmd, source, labels, first, layers);
   vkCmdFillBuffer(cmd, counter.handle(), 0, 8, 0);
@@ -202,10 +232,14 @@ void Classifier::recordBatch(VkCommandBuffer cmd, const Source& source, const gp
                                   static_cast<std::uint32_t>(capacity),
                                   source.bits,
                                   labelOffset,
-                                  source.upperIsData ? 1u : 0u};
+                                  source.upperIsData ? 1u : 0u,
+                                  source.content ? 1u : 0u};
   vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-  vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
-                (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, 1);  // a column of cells each
+  if (source.content)
+    vkCmdDispatch(cmd, tiles, 1, 1);  // a tile of columns each
+  else
+    vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
+                  (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, 1);  // a column of cells each
   gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
@@ -224,8 +258,9 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
   const std::size_t batchCells = static_cast<std::size_t>(grid.nx - 1) * static_cast<std::size_t>(grid.ny - 1) *
                                  static_cast<std::size_t>(plan.batchCellLayers);
   std::size_t capacity = std::clamp<std::size_t>(batchCells / 16, 4096, plan.maxRecords);
-  gpu::Buffer cases;
+  gpu::Buffer cases, tileList;
   bool casesBound = false;
+  if (!source.content) gpu::bindStorageBuffer(ctx, state_->set, 3, state_->noTiles.handle());
 
   std::vector<CellCase> result;
   state_->lastBatches = 0;
@@ -241,9 +276,26 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
       gpu::bindStorageBuffer(ctx, state_->set, 2, cases.handle());
       casesBound = true;
     }
+    std::uint32_t tileCount = 0;
+    if (source.content) {
+      const std::vector<std::uint32_t> tiles = batchTiles(*source.content, first, layers);
+      if (tiles.empty()) {  // background throughout: no surface
+        first += layers;
+        ++state_->lastBatches;
+        continue;
+      }
+      if (tileList.size() < tiles.size() * 4) {
+        SCANSURF_ASSIGN_OR_RETURN(tileList, gpu::Buffer::create(ctx, tiles.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                                gpu::MemoryDomain::Upload));
+      }
+      std::memcpy(tileList.mapped(), tiles.data(), tiles.size() * 4);
+      SCANSURF_TRY(tileList.flush());
+      gpu::bindStorageBuffer(ctx, state_->set, 3, tileList.handle());
+      tileCount = static_cast<std::uint32_t>(tiles.size());
+    }
     const std::uint32_t labelOffset = inPlace ? bindBatchInPlace(ctx, state_->set, source, first, layers) : 0;
     SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));
-    recordBatch(commands.cmd(), source, labels, counter, first, layers, capacity, labelOffset);
+    recordBatch(commands.cmd(), source, labels, counter, first, layers, capacity, labelOffset, tileCount);
     SCANSURF_TRY(commands.submitAndWait());
     SCANSURF_TRY(counter.invalidate());
     std::uint32_t counts[2] = {0, 0};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/extraction/cell_cases.h"
+#include "geometry/grid/content_tiles.h"
 #include "gpu/context.h"
 #include "scansurf/label_volume.h"
 #include "scansurf/vulkan_interop.h"
@@ -33,7 +34,11 @@ class Classifier {
   // The same with the buffer's size known (scansurf's own buffers): each batch's labels are
   // bound in place, with no copy and no batch buffer. upperIsData: 32-bit words whose upper
   // 16 bits are other data (the interpolation's words, label | clearance << 16).
-  Result<std::vector<CellCase>> runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData = false);
+  // content (geometry/grid/content_tiles.h), when given, says where the labels can be other
+  // than background: only the cells of columns near a marked tile are visited, with the same
+  // records as a visit of every cell when the marks hold.
+  Result<std::vector<CellCase>> runInPlace(const DeviceLabelVolume& volume, VkDeviceSize bufferSize, bool upperIsData = false,
+                                           const ContentTiles* content = nullptr);
 
   // Bytes of labels one batch may upload; smaller forces more batches (tests use it).
   void setBatchBudget(std::size_t bytes);
@@ -45,8 +50,9 @@ class Classifier {
  private:
   Result<std::vector<CellCase>> classify(const Source& source);
   // Records one batch's pass: its labels into place, the counter cleared, the dispatch.
+  // tiles: the batch's tiles of cell columns (none: every column).
   void recordBatch(VkCommandBuffer cmd, const Source& source, const gpu::Buffer& labels, const gpu::Buffer& counter, int first,
-                   int layers, std::size_t capacity, std::uint32_t labelOffset) const;
+                   int layers, std::size_t capacity, std::uint32_t labelOffset, std::uint32_t tiles) const;
   Result<Source> deviceSource(const DeviceLabelVolume& volume) const;
   explicit Classifier(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;

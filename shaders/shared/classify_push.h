@@ -13,8 +13,9 @@ struct ClassifyPush {
   std::uint32_t labelBits;       // 16: two labels per word; 32: one label per word
   std::uint32_t labelOffset;     // labels before the slab's first in the bound range (alignment)
   std::uint32_t upperIsData;     // 32-bit words whose upper half is other data (clearances)
+  std::uint32_t tiled;           // 1: workgroup i covers the tile of columns tiles[i] (x | y << 16)
 };
-static_assert(sizeof(ClassifyPush) == 32, "ClassifyPush must match the GLSL push-constant block");
+static_assert(sizeof(ClassifyPush) == 36, "ClassifyPush must match the GLSL push-constant block");
 }  // namespace scansurf::shared
 #else
 layout(push_constant) uniform ClassifyPush {
@@ -26,6 +27,7 @@ layout(push_constant) uniform ClassifyPush {
   uint labelBits;
   uint labelOffset;
   uint upperIsData;
+  uint tiled;
 }
 push;
 #endif

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "geometry/extraction/cell_cases.h"
+#include "geometry/grid/content_tiles.h"
 #include "gpu/gpu_test_env.h"
 #include "gpu/resources.h"
 #include "passes/classification.h"
@@ -113,6 +114,35 @@ TEST_F(ClassificationTest, DeviceLabelsInBatchesMatchReference) {
     EXPECT_GE((*classifier)->lastBatchCount(), 10);
     expectSameRecords(*gpu, ref);
   }
+}
+
+// Content tiles: blobs in a wide empty margin, and layers with nothing at all, classified in
+// place over the marked tiles only (in small batches, some of them empty): the same records as
+// every cell, and fewer visited.
+TEST_F(ClassificationTest, ContentTilesGiveTheSameRecords) {
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(classifier);
+  LabelVolume v = randomVolume(11, 70, 61, 24, 4);
+  for (int k = 0; k < v.grid.nz; ++k)
+    for (int j = 0; j < v.grid.ny; ++j)
+      for (int i = 0; i < v.grid.nx; ++i)
+        if (i < 20 || i > 45 || j < 9 || j > 38 || (k >= 8 && k < 16)) v.labels[v.grid.index(i, j, k)] = kBackground;
+  const std::vector<CellCase> ref = classifyCellsReference(v);
+  ASSERT_GT(ref.size(), 1000u);
+  const ContentTiles content = contentTilesOf(v);
+  EXPECT_LT(std::count(content.marks.begin(), content.marks.end(), 1), static_cast<long>(content.marks.size() / 4));
+  (*classifier)->setBatchBudget(static_cast<std::size_t>(70 * 61 * 2) * 4 + 4);
+  const std::size_t bytes = v.labels.size() * sizeof(Label);
+  auto buffer = gpu::Buffer::create(sharedContext(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
+  ASSERT_TRUE(buffer) << buffer.error().message;
+  std::memcpy(buffer->mapped(), v.labels.data(), bytes);
+  auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &content);
+  ASSERT_TRUE(tiled) << tiled.error().message;
+  EXPECT_GE((*classifier)->lastBatchCount(), 6);
+  expectSameRecords(*tiled, ref);
+  ContentTiles wrong = content;
+  wrong.layers += 1;
+  EXPECT_FALSE((*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &wrong));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "geometry/extraction/edge_crossings.h"
+#include "geometry/grid/content_tiles.h"
 #include "geometry/interpolation/interpolated_volume.h"
 #include "geometry/interpolation/interpolation_reference.h"
 #include "gpu/gpu_test_env.h"
@@ -105,6 +106,16 @@ TEST_F(InterpolationGpuTest, EqualsTheCpuReferenceOnRandomPartitions) {
     const std::vector<CellCase> reference = classifyCellsReference(cpu->volume);
     ASSERT_EQ(onDevice->size(), reference.size()) << "round " << round;
     EXPECT_EQ(std::memcmp(onDevice->data(), reference.data(), reference.size() * sizeof(CellCase)), 0) << "round " << round;
+    // The layers between the planes stay within the tiles the planes say, widened by a window.
+    const ContentTiles content = interpolatedContentTiles(contentTilesOf(planes), factors, kWindowMargin + 1);
+    const ContentTiles exact = contentTilesOf(cpu->volume);
+    ASSERT_EQ(exact.marks.size(), content.marks.size());
+    for (std::size_t t = 0; t < exact.marks.size(); ++t)
+      ASSERT_TRUE(!exact.marks[t] || content.marks[t]) << "round " << round << ": a label outside the content tiles";
+    auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{words->handle(), 0, 32, fineGrid}, words->size(), true, &content);
+    ASSERT_TRUE(tiled) << tiled.error().message;
+    ASSERT_EQ(tiled->size(), reference.size()) << "round " << round;
+    EXPECT_EQ(std::memcmp(tiled->data(), reference.data(), reference.size() * sizeof(CellCase)), 0) << "round " << round;
     voxels += cpu->volume.labels.size();
     labelled += static_cast<std::size_t>(
         std::count_if(cpu->volume.labels.begin(), cpu->volume.labels.end(), [](Label l) { return l != 0; }));

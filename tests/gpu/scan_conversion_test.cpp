@@ -5,6 +5,7 @@
 #include <numeric>
 #include <random>
 
+#include "geometry/grid/content_tiles.h"
 #include "geometry/overlaps/raster_rules.h"
 #include "gpu/gpu_test_env.h"
 #include "passes/classification.h"
@@ -240,6 +241,57 @@ TEST_F(ScanConversionTest, LabelsLeftOnTheDeviceMatchTheHostVolume) {
       (*classifier)
           ->runInPlace(DeviceLabelVolume{deviceOnly->buffer.handle(), 4, 16, deviceOnly->grid}, deviceOnly->buffer.size());
   EXPECT_FALSE(tooSmall);
+}
+
+// The tiles the contours say (their boxes) hold every label scan conversion draws, on the
+// layer it draws it, including contours that reach past the grid and lattice-aligned edges;
+// classifying only those tiles gives every record.
+TEST_F(ScanConversionTest, ContentTilesOfTheContoursHoldEveryLabel) {
+  std::mt19937 rng(23);
+  const Grid grid = smallGrid(96, 80, 7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  ContourSet set;
+  set.source = "tiles";
+  set.features = {Feature{"a", {}, {}}, Feature{"b", {}, {}}, Feature{"c", {}, {}}};
+  for (int s = 0; s < 7; ++s)
+    for (std::size_t f = 0; f < set.features.size(); ++f) {
+      if (unit(rng) < 0.3) continue;
+      Contour c;  // a small star somewhere, some of them over the grid's edge
+      const double x = grid.originX + (unit(rng) * 1.1 - 0.05) * grid.nx * grid.spacingX;
+      const double y = grid.originY + (unit(rng) * 1.1 - 0.05) * grid.ny * grid.spacingY;
+      for (int i = 0; i < 11; ++i) {
+        const double a = 2 * M_PI * i / 11, r = (1 + 3 * unit(rng)) * grid.spacingX;
+        c.points.push_back({x + r * std::cos(a), y + r * std::sin(a)});
+      }
+      if (s == 3 && f == 0)  // a square on pixel centres
+        c.points = {{grid.originX + 10 * grid.spacingX, grid.originY + 16 * grid.spacingY},
+                    {grid.originX + 24 * grid.spacingX, grid.originY + 16 * grid.spacingY},
+                    {grid.originX + 24 * grid.spacingX, grid.originY + 40 * grid.spacingY},
+                    {grid.originX + 10 * grid.spacingX, grid.originY + 40 * grid.spacingY}};
+      set.features[f].slices.push_back({grid.layerZ[static_cast<std::size_t>(s + 1)], {c}});
+    }
+  auto converter = passes::ScanConverter::create(sharedContext());
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(converter && classifier);
+  LabelVolume host;
+  auto device = (*converter)->runOnDevice(set, grid, {0, 1, 2}, &host);
+  ASSERT_TRUE(device) << device.error().message;
+  const ContentTiles exact = contentTilesOf(host), content = contentTilesOf(grid, set);
+  ASSERT_EQ(exact.marks.size(), content.marks.size());
+  std::size_t marked = 0, drawn = 0;
+  for (std::size_t t = 0; t < exact.marks.size(); ++t) {
+    EXPECT_TRUE(!exact.marks[t] || content.marks[t]) << "tile " << t << " holds a label the contours did not mark";
+    marked += content.marks[t], drawn += exact.marks[t];
+  }
+  EXPECT_GT(drawn, 10u);
+  EXPECT_LT(marked, content.marks.size() / 2);  // most of the volume is skipped
+  auto all = (*classifier)->run(host);
+  auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid}, device->buffer.size(),
+                                         false, &content);
+  ASSERT_TRUE(all && tiled) << (tiled ? "" : tiled.error().message);
+  ASSERT_FALSE(all->empty());
+  ASSERT_EQ(tiled->size(), all->size());
+  EXPECT_EQ(std::memcmp(tiled->data(), all->data(), all->size() * sizeof(CellCase)), 0);
 }
 
 }  // namespace
