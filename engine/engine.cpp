@@ -16,10 +16,10 @@
 #include "geometry/extraction/assembly.h"
 #include "geometry/extraction/edge_crossings.h"
 #include "geometry/extraction/feature_surfaces.h"
+#include "geometry/grid/content_tiles.h"
 #include "geometry/grid/contour_layers.h"
 #include "geometry/grid/coverage.h"
 #include "geometry/grid/footprint.h"
-#include "geometry/grid/content_tiles.h"
 #include "geometry/interpolation/interpolated_volume.h"
 #include "geometry/interpolation/interpolation_plan.h"
 #include "geometry/overlaps/overlap_analysis.h"
@@ -290,9 +290,9 @@ Result<Surfaces> interpolatedSurfaces(const SurfacingRun& run, const LabelVolume
                : std::vector<std::uint16_t>(planes.labels.size(), static_cast<std::uint16_t>(kMidEdge | (kMidEdge << 8)));
   const Grid fineGrid = interpolatedGrid(planes.grid, factors);
   // Labels scan converted here from the contours lie near them (not so a caller's own volume).
-  const ContentTiles content = device && contours ? interpolatedContentTiles(contentTilesOf(planes.grid, *contours), factors,
-                                                                             kWindowMargin + 1)
-                                                  : ContentTiles{};
+  const ContentTiles content = device && contours
+                                   ? interpolatedContentTiles(contentTilesOf(planes.grid, *contours), factors, kWindowMargin + 1)
+                                   : ContentTiles{};
   SCANSURF_ASSIGN_OR_RETURN(
       gpu::Buffer words,
       gpu::Buffer::create(*impl.context, fineGrid.voxelCount() * 4,

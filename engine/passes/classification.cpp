@@ -53,7 +53,8 @@ Result<std::unique_ptr<Classifier>> Classifier::create(const gpu::Context& ctx) 
   SCANSURF_ASSIGN_OR_RETURN(gpu::StorageBufferSet set, gpu::createStorageBufferSet(ctx, setLayout, 4));
   s->pool = std::move(set.pool);
   s->set = set.set;
-  SCANSURF_ASSIGN_OR_RETURN(s->noTiles, gpu::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
+  SCANSURF_ASSIGN_OR_RETURN(s->noTiles,
+                            gpu::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
   return std::unique_ptr<Classifier>(new Classifier(std::move(s)));
 }
 
@@ -66,7 +67,7 @@ struct Classifier::Source {
   VkDeviceSize offset = 0;
   VkDeviceSize size = 0;  // of `buffer` when known: batches are then bound in place
   std::uint32_t bits = 16;
-  bool upperIsData = false;  // 32-bit words: the label is the lower half
+  bool upperIsData = false;               // 32-bit words: the label is the lower half
   const ContentTiles* content = nullptr;  // where labels can be other than background (none: anywhere)
 
   std::size_t layerBytes() const { return static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny) * (bits / 8); }
@@ -92,6 +93,22 @@ std::vector<std::uint32_t> batchTiles(const ContentTiles& content, int first, in
       if (any) tiles.push_back(static_cast<std::uint32_t>(tx) | static_cast<std::uint32_t>(ty) << 16);
     }
   return tiles;
+}
+
+// The batch's tiles (batchTiles) into `list` (grown when short), bound as the tile list;
+// returns how many (0: nothing to visit, nothing bound).
+Result<std::uint32_t> bindBatchTiles(const gpu::Context& ctx, VkDescriptorSet set, const ContentTiles& content, int first,
+                                     int layers, gpu::Buffer& list) {
+  const std::vector<std::uint32_t> tiles = batchTiles(content, first, layers);
+  if (tiles.empty()) return 0u;
+  if (list.size() < tiles.size() * 4) {
+    SCANSURF_ASSIGN_OR_RETURN(
+        list, gpu::Buffer::create(ctx, tiles.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload));
+  }
+  std::memcpy(list.mapped(), tiles.data(), tiles.size() * 4);
+  SCANSURF_TRY(list.flush());
+  gpu::bindStorageBuffer(ctx, set, 3, list.handle());
+  return static_cast<std::uint32_t>(tiles.size());
 }
 
 // How the volume is cut into batches of cell layers that fit one storage buffer.
@@ -278,20 +295,12 @@ Result<std::vector<CellCase>> Classifier::classify(const Source& source) {
     }
     std::uint32_t tileCount = 0;
     if (source.content) {
-      const std::vector<std::uint32_t> tiles = batchTiles(*source.content, first, layers);
-      if (tiles.empty()) {  // background throughout: no surface
+      SCANSURF_ASSIGN_OR_RETURN(tileCount, bindBatchTiles(ctx, state_->set, *source.content, first, layers, tileList));
+      if (tileCount == 0) {  // background throughout: no surface
         first += layers;
         ++state_->lastBatches;
         continue;
       }
-      if (tileList.size() < tiles.size() * 4) {
-        SCANSURF_ASSIGN_OR_RETURN(tileList, gpu::Buffer::create(ctx, tiles.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                                gpu::MemoryDomain::Upload));
-      }
-      std::memcpy(tileList.mapped(), tiles.data(), tiles.size() * 4);
-      SCANSURF_TRY(tileList.flush());
-      gpu::bindStorageBuffer(ctx, state_->set, 3, tileList.handle());
-      tileCount = static_cast<std::uint32_t>(tiles.size());
     }
     const std::uint32_t labelOffset = inPlace ? bindBatchInPlace(ctx, state_->set, source, first, layers) : 0;
     SCANSURF_ASSIGN_OR_RETURN(gpu::OneShotCommands commands, gpu::OneShotCommands::begin(ctx));

@@ -286,8 +286,9 @@ TEST_F(ScanConversionTest, ContentTilesOfTheContoursHoldEveryLabel) {
   EXPECT_GT(drawn, 10u);
   EXPECT_LT(marked, content.marks.size() / 2);  // most of the volume is skipped
   auto all = (*classifier)->run(host);
-  auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid}, device->buffer.size(),
-                                         false, &content);
+  auto tiled =
+      (*classifier)
+          ->runInPlace(DeviceLabelVolume{device->buffer.handle(), 0, 16, device->grid}, device->buffer.size(), false, &content);
   ASSERT_TRUE(all && tiled) << (tiled ? "" : tiled.error().message);
   ASSERT_FALSE(all->empty());
   ASSERT_EQ(tiled->size(), all->size());

@@ -17,7 +17,8 @@ ContentTiles emptyTiles(int nx, int ny, int layers) {
 }
 
 std::uint8_t* layerMarks(ContentTiles& t, int layer) {
-  return t.marks.data() + static_cast<std::size_t>(layer) * static_cast<std::size_t>(t.tilesX) * static_cast<std::size_t>(t.tilesY);
+  return t.marks.data() +
+         static_cast<std::size_t>(layer) * static_cast<std::size_t>(t.tilesX) * static_cast<std::size_t>(t.tilesY);
 }
 
 // Marks the tiles of layer `into` that hold a marked tile of `from`'s layer, widened by `reach`
@@ -68,7 +69,8 @@ ContentTiles contentTilesOf(const LabelVolume& volume) {
     std::uint8_t* marks = layerMarks(t, k);
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i)
-        if (volume.labels[g.index(i, j, k)] != kBackground) marks[(j / ContentTiles::kTile) * t.tilesX + i / ContentTiles::kTile] = 1;
+        if (volume.labels[g.index(i, j, k)] != kBackground)
+          marks[(j / ContentTiles::kTile) * t.tilesX + i / ContentTiles::kTile] = 1;
   }
   return t;
 }

@@ -128,7 +128,7 @@ struct InterpolationBatch {
     std::int32_t shrink = 0, grow = 0;
   };
   OffsetLimits blendLimit;
-  std::size_t layerInts = 0;    // ints of the layer table (PairEntry::layerTable)
+  std::size_t layerInts = 0;  // ints of the layer table (PairEntry::layerTable)
   std::size_t deviceBytes(const Grid& grid) const;
 };
 
