@@ -331,3 +331,50 @@ def test_a_self_crossing_spiral_keeps_its_even_odd_volume():
     s = scansurf.build(scansurf.read(model)).surfaces["object 1"]
     assert s.volume == pytest.approx(s.contour_volume, rel=1e-2)
     assert s.closed and s.components == 1
+
+
+def write_reconstruct_series(folder, traces, sections, thickness=0.05):
+    """A Reconstruct series: traces[name] = {section: [(x, y), ...]} in microns."""
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "cells.ser").write_text(
+        '<?xml version="1.0"?>\n<Series index="1" units="microns" defaultThickness="%g" zMidSection="false">\n</Series>\n'
+        % thickness)
+    for s in range(1, sections + 1):
+        contours = "".join(
+            '<Contour name="%s" hidden="false" closed="true" border="1 0 0" fill="1 0 0" mode="9"\n points="%s"/>\n'
+            % (name, ", ".join("%.5f %.5f" % p for p in by_section[s]))
+            for name, by_section in traces.items() if s in by_section)
+        (folder / ("cells.%d" % s)).write_text(
+            '<?xml version="1.0"?>\n<Section index="%d" thickness="%g" alignLocked="true">\n'
+            '<Transform dim="0" xcoef=" 0 1 0 0 0 0" ycoef=" 0 0 1 0 0 0">\n%s</Transform>\n</Section>\n'
+            % (s, thickness, contours))
+    return folder / "cells.ser"
+
+
+def test_a_spine_surfaced_alone_is_the_one_surfaced_with_its_siblings(tmp_path):
+    # A dendrite over 30 sections with four spines on its side whose heads reach into the
+    # shaft's outline (0.005 to 0.1 um), and a second dendrite beside it, as a Reconstruct
+    # series: a spine's surface is the same alone, with its dendrite and siblings ('d1*'), and
+    # with everything, less what an incidental overlap would give up (the report's given_up;
+    # these overlaps are judged real and kept in layers).
+    def circle(cx, cy, r, n=48):
+        return [(cx + r * np.cos(a), cy + r * np.sin(a)) for a in np.linspace(0, 2 * np.pi, n, endpoint=False)]
+    traces = {"d1": {s: circle(2.0, 2.0, 0.3) for s in range(1, 31)},
+              "d2": {s: circle(3.2, 2.0, 0.25) for s in range(1, 31)}}
+    for i, (first, angle) in enumerate([(4, 0.3), (10, 2.0), (17, 3.6), (23, 5.0)]):
+        depth = (0.005, 0.02, 0.05, 0.1)[i]  # how far the head reaches into the shaft's outline
+        cx, cy = 2.0 + (0.4 - depth) * np.cos(angle), 2.0 + (0.4 - depth) * np.sin(angle)
+        traces["d1sp%02d" % (i + 1)] = {s: circle(cx, cy, 0.1 + 0.015 * (s - first), 32) for s in range(first, first + 4)}
+    series = write_reconstruct_series(tmp_path / "series", traces, 30)
+    everything = scansurf.build(scansurf.read(series))
+    group = scansurf.build(scansurf.read(series, objects=["d1*"]))
+    for spine in ("d1sp01", "d1sp02", "d1sp03", "d1sp04"):
+        alone = scansurf.build(scansurf.read(series, objects=[spine]))
+        s = alone.surfaces[spine]
+        assert s.closed and s.volume == pytest.approx(s.contour_volume, rel=1e-2), spine
+        for run in (group, everything):
+            given_up = sum(pair["given_up"][side] for pair in run.report["overlaps"]["partial"]
+                           for side in "ab" if pair[side] == spine)
+            other = run.surfaces[spine]
+            assert other.volume == pytest.approx(s.volume - given_up, rel=1e-3), spine
+            assert (other.components, other.genus, other.closed) == (s.components, s.genus, True), spine
