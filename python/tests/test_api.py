@@ -378,3 +378,25 @@ def test_a_spine_surfaced_alone_is_the_one_surfaced_with_its_siblings(tmp_path):
             other = run.surfaces[spine]
             assert other.volume == pytest.approx(s.volume - given_up, rel=1e-3), spine
             assert (other.components, other.genus, other.closed) == (s.components, s.genus, True), spine
+
+
+def test_an_outline_drawn_on_two_neighbours_outlines_keeps_its_volume():
+    # A quarter ring drawn on its neighbours: its inner edge is the disc A's own points, its
+    # lower edge the top edge of the rectangle B (the shared head-and-neck set's optic
+    # structures lie on the orbits' outlines so). Each keeps its contours' volume, in one
+    # piece, and the ring shares its surface with both.
+    arc = [(10 * np.cos(a), 10 * np.sin(a)) for a in np.linspace(0, np.pi / 2, 17)]
+    disc = [(10 * np.cos(a), 10 * np.sin(a)) for a in np.linspace(0, 2 * np.pi, 64, endpoint=False)]
+    ring = arc[::-1] + [(16 * np.cos(a), 16 * np.sin(a)) for a in np.linspace(0, np.pi / 2, 25)]
+    rectangle = [(10, 0), (10, -6), (16, -6), (16, 0)]
+    planes = np.arange(0, 12.1, 3.0)
+    cs = scansurf.contours({"A": {z: [np.array(disc)] for z in planes},
+                            "B": {z: [np.array(rectangle, float)] for z in planes},
+                            "ring": {z: [np.array(ring)] for z in planes}})
+    for options in ({}, {"voxel_size": 0.5}, {"voxel_size": 3.0}):
+        built = scansurf.build(cs, **options)
+        for name, s in built.surfaces.items():
+            assert s.volume == pytest.approx(s.contour_volume, rel=1e-2), (name, options)
+            assert (s.components, s.genus, s.closed) == (1, 0, True), (name, options)
+        shares = {f["name"]: f["shares_surface_with"] for f in built.report["features"]}
+        assert sorted(shares["ring"]) == ["A", "B"], options
