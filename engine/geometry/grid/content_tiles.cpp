@@ -86,11 +86,15 @@ ContentTiles interpolatedContentTiles(const ContentTiles& planes, const std::vec
     const std::uint8_t* a = planes.marks.data() + static_cast<std::size_t>(k) * plane;
     markWidened(t, a, fine, 0);
     if (static_cast<std::size_t>(k) >= factors.size()) break;
-    // A structure's window on A or B spans its pixels on their neighbours too.
-    for (int m = 1; m < factors[static_cast<std::size_t>(k)]; ++m)
+    const int n = factors[static_cast<std::size_t>(k)];
+    if (n > 1) {
+      // A structure's window on A or B spans its pixels on their neighbours too.
       for (int j = std::max(0, k - 1); j <= std::min(planes.layers - 1, k + 2); ++j)
-        markWidened(t, planes.marks.data() + static_cast<std::size_t>(j) * plane, fine + m, widen);
-    fine += factors[static_cast<std::size_t>(k)];
+        markWidened(t, planes.marks.data() + static_cast<std::size_t>(j) * plane, fine + 1, widen);
+      const std::uint8_t* between = layerMarks(t, fine + 1);
+      for (int m = 2; m < n; ++m) std::copy(between, between + plane, layerMarks(t, fine + m));
+    }
+    fine += n;
   }
   return t;
 }
