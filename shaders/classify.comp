@@ -43,8 +43,10 @@ uint partitionCode(uint a, uint b, uint c, uint d) {
 // eight corners, every label eight times).
 void main() {
   uvec2 g = gl_GlobalInvocationID.xy;
-  if (push.tiled != 0u) {
-    const uint t = tiles.origins[gl_WorkGroupID.x];
+  if (push.tiled != 0u) {  // rows of kTileRow workgroups: a dispatch's width is limited
+    const uint i = gl_WorkGroupID.x + gl_WorkGroupID.y * kTileRow;
+    if (i >= push.tileCount) return;
+    const uint t = tiles.origins[i];
     g = uvec2(t & 0xFFFFu, t >> 16) * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy;
   }
   if (g.x >= push.nx - 1u || g.y >= push.ny - 1u) return;

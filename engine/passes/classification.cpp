@@ -250,10 +250,11 @@ void Classifier::recordBatch(VkCommandBuffer cmd, const Source& source, const gp
                                   source.bits,
                                   labelOffset,
                                   source.upperIsData ? 1u : 0u,
-                                  source.content ? 1u : 0u};
+                                  source.content ? 1u : 0u,
+                                  tiles};
   vkCmdPushConstants(cmd, state_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-  if (source.content)
-    vkCmdDispatch(cmd, tiles, 1, 1);  // a tile of columns each
+  if (source.content)  // a tile of columns each, in rows of shared::kTileRow
+    vkCmdDispatch(cmd, std::min(tiles, shared::kTileRow), (tiles + shared::kTileRow - 1) / shared::kTileRow, 1);
   else
     vkCmdDispatch(cmd, (static_cast<std::uint32_t>(grid.nx - 1) + kGroupX - 1) / kGroupX,
                   (static_cast<std::uint32_t>(grid.ny - 1) + kGroupY - 1) / kGroupY, 1);  // a column of cells each

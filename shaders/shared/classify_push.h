@@ -13,9 +13,11 @@ struct ClassifyPush {
   std::uint32_t labelBits;       // 16: two labels per word; 32: one label per word
   std::uint32_t labelOffset;     // labels before the slab's first in the bound range (alignment)
   std::uint32_t upperIsData;     // 32-bit words whose upper half is other data (clearances)
-  std::uint32_t tiled;           // 1: workgroup i covers the tile of columns tiles[i] (x | y << 16)
+  std::uint32_t tiled;           // 1: workgroup x + y * kTileRow covers the tile tiles[that] (x | y << 16)
+  std::uint32_t tileCount;       // tiles listed
 };
-static_assert(sizeof(ClassifyPush) == 36, "ClassifyPush must match the GLSL push-constant block");
+inline constexpr std::uint32_t kTileRow = 16384;  // workgroups per row of a tiled dispatch
+static_assert(sizeof(ClassifyPush) == 40, "ClassifyPush must match the GLSL push-constant block");
 }  // namespace scansurf::shared
 #else
 layout(push_constant) uniform ClassifyPush {
@@ -28,8 +30,10 @@ layout(push_constant) uniform ClassifyPush {
   uint labelOffset;
   uint upperIsData;
   uint tiled;
+  uint tileCount;
 }
 push;
+const uint kTileRow = 16384u;
 #endif
 
 #endif

@@ -1,4 +1,5 @@
 // Tetrahedral classification on the GPU against the CPU reference: identical records.
+#include <cmath>
 #include <cstring>
 #include <random>
 
@@ -143,6 +144,33 @@ TEST_F(ClassificationTest, ContentTilesGiveTheSameRecords) {
   ContentTiles wrong = content;
   wrong.layers += 1;
   EXPECT_FALSE((*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &wrong));
+}
+
+// More tiles than one row of a dispatch holds (16384): 1030 x 1030 columns, 129 x 129 tiles,
+// every one marked; rings of labels so that every row of tiles holds surface.
+TEST_F(ClassificationTest, ContentTilesBeyondOneDispatchRow) {
+  auto classifier = passes::Classifier::create(sharedContext());
+  ASSERT_TRUE(classifier);
+  LabelVolume v;
+  v.grid.nx = v.grid.ny = 1030;
+  v.grid.nz = 3;
+  v.grid.layerZ = {0, 1, 2};
+  v.labels.assign(v.grid.voxelCount(), kBackground);
+  for (int j = 0; j < v.grid.ny; ++j)
+    for (int i = 0; i < v.grid.nx; ++i) {
+      const int r = static_cast<int>(std::hypot(i - 515.0, j - 515.0));
+      v.labels[v.grid.index(i, j, 1)] = static_cast<Label>(r < 700 ? 1 + r / 37 % 3 : 0);
+    }
+  ContentTiles content = contentTilesOf(v);
+  std::fill(content.marks.begin(), content.marks.end(), std::uint8_t{1});
+  ASSERT_GT(content.tilesX * content.tilesY, 16384);
+  const std::size_t bytes = v.labels.size() * sizeof(Label);
+  auto buffer = gpu::Buffer::create(sharedContext(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
+  ASSERT_TRUE(buffer) << buffer.error().message;
+  std::memcpy(buffer->mapped(), v.labels.data(), bytes);
+  auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &content);
+  ASSERT_TRUE(tiled) << tiled.error().message;
+  expectSameRecords(*tiled, classifyCellsReference(v));
 }
 
 }  // namespace
