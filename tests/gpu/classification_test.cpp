@@ -59,6 +59,15 @@ void expectSameRecords(const std::vector<CellCase>& gpu, const std::vector<CellC
 
 using ClassificationTest = GpuTest;
 
+// v's labels (16-bit) in a device buffer of their own, classified in place over content's tiles.
+Result<std::vector<CellCase>> classifyTiled(passes::Classifier& classifier, const LabelVolume& v, const ContentTiles& content) {
+  const std::size_t bytes = v.labels.size() * sizeof(Label);
+  SCANSURF_ASSIGN_OR_RETURN(gpu::Buffer buffer, gpu::Buffer::create(sharedContext(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                                    gpu::MemoryDomain::Upload));
+  std::memcpy(buffer.mapped(), v.labels.data(), bytes);
+  return classifier.runInPlace(DeviceLabelVolume{buffer.handle(), 0, 16, v.grid}, buffer.size(), false, &content);
+}
+
 TEST_F(ClassificationTest, RandomVolumesMatchReference) {
   auto classifier = passes::Classifier::create(sharedContext());
   ASSERT_TRUE(classifier) << classifier.error().message;
@@ -133,17 +142,13 @@ TEST_F(ClassificationTest, ContentTilesGiveTheSameRecords) {
   const ContentTiles content = contentTilesOf(v);
   EXPECT_LT(std::count(content.marks.begin(), content.marks.end(), 1), static_cast<long>(content.marks.size() / 4));
   (*classifier)->setBatchBudget(static_cast<std::size_t>(70 * 61 * 2) * 4 + 4);
-  const std::size_t bytes = v.labels.size() * sizeof(Label);
-  auto buffer = gpu::Buffer::create(sharedContext(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
-  ASSERT_TRUE(buffer) << buffer.error().message;
-  std::memcpy(buffer->mapped(), v.labels.data(), bytes);
-  auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &content);
+  auto tiled = classifyTiled(**classifier, v, content);
   ASSERT_TRUE(tiled) << tiled.error().message;
   EXPECT_GE((*classifier)->lastBatchCount(), 6);
   expectSameRecords(*tiled, ref);
   ContentTiles wrong = content;
   wrong.layers += 1;
-  EXPECT_FALSE((*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &wrong));
+  EXPECT_FALSE(classifyTiled(**classifier, v, wrong));
 }
 
 // More tiles than one row of a dispatch holds (16384): 1030 x 1030 columns, 129 x 129 tiles,
@@ -164,11 +169,7 @@ TEST_F(ClassificationTest, ContentTilesBeyondOneDispatchRow) {
   ContentTiles content = contentTilesOf(v);
   std::fill(content.marks.begin(), content.marks.end(), std::uint8_t{1});
   ASSERT_GT(content.tilesX * content.tilesY, 16384);
-  const std::size_t bytes = v.labels.size() * sizeof(Label);
-  auto buffer = gpu::Buffer::create(sharedContext(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryDomain::Upload);
-  ASSERT_TRUE(buffer) << buffer.error().message;
-  std::memcpy(buffer->mapped(), v.labels.data(), bytes);
-  auto tiled = (*classifier)->runInPlace(DeviceLabelVolume{buffer->handle(), 0, 16, v.grid}, buffer->size(), false, &content);
+  auto tiled = classifyTiled(**classifier, v, content);
   ASSERT_TRUE(tiled) << tiled.error().message;
   expectSameRecords(*tiled, classifyCellsReference(v));
 }
