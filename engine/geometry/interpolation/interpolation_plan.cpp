@@ -383,7 +383,7 @@ InterpolationBatch planInterpolationBatch(const LabelVolume& volume, const Plane
   batch.planes = planes + batch.haloBefore + batch.haloAfter;
   batch.tilesX = (volume.grid.nx + kTileSize - 1) / kTileSize;
   batch.tilesY = (volume.grid.ny + kTileSize - 1) / kTileSize;
-  batch.blendLimit = {deepDistance(volume.grid) * 3 / 4, deepDistance(volume.grid) * 4};
+  batch.blendLimits = {deepDistance(volume.grid) * 3 / 4, deepDistance(volume.grid) * 4};
   BatchPlanner planner(volume, census, containers, batch);
   planner.addFields();
   for (int p = batch.haloBefore; p + 1 < batch.planes - batch.haloAfter; ++p)
@@ -560,7 +560,7 @@ std::vector<std::int32_t> buildLayerTable(const InterpolationBatch& batch, const
       }
       const InterpolationBatch::BlendedEntry& ref = batch.blendedEntries[i - caps];
       const shared::PairEntry& e = batch.entries[ref.entry];
-      blendOffsets(e, blendFields(batch, e, fieldValues), ref.factor, batch.blendLimit, table.data() + ref.table);
+      blendOffsets(e, blendFields(batch, e, fieldValues), ref.factor, batch.blendLimits, table.data() + ref.table);
     }
   });
   return table;

@@ -127,7 +127,7 @@ struct InterpolationBatch {
   struct OffsetLimits {
     std::int32_t shrink = 0, grow = 0;
   };
-  OffsetLimits blendLimit;
+  OffsetLimits blendLimits;
   std::size_t layerInts = 0;  // ints of the layer table (PairEntry::layerTable)
   std::size_t deviceBytes(const Grid& grid) const;
 };
