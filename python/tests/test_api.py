@@ -333,6 +333,17 @@ def test_a_self_crossing_spiral_keeps_its_even_odd_volume():
     assert s.closed and s.components == 1
 
 
+def test_a_spiral_crossing_itself_comes_out_closed_at_the_default_grid():
+    # Two self-crossing spirals, 8 and 17 points: simplification's patches of one label once
+    # each joined the same two shared vertices, leaving an edge with four triangles.
+    def spiral(points):
+        return [(2.0 * 1.6 ** (i / 4) * np.cos(1.45 * i), 2.0 * 1.6 ** (i / 4) * np.sin(1.45 * i)) for i in range(points)]
+    cs = scansurf.contours({"spiral": {0.0: [spiral(8)], 9.4: [spiral(17)]}})
+    s = scansurf.build(cs).surfaces["spiral"]
+    assert s.closed
+    assert s.volume == pytest.approx(s.contour_volume, rel=5e-2)
+
+
 def write_reconstruct_series(folder, traces, sections, thickness=0.05):
     """A Reconstruct series: traces[name] = {section: [(x, y), ...]} in microns."""
     folder.mkdir(parents=True, exist_ok=True)

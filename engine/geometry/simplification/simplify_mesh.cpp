@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 
 #include "core/parallel.h"
@@ -37,7 +38,8 @@ struct Patch {
 // A patch's outcome: its triangles (mesh vertex ids), or empty when it stays as it was.
 struct PatchResult {
   std::vector<std::uint32_t> triangles;
-  std::vector<char> changed;  // per triangle: not one of the patch's as it was
+  std::vector<char> changed;         // per triangle: not one of the patch's as it was
+  std::vector<std::uint64_t> joins;  // edges between two shared vertices that it did not have (a << 32 | b, a < b)
   bool refused = false;
 };
 
@@ -178,6 +180,33 @@ LocalPatch localPatch(const PatchContext& ctx, std::span<const std::uint32_t> tr
   return p;
 }
 
+// The sorted edges between two shared vertices (a << 32 | b, a < b) of triangles (mesh ids).
+void appendSharedEdges(const PatchContext& ctx, std::span<const std::uint32_t> triangles, std::vector<std::uint64_t>& edges) {
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+    for (int e = 0; e < 3; ++e) {
+      std::uint32_t a = triangles[t + e], b = triangles[t + (e + 1) % 3];
+      if (!ctx.shared[a] || !ctx.shared[b]) continue;
+      if (a > b) std::swap(a, b);
+      edges.push_back(std::uint64_t{a} << 32 | b);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+}
+
+// The edges between two shared vertices that a patch's result has and its triangles had not:
+// the only ones another patch can also use (every other one lies inside the patch or on its
+// unchanged border).
+std::vector<std::uint64_t> newSharedEdges(const PatchContext& ctx, std::span<const std::uint32_t> tris,
+                                          const std::vector<std::uint32_t>& after) {
+  std::vector<std::uint32_t> before;
+  for (std::uint32_t t : tris)
+    for (int c = 0; c < 3; ++c) before.push_back(ctx.mesh.triangles[3 * std::size_t{t} + c]);
+  std::vector<std::uint64_t> had, has, joins;
+  appendSharedEdges(ctx, before, had), appendSharedEdges(ctx, after, has);
+  std::set_difference(has.begin(), has.end(), had.begin(), had.end(), std::back_inserter(joins));
+  return joins;
+}
+
 // Simplifies one patch: vertices on contour planes or shared with another patch stay; empty
 // triangles when nothing changed or a check refused the result.
 PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t> tris, LocalIds& local) {
@@ -205,6 +234,7 @@ PatchResult simplifyPatch(const PatchContext& ctx, std::span<const std::uint32_t
   }
   for (std::uint32_t& v : after) v = p.vertices[v];
   result.triangles = std::move(after);
+  result.joins = newSharedEdges(ctx, tris, result.triangles);
   return result;
 }
 
@@ -257,9 +287,49 @@ Candidate candidateMesh(const MultiLabelMesh& mesh, const std::vector<std::uint3
   return c;
 }
 
+// The kept patches that joined anew an edge (PatchResult::joins) that a triangle of another
+// patch bounding one of the same labels also uses: that label's surface would have more than
+// two triangles on the edge. Only such an edge can: every other one lies inside one patch or on
+// its unchanged border.
+std::vector<std::uint32_t> patchesOverusingJoins(const Candidate& c, const std::vector<Patch>& patches,
+                                                 const std::vector<PatchResult>& results, const std::vector<char>& kept,
+                                                 std::size_t vertexCount) {
+  struct Join {
+    std::uint32_t a, b, patch;
+  };
+  std::vector<Join> joins;
+  for (std::uint32_t i = 0; i < results.size(); ++i)
+    if (kept[i])
+      for (std::uint64_t e : results[i].joins)
+        joins.push_back({static_cast<std::uint32_t>(e >> 32), static_cast<std::uint32_t>(e), i});
+  if (joins.empty()) return {};
+  std::sort(joins.begin(), joins.end(), [](const Join& x, const Join& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+  std::vector<std::uint32_t> first(vertexCount + 1, 0);  // joins[first[a], first[a + 1]) start at a
+  for (const Join& j : joins) ++first[j.a + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<char> overusing(patches.size(), 0);
+  for (std::uint32_t t = 0; t < c.patchOf.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      std::uint32_t a = c.triangles[3 * std::size_t{t} + e], b = c.triangles[3 * std::size_t{t} + (e + 1) % 3];
+      if (a > b) std::swap(a, b);
+      for (std::uint32_t k = first[a]; k < first[a + 1]; ++k) {
+        const Join& j = joins[k];
+        const std::uint64_t pair = patches[j.patch].key;
+        const Label l0 = pair & 0xffff, l1 = pair >> 16 & 0xffff, t0 = c.labels[2 * std::size_t{t}],
+                    t1 = c.labels[2 * std::size_t{t} + 1];
+        if (j.b == b && j.patch != c.patchOf[t] && (t0 == l0 || t0 == l1 || t1 == l0 || t1 == l1)) overusing[j.patch] = 1;
+      }
+    }
+  std::vector<std::uint32_t> list;
+  for (std::uint32_t i = 0; i < overusing.size(); ++i)
+    if (overusing[i]) list.push_back(i);
+  return list;
+}
+
 // Drops the kept patches whose new triangles cross another triangle (both patches, when both
-// are new), until none does; returns how many were dropped. After the first round only the
-// triangles put back need testing, against the new ones: every other pair was tested as it is.
+// are new) or that overuse an edge they joined (patchesOverusingJoins), until none does;
+// returns how many were dropped. After the first round only the triangles put back need the
+// crossing test, against the new ones: every other pair was tested as it is.
 std::size_t dropCrossingPatches(const MultiLabelMesh& mesh, const std::vector<std::uint32_t>& order,
                                 const std::vector<Patch>& patches, const std::vector<PatchResult>& results,
                                 std::vector<char>& kept, Candidate& candidate, double cell, int threads) {
@@ -270,13 +340,14 @@ std::size_t dropCrossingPatches(const MultiLabelMesh& mesh, const std::vector<st
     std::vector<char> query = candidate.changed;
     if (!first)
       for (std::size_t t = 0; t < query.size(); ++t) query[t] = putBack[candidate.patchOf[t]];
-    const auto crossings = crossingPairs(mesh.positions, candidate.triangles, query, candidate.changed, cell, threads);
-    if (crossings.empty()) return dropped;
-    putBack.assign(patches.size(), 0);
-    for (const auto& [a, b] : crossings)
+    std::vector<std::uint32_t> faulty = patchesOverusingJoins(candidate, patches, results, kept, mesh.vertexCount());
+    for (const auto& [a, b] : crossingPairs(mesh.positions, candidate.triangles, query, candidate.changed, cell, threads))
       for (std::uint32_t t : {a, b})
-        if (candidate.changed[t] && kept[candidate.patchOf[t]])
-          kept[candidate.patchOf[t]] = 0, putBack[candidate.patchOf[t]] = 1, ++dropped;
+        if (candidate.changed[t]) faulty.push_back(candidate.patchOf[t]);
+    if (faulty.empty()) return dropped;
+    putBack.assign(patches.size(), 0);
+    for (std::uint32_t i : faulty)
+      if (kept[i]) kept[i] = 0, putBack[i] = 1, ++dropped;
   }
 }
 

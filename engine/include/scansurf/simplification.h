@@ -35,7 +35,8 @@ struct SimplificationReport {
   std::size_t patches = 0;                 // one label pair in one tile between two cuts (contour planes, tier bounds)
   // Patches whose simplified triangles failed a check and were put back as smoothed: by the
   // patch's own checks (topology, border, cross-sections, turned triangles), then by the exact
-  // crossing test against every triangle near them.
+  // crossing test against every triangle near them, or for sharing an edge with more than one
+  // other triangle of a label (another patch joined the same two vertices).
   std::size_t refused = 0, crossing = 0;
 };
 
