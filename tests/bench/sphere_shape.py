@@ -3,7 +3,8 @@
 apart (256 points per contour), surfaced at 1 mm pixels with scansurf's defaults plus any flags
 given; prints the faces, the area-weighted mean and 95th percentile of the angle between each
 face's normal and the true sphere's at its centroid, the smallest and 5th-percentile angle, and
-the vertices' mean and largest distance to the true sphere. --gap G and --pixel P (before the
+the vertices' mean and largest distance to the true sphere; then the normal figures between the
+first and last contours and over each cap beyond them. --gap G and --pixel P (before the
 flags) draw the slices G mm apart and surface them at P mm pixels.
 
   tests/bench/sphere_shape.py build/cli/scansurf [--gap G] [--pixel P] [FLAG...]      e.g. --no-simplify, --remesh
@@ -50,15 +51,28 @@ def main():
     area = np.linalg.norm(n, axis=1) / 2
     cosine = (n * centre).sum(1) / (np.linalg.norm(n, axis=1) * np.linalg.norm(centre, axis=1))
     error = np.degrees(np.arccos(np.clip(cosine, -1, 1)))
-    order = np.argsort(error)
-    p95 = error[order][np.searchsorted(np.cumsum(area[order]) / area.sum(), 0.95)]
     smallest = smallest_angles(v, faces)
     distance = np.abs(np.linalg.norm(v[np.unique(faces)], axis=1) - 20)
     print("sphere r 20, %s mm / %s mm, %s: %d faces; face normal error mean %.1f, 95th percentile %.1f deg; "
           "smallest angle %.1f, 5th percentile %.1f deg; vertex distance mean %.4f, max %.4f mm"
           % (grid["--pixel"], grid["--gap"], " ".join(flags) or "defaults", len(faces),
-             (error * area).sum() / area.sum(), p95, smallest.min(), np.percentile(smallest, 5), distance.mean(),
-             distance.max()))
+             *normal_error(error, area), smallest.min(), np.percentile(smallest, 5), distance.mean(), distance.max()))
+    # The caps beyond the first and last contours hold the slab rule's volume (the end contour's
+    # area times half a gap), not the sphere's: where the last contour lies near the pole, that
+    # cap is taller than the sphere's, and its normals cannot be the sphere's.
+    planes = [s["z"] for s in sphere_contours(gap=float(grid["--gap"]))["features"][0]["slices"]]
+    z = centre[:, 2]
+    for name, part in (("between the contours", (z >= planes[0]) & (z <= planes[-1])),
+                       ("cap below z %g" % planes[0], z < planes[0]), ("cap above z %g" % planes[-1], z > planes[-1])):
+        print("  %s: %.1f %% of the area; face normal error mean %.1f, 95th percentile %.1f deg"
+              % (name, 100 * area[part].sum() / area.sum(), *normal_error(error[part], area[part])))
+
+
+def normal_error(error, area):
+    """The area-weighted mean and 95th percentile of the faces' normal errors."""
+    order = np.argsort(error)
+    p95 = error[order][np.searchsorted(np.cumsum(area[order]) / area.sum(), 0.95)]
+    return (error * area).sum() / area.sum(), p95
 
 
 if __name__ == "__main__":
