@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "geometry/contours/crossings.h"
@@ -129,6 +130,30 @@ TEST(Polygon, VertexOnScanlineCountsOnce) {
   EXPECT_TRUE(insideRegion(spike, {0.5, 1}));
   EXPECT_TRUE(insideRegion(spike, {0.5, 3}));
   EXPECT_FALSE(insideRegion(spike, {2, 3}));
+}
+
+TEST(Polygon, RegionIndexAnswersAsInsideRegionEverywhere) {
+  // A ring with a hole, a star crossing itself, a flat contour (one row) and a single point:
+  // probes at every vertex, every edge's midpoint, every row's bounds and on a fine lattice.
+  std::vector<Contour> ring{square(0, 0, 10, 10), square(3, 3, 7, 7)};
+  Contour star;
+  for (int i = 0; i < 5; ++i)
+    star.points.push_back({5 + 4 * std::cos(4 * std::numbers::pi * i / 5), 5 + 4 * std::sin(4 * std::numbers::pi * i / 5)});
+  const std::vector<std::vector<Contour>> regions{
+      ring, {star}, {Contour{{{0, 2}, {4, 2}, {8, 2}}}}, {Contour{{{1, 1}}}}, {square(0, 0, 10, 10), star}};
+  for (const auto& region : regions) {
+    const RegionIndex index(region);
+    std::vector<Point2> probes;
+    for (const Contour& c : region)
+      for (std::size_t i = 0; i < c.points.size(); ++i) {
+        const Point2 a = c.points[i], b = c.points[(i + 1) % c.points.size()];
+        probes.push_back(a), probes.push_back({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)});
+      }
+    for (int i = -4; i <= 44; ++i)
+      for (int j = -4; j <= 44; ++j) probes.push_back({0.25 * i, 0.25 * j});
+    for (int i = 0; i <= 1000; ++i) probes.push_back({5.0, 0.01 * i});  // every row's bounds, near enough
+    for (const Point2& p : probes) ASSERT_EQ(index.inside(p), insideRegion(region, p)) << p.x << ", " << p.y;
+  }
 }
 
 TEST(Polygon, SharedEdgePointBelongsToExactlyOne) {

@@ -49,7 +49,7 @@ int sliceAt(const FeatureInfo& info, double z) {
 // Whether, beside each edge of contour c, the inner region's side lies in `outer`: a contour
 // drawn on the outline of a hole of the outer region (an organ in an opening of a structure
 // drawn around it) has every point on that outline, yet its region is the hole, outside.
-bool insideAlongEdges(const std::vector<Contour>& innerRegion, const Contour& c, const std::vector<Contour>& outer) {
+bool insideAlongEdges(const RegionIndex& innerRegion, const Contour& c, const RegionIndex& outer) {
   const std::size_t n = c.points.size();
   for (std::size_t i = 0; i < n; ++i) {
     const Point2 a = c.points[i], b = c.points[(i + 1) % n];
@@ -58,9 +58,9 @@ bool insideAlongEdges(const std::vector<Contour>& innerRegion, const Contour& c,
     const double step = 1e-3 * length;
     const Point2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
     Point2 side{mid.x - step * dy / length, mid.y + step * dx / length};
-    if (!insideRegion(innerRegion, side)) side = {mid.x + step * dy / length, mid.y - step * dx / length};
-    if (!insideRegion(innerRegion, side)) continue;  // a sliver thinner than the step: no side to test
-    if (!insideRegion(outer, side)) return false;
+    if (!innerRegion.inside(side)) side = {mid.x + step * dy / length, mid.y - step * dx / length};
+    if (!innerRegion.inside(side)) continue;  // a sliver thinner than the step: no side to test
+    if (!outer.inside(side)) return false;
   }
   return true;
 }
@@ -83,10 +83,11 @@ bool contains(const Feature& outer, const FeatureInfo& outerInfo, const Feature&
   }
   for (std::size_t s = 0; s < inner.slices.size(); ++s) {
     const auto& region = outer.slices[sliceAt(outerInfo, inner.slices[s].z)].contours;
+    const RegionIndex outerIndex(region), innerIndex(inner.slices[s].contours);
     for (const Contour& c : inner.slices[s].contours) {
       for (const Point2& p : c.points)
-        if (!insideRegion(region, p) && !onBoundary(region, p, boundaryTolerance)) return false;
-      if (!insideAlongEdges(inner.slices[s].contours, c, region)) return false;
+        if (!outerIndex.inside(p) && !onBoundary(region, p, boundaryTolerance)) return false;
+      if (!insideAlongEdges(innerIndex, c, outerIndex)) return false;
     }
   }
   return true;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "geometry/contours/crossings.h"
 
@@ -96,6 +97,53 @@ int crossingCount(const Contour& contour, Point2 p) {
 bool insideRegion(std::span<const Contour> contours, Point2 p) {
   int count = 0;
   for (const Contour& c : contours) count += crossingCount(c, p);
+  return (count & 1) != 0;
+}
+
+RegionIndex::RegionIndex(std::span<const Contour> contours) {
+  std::size_t count = 0;
+  double maxY = 0;
+  for (const Contour& c : contours)
+    for (const Point2& q : c.points) {
+      minY_ = count == 0 ? q.y : std::min(minY_, q.y), maxY = count == 0 ? q.y : std::max(maxY, q.y);
+      ++count;
+    }
+  // About two edges a row; rows spanned by long edges hold them all.
+  rows_ = static_cast<int>(std::clamp<std::size_t>(count / 2, 1, 4096));
+  if (maxY > minY_) rowsPerUnit_ = rows_ / (maxY - minY_);
+  std::vector<std::uint32_t> counts(static_cast<std::size_t>(rows_) + 1, 0);
+  const auto forEachEdge = [&](auto&& visit) {
+    for (const Contour& c : contours)
+      for (std::size_t i = 0, n = c.points.size(), j = n - 1; i < n; j = i++) visit(c.points[j], c.points[i]);
+  };
+  forEachEdge([&](Point2 a, Point2 b) {
+    for (int r = rowOf(std::min(a.y, b.y)); r <= rowOf(std::max(a.y, b.y)); ++r) ++counts[static_cast<std::size_t>(r) + 1];
+  });
+  start_.resize(counts.size());
+  std::partial_sum(counts.begin(), counts.end(), start_.begin());
+  edges_.resize(start_.back());
+  std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+  forEachEdge([&](Point2 a, Point2 b) {
+    for (int r = rowOf(std::min(a.y, b.y)); r <= rowOf(std::max(a.y, b.y)); ++r)
+      edges_[next[static_cast<std::size_t>(r)]++] = {a, b};
+  });
+}
+
+// Monotone in y, so an edge spanning p.y lies in every row from its lower end's to its upper's.
+int RegionIndex::rowOf(double y) const {
+  const double r = (y - minY_) * rowsPerUnit_;
+  return r <= 0 ? 0 : r >= rows_ - 1 ? rows_ - 1 : static_cast<int>(r);
+}
+
+bool RegionIndex::inside(Point2 p) const {
+  const auto r = static_cast<std::size_t>(rowOf(p.y));
+  int count = 0;
+  for (std::uint32_t e = start_[r]; e < start_[r + 1]; ++e) {
+    const Point2 a = edges_[e].a, b = edges_[e].b;
+    if ((a.y > p.y) == (b.y > p.y)) continue;
+    if (a.x <= p.x && b.x <= p.x) continue;
+    if (p.x < edgeCrossingX(a, b, p.y)) ++count;
+  }
   return (count & 1) != 0;
 }
 

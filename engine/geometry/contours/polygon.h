@@ -3,8 +3,10 @@
 // a set of contours when a ray from it crosses their edges an odd number of times.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "scansurf/contours.h"
 
@@ -70,6 +72,25 @@ int crossingCount(const Contour& contour, Point2 p);
 
 // Even-odd test of p against the region of a set of contours.
 bool insideRegion(std::span<const Contour> contours, Point2 p);
+
+// insideRegion over a region's edges bucketed into rows by y, for many points against one
+// region: a point reads only the edges that span its row, with the same half-open rule, so
+// the answer is insideRegion's, bit for bit.
+class RegionIndex {
+ public:
+  explicit RegionIndex(std::span<const Contour> contours);
+  bool inside(Point2 p) const;
+
+ private:
+  int rowOf(double y) const;
+  struct Edge {
+    Point2 a, b;
+  };
+  double minY_ = 0, rowsPerUnit_ = 0;
+  int rows_ = 1;
+  std::vector<std::uint32_t> start_;  // per row, into edges_; rows_ + 1 entries
+  std::vector<Edge> edges_;
+};
 
 // True when p lies within distance tolerance of an edge of any of the contours.
 bool onBoundary(std::span<const Contour> contours, Point2 p, double tolerance);
