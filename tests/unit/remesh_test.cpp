@@ -130,6 +130,42 @@ Built checkRemesh(const ContourSet& set, double voxel, const RemeshOptions& opti
 
 // ---------------------------------------------------------------- soundness on every shape
 
+TEST(Remesh, AngleFiguresAreTheSmallestOfEachTrianglesThreeAngles) {
+  // Random triangles, slivers, a needle with two equal short edges and degenerate ones (a
+  // repeated point, three equal points) against the three angles taken one by one.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(-1, 1);
+  std::vector<float> positions;
+  for (int i = 0; i < 3000; ++i) positions.push_back(coordinate(random));
+  for (float x : {0.0f, 0.0f, 0.0f, 1.0f, 1e-4f, 0.0f, 2.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.5f, 0.0f, 1e-3f, 1.0f, 0.0f, 0.0f})
+    positions.push_back(x);
+  const auto n = static_cast<std::uint32_t>(positions.size() / 3);
+  std::vector<std::uint32_t> triangles;
+  for (std::uint32_t t = 0; t + 3 <= 1000; t += 3) triangles.insert(triangles.end(), {t, t + 1, t + 2});
+  triangles.insert(triangles.end(), {n - 6, n - 5, n - 4, n - 3, n - 2, n - 1, n - 6, n - 6, n - 4, n - 6, n - 6, n - 6});
+  const auto angle = [&](std::uint32_t o, std::uint32_t p, std::uint32_t q) {
+    double u[3], v[3], uu = 0, vv = 0, uv = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double at = positions[3 * o + k];
+      u[k] = positions[3 * p + k] - at, v[k] = positions[3 * q + k] - at;
+      uu += u[k] * u[k], vv += v[k] * v[k], uv += u[k] * v[k];
+    }
+    return uu == 0 || vv == 0 ? 0.0 : std::acos(std::clamp(uv / std::sqrt(uu * vv), -1.0, 1.0)) * 180 / std::numbers::pi;
+  };
+  std::vector<double> smallest;
+  for (std::size_t t = 0; t < triangles.size(); t += 3) {
+    const std::uint32_t* c = &triangles[t];
+    smallest.push_back(std::min({angle(c[0], c[1], c[2]), angle(c[1], c[2], c[0]), angle(c[2], c[0], c[1])}));
+  }
+  const AngleFigures f = computeAngleFigures(positions, triangles, 2);
+  double mean = 0;
+  for (double a : smallest) mean += a / static_cast<double>(smallest.size());
+  std::nth_element(smallest.begin(), smallest.begin() + static_cast<std::ptrdiff_t>(smallest.size() / 20), smallest.end());
+  EXPECT_NEAR(f.mean, mean, 1e-9);
+  EXPECT_NEAR(f.p5, smallest[smallest.size() / 20], 1e-9);
+  EXPECT_EQ(f.min, 0.0);
+}
+
 TEST(Remesh, NestedSpheres) { checkRemesh(nestedSpheresContours(), 1.0); }
 TEST(Remesh, AbuttingHalvesShareEveryInterfaceVertex) {
   const Built b = checkRemesh(abuttingContours(10, 6, 2.5), 0.5);

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <queue>
 #include <vector>
@@ -725,9 +726,14 @@ AngleFigures computeAngleFigures(std::span<const float> positions, std::span<con
   parallelChunks(smallest.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       const Vec3 p[3] = {at(triangles[3 * t]), at(triangles[3 * t + 1]), at(triangles[3 * t + 2])};
-      double best = std::numbers::pi;
-      for (int c = 0; c < 3; ++c) best = std::min(best, angleAt(p[c], p[(c + 1) % 3], p[(c + 2) % 3]));
-      smallest[t] = best * 180 / std::numbers::pi;
+      // The smallest angle lies opposite the shortest edge (law of sines): one arc cosine.
+      int c = 0;
+      double shortest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 e = p[(k + 2) % 3] - p[(k + 1) % 3];
+        if (dot(e, e) < shortest) shortest = dot(e, e), c = k;
+      }
+      smallest[t] = angleAt(p[c], p[(c + 1) % 3], p[(c + 2) % 3]) * 180 / std::numbers::pi;
     }
   });
   AngleFigures f;
