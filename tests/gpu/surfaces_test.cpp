@@ -291,6 +291,36 @@ TEST_F(SurfacesTest, BundledPhantomBuildsClosedSurfaces) {
   }
 }
 
+// Every CPU stage splits its work by the thread count; none may let the count reach the result.
+// The bundled phantom with the command-line tool's options (interpolated layers, round caps, smoothing, volume
+// restoration, triangle shape, simplification), mesh and audit compared bit for bit.
+TEST_F(SurfacesTest, TheWholeRunIsTheSameOnOneTwoAndThreeThreads) {
+  auto set = readContoursJson(SCANSURF_EXAMPLES "/phantom.json");
+  ASSERT_TRUE(set) << set.error().message;
+  std::vector<BuildResult> runs;
+  for (int threads : {1, 2, 3}) {
+    BuildOptions options = BuildOptions::recommended();
+    options.grid.voxelSize = 0.8;  // 3 layers a gap of 2.5 mm
+    options.threads = threads;
+    auto built = engine_->build(*set, options);
+    ASSERT_TRUE(built) << built.error().message;
+    ASSERT_EQ(built->threads, threads);
+    runs.push_back(std::move(built).value());
+  }
+  ASSERT_GT(runs[0].interpolation.maxFactor, 1) << "the run must interpolate layers";
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    SCOPED_TRACE("threads " + std::to_string(runs[r].threads));
+    const MultiLabelMesh &a = runs[0].surfaces.mesh, &b = runs[r].surfaces.mesh;
+    EXPECT_TRUE(a.positions == b.positions);
+    EXPECT_TRUE(a.triangles == b.triangles);
+    EXPECT_TRUE(a.labels == b.labels);
+    ASSERT_EQ(runs[0].surfaces.features.size(), runs[r].surfaces.features.size());
+    for (std::size_t f = 0; f < runs[0].surfaces.features.size(); ++f)
+      EXPECT_TRUE(runs[0].surfaces.features[f].triangles == runs[r].surfaces.features[f].triangles) << "feature " << f;
+    EXPECT_EQ(runs[0].warnings, runs[r].warnings);
+  }
+}
+
 // A 512 x 512 x 400 volume: scan conversion and classification in slabs, since its labels
 // (210 MB) exceed lavapipe's 128 MiB maxStorageBufferRange.
 TEST_F(SurfacesTest, Volume512x512x400WorksInSlabs) {
