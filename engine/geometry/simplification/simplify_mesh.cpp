@@ -14,6 +14,7 @@
 #include "geometry/simplification/simplify_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <iterator>
@@ -80,6 +81,11 @@ std::vector<int> planesOfVertices(const MultiLabelMesh& mesh, const Grid& grid, 
 
 // A patch key: tier << 48 | tile << 32 | label pair.
 constexpr std::uint64_t kField = 0xffff;
+
+// The two labels of a patch key's label pair (labelPairKey).
+std::array<Label, 2> labelsOfKey(std::uint64_t key) {
+  return {static_cast<Label>(key & kField), static_cast<Label>(key >> 16 & kField)};
+}
 
 std::vector<std::uint64_t> patchKeys(const MultiLabelMesh& mesh, const Grid& grid, const std::vector<bool>& contourLayers,
                                      double tolerance, int threads) {
@@ -281,8 +287,8 @@ Candidate candidateMesh(const MultiLabelMesh& mesh, const std::vector<std::uint3
       c.changed.insert(c.changed.end(), results[i].changed.begin(), results[i].changed.end());
     else
       c.changed.insert(c.changed.end(), added, 0);
-    for (std::size_t t = 0; t < added; ++t)
-      c.labels.push_back(static_cast<Label>(p.key & 0xffff)), c.labels.push_back(static_cast<Label>(p.key >> 16 & 0xffff));
+    const std::array<Label, 2> labels = labelsOfKey(p.key);
+    for (std::size_t t = 0; t < added; ++t) c.labels.insert(c.labels.end(), labels.begin(), labels.end());
   }
   return c;
 }
@@ -314,10 +320,10 @@ std::vector<std::uint32_t> patchesOverusingJoins(const Candidate& c, const std::
       if (a > b) std::swap(a, b);
       for (std::uint32_t k = first[a]; k < first[a + 1]; ++k) {
         const Join& j = joins[k];
-        const std::uint64_t pair = patches[j.patch].key;
-        const Label l0 = pair & 0xffff, l1 = pair >> 16 & 0xffff, t0 = c.labels[2 * std::size_t{t}],
-                    t1 = c.labels[2 * std::size_t{t} + 1];
-        if (j.b == b && j.patch != c.patchOf[t] && (t0 == l0 || t0 == l1 || t1 == l0 || t1 == l1)) overusing[j.patch] = 1;
+        if (j.b != b || j.patch == c.patchOf[t]) continue;
+        const std::array<Label, 2> l = labelsOfKey(patches[j.patch].key);
+        const Label t0 = c.labels[2 * std::size_t{t}], t1 = c.labels[2 * std::size_t{t} + 1];
+        if (t0 == l[0] || t0 == l[1] || t1 == l[0] || t1 == l[1]) overusing[j.patch] = 1;
       }
     }
   std::vector<std::uint32_t> list;
