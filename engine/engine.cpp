@@ -184,7 +184,7 @@ Surfaces surfacesFromCells(const SurfacingRun& run, std::vector<CellCase> cells,
     surfaces.triangleShape = shaped.report;
     if (options.smoothing.keepVolumes && options.convention == SurfaceConvention::Enclosing && !targets.volumes.empty())
       restoreVolumes(surfaces.mesh, grid, nesting, targets.volumes, smoothed.onSheet, planes, options.smoothing.minAngle,
-                     options.threads, &shaped.disks);
+                     options.threads, &shaped.disks, smoothed.betweenPlanes);
     clock.lap("triangle shape");
   }
   if (options.simplification.enabled) {

@@ -8,6 +8,8 @@
 #include <functional>
 #include <numbers>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "geometry/extraction/edge_crossings.h"
 #include "geometry/grid/content_tiles.h"
@@ -468,11 +470,13 @@ TEST_F(InterpolatedShapesTest, SphereWithSlicesFourPixelsThickIsCloser) {
   const Accuracy a = accuracy(off, sphere), b = accuracy(on, sphere);
   printFigure("sphere r20, 0.5 mm pixels, 2 mm slices", a, b);
   expectLabelsWithinOneVoxel(set, 0.5, sphere);
-  // Measured 1.45x closer on average. The largest distance is at the poles: the round caps
-  // keep the half slab's volume with a dome as high as the gap, past the true pole (1 mm
-  // beyond the last plane here), 0.75 against 0.68 mm.
-  EXPECT_LE(b.mean, 0.75 * a.mean);
-  EXPECT_LE(b.max, 1.15 * a.max);
+  // Closer on average than the grid without layers, whose vertices between two planes go where
+  // the same blend crosses their edges (measured 0.042 against 0.046 mm; 1.45x closer when those
+  // vertices relaxed instead). The largest distance is at the poles: the round caps keep the half
+  // slab's volume with a dome as high as the gap, past the true pole (1 mm beyond the last plane
+  // here), 0.62 against 0.49 mm.
+  EXPECT_LE(b.mean, a.mean);
+  EXPECT_LE(b.max, 1.35 * a.max);
 }
 
 TEST_F(InterpolatedShapesTest, ConeWithSlicesFourPixelsThickFollowsItsLabelsAndSide) {
@@ -531,9 +535,10 @@ TEST_F(InterpolatedShapesTest, ThickSlicesAndCapsFigures) {
     const Accuracy a = accuracy(off, sphere), b = accuracy(on, sphere);
     std::printf("[ figure   ] sphere r20, 1 mm pixels, %.0f mm slices: mean %.3f max %.3f mm interpolated, %.3f / %.3f off\n",
                 slices, b.mean, b.max, a.mean, a.max);
-    // Within a quarter of off's mean (measured +12 % at 3 mm, +21 % at 4 mm): the domes stand
-    // past the true poles to keep the slab rule's volume.
-    EXPECT_LT(b.mean, 1.25 * a.mean);
+    // Within 40 % of the grid without layers (measured +7 % at 3 mm, +32 % at 4 mm), whose
+    // vertices between planes follow the blend exactly where the layers quantize it: the domes
+    // stand past the true poles to keep the slab rule's volume.
+    EXPECT_LT(b.mean, 1.4 * a.mean);
     const BuildResult toff = build(torusContours(12, 5, slices), 1.0, 1), ton = build(torusContours(12, 5, slices), 1.0);
     const BuildResult tflat = build(torusContours(12, 5, slices), 1.0, InterpolationOptions::kAuto, true, CapShape::Flat);
     expectTopology(ton, 0, 1, 1);
@@ -652,6 +657,62 @@ TEST_F(InterpolatedShapesTest, RoundCapsGoOnAtTheStructuresTaper) {
   for (const FeatureSlice& slice : set.features[0].slices)
     batch += 3 * 128 * (r * r - slice.z * slice.z) * std::sin(2 * std::numbers::pi / 256);
   EXPECT_NEAR(stats(b, 0).volume, batch, 0.002 * batch);
+}
+
+// Area-weighted mean and 95th percentile of the angle between each face's normal and the
+// sphere's (centred at the origin) at its centroid, degrees, over the feature's faces.
+std::pair<double, double> sphereNormalErrors(const BuildResult& b) {
+  const MultiLabelMesh& m = b.surfaces.mesh;
+  const std::vector<std::uint32_t>& tris = b.surfaces.features[0].triangles;
+  std::vector<std::pair<double, double>> faces;  // (degrees, area)
+  double sum = 0, area = 0;
+  for (std::size_t t = 0; t < tris.size(); t += 3) {
+    double p[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) p[c][k] = m.positions[3 * tris[t + static_cast<std::size_t>(c)] + static_cast<std::size_t>(k)];
+    double n[3], centre[3];
+    for (int k = 0; k < 3; ++k) {
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      n[k] = (p[1][k1] - p[0][k1]) * (p[2][k2] - p[0][k2]) - (p[1][k2] - p[0][k2]) * (p[2][k1] - p[0][k1]);
+      centre[k] = (p[0][k] + p[1][k] + p[2][k]) / 3;
+    }
+    const double twice = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double cosine = (n[0] * centre[0] + n[1] * centre[1] + n[2] * centre[2]) /
+                          (twice * std::sqrt(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]));
+    const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / std::numbers::pi;
+    faces.push_back({degrees, twice});
+    sum += degrees * twice, area += twice;
+  }
+  std::sort(faces.begin(), faces.end());
+  double below = 0, p95 = 0;
+  for (const auto& [degrees, a] : faces)
+    if ((below += a) >= 0.95 * area) {
+      p95 = degrees;
+      break;
+    }
+  return {sum / area, p95};
+}
+
+// The sphere of tests/bench/sphere_shape.py with the command line's defaults at pixels of 1.5,
+// 2 and 2.5 mm (gaps of 2 pixels or less: no layers): its vertices between two planes follow
+// the blend across them, its caps the round domes, and its faces' normals stay within the
+// issue's 3 degrees (mean) and 10 degrees (95th percentile) of the true sphere's (measured
+// 2.4 / 6.4, 2.7 / 7.4, 2.97 / 8.1; 4.9 / 15.1, 4.4 / 12.7, 4.8 / 13.1 when they relaxed).
+TEST_F(InterpolatedShapesTest, SphereNormalsWithoutLayersStayWithinThreeDegrees) {
+  for (const double pixel : {1.5, 2.0, 2.5}) {
+    BuildOptions options = BuildOptions::recommended();
+    options.grid.voxelSize = pixel;
+    auto built = engine_->build(sphereOfSphereShapePy(), options);
+    ASSERT_TRUE(built) << built.error().message;
+    EXPECT_EQ(built->interpolation.maxFactor, 1) << pixel;
+    expectTopology(built.value(), 0, 1, 0);
+    const auto [mean, p95] = sphereNormalErrors(built.value());
+    std::printf(
+        "[ figure   ] sphere r20, %.1f mm pixels, 3 mm slices: face normals %.2f degrees off (mean), %.2f (95th percentile)\n",
+        pixel, mean, p95);
+    EXPECT_LE(mean, 3.0) << pixel;
+    EXPECT_LE(p95, 10.0) << pixel;
+  }
 }
 
 // Once interpolation is on (gaps of 3 pixels or more), finer pixels never make the sphere

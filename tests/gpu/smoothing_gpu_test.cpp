@@ -38,7 +38,8 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   EXPECT_NE(a.positions, b.positions);
 
   // The engine smooths exactly as the CPU functions do on the raw mesh: relaxation, snapping,
-  // the quads' diagonals, the cubes' fans, then each feature's volume restored to its slab volume.
+  // the quads' diagonals, the cubes' fans, then each feature's volume restored to its slab volume
+  // (the vertices placed between two of its planes moved last).
   MultiLabelMesh expected = a;
   const Grid& grid = raw->volume.grid;
   SmoothingReport relaxed = smoothMesh(expected, grid, &set, options.smoothing);
@@ -60,7 +61,7 @@ TEST_F(SmoothingBuildTest, BuildSmoothsAbuttingHalvesWithoutCrossings) {
   for (const Feature& f : set.features)
     for (const FeatureSlice& s : f.slices) contourLayers[static_cast<std::size_t>(grid.layerOfPlane(s.z))] = true;
   restoreVolumes(expected, grid, raw->nesting, targets, relaxed.onSheet, contourLayers, options.smoothing.minAngle, 0,
-                 &shaped.disks);
+                 &shaped.disks, relaxed.betweenPlanes);
   EXPECT_EQ(expected.positions, b.positions);
   EXPECT_EQ(expected.triangles, b.triangles);
   EXPECT_EQ(expected.labels, b.labels);

@@ -59,13 +59,15 @@ Angles minAngles(const MultiLabelMesh& m) {
   return {mins.front(), mins[mins.size() / 20]};
 }
 
-Accuracy accuracy(const Built& b, const Distance& distance) {
+Accuracy accuracy(const Built& b, const Distance& distance, double zLow, double zHigh) {
   const std::vector<std::uint32_t>& tris = b.features[0].triangles;
   double sum = 0, area = 0, worst = 0;
   for (std::size_t t = 0; t < tris.size() / 3; ++t) {
     double p[3][3];
     for (int c = 0; c < 3; ++c)
       for (int k = 0; k < 3; ++k) p[c][k] = b.mesh.positions[3 * tris[3 * t + c] + k];
+    const double zc = (p[0][2] + p[1][2] + p[2][2]) / 3;
+    if (zc < zLow || zc > zHigh) continue;
     double u[3], v[3];
     for (int k = 0; k < 3; ++k) u[k] = p[1][k] - p[0][k], v[k] = p[2][k] - p[0][k];
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};

@@ -52,8 +52,8 @@ struct Accuracy {
   double mean = 0, max = 0, volume = 0;
 };
 // Area-weighted mean and max distance of feature 0's surface to the analytic surface over 7
-// samples per triangle, and its volume.
-Accuracy accuracy(const Built& b, const Distance& distance);
+// samples per triangle (those whose centroid lies in [zLow, zHigh]), and its whole volume.
+Accuracy accuracy(const Built& b, const Distance& distance, double zLow = -1e300, double zHigh = 1e300);
 
 // Mean distance, in pixels, from feature 0's cross-sections at the contour planes (every mesh
 // edge with both ends at a slice's z, sampled at 5 points, weighted by length) to the

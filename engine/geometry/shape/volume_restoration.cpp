@@ -80,7 +80,7 @@ Vec3 position(const MultiLabelMesh& mesh, std::uint32_t v) {
 class Restorer {
  public:
   Restorer(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting, const std::vector<bool>& onSheet,
-           const std::vector<bool>& contourLayers)
+           const std::vector<bool>& contourLayers, std::span<const std::uint64_t> held)
       : mesh_(mesh), grid_(grid), bounds_(nesting, mesh), triangleBounds_(mesh.triangleCount()) {
     std::uint32_t last = UINT32_MAX;  // triangles of one pair mostly come together
     const std::vector<Bound>* bounds = nullptr;
@@ -90,7 +90,11 @@ class Restorer {
       triangleBounds_[t] = bounds;
     }
     findMovable(onSheet, contourLayers, nesting.parent.size());
+    held_.resize(movable_.size());
+    for (std::size_t i = 0; i < movable_.size(); ++i)
+      held_[i] = std::binary_search(held.begin(), held.end(), mesh.keys[movable_[i]]);
   }
+  bool holdsAny() const { return std::find(held_.begin(), held_.end(), 1) != held_.end(); }
 
   // Per feature, its enclosed volume: sums over fixed blocks of triangles added in block
   // order, so the same for any thread count.
@@ -111,11 +115,14 @@ class Restorer {
     return v;
   }
 
-  // One round: every movable vertex of a feature with a deficit (non-zero) along its gradient.
-  void round(const std::vector<double>& deficit, int threads) {
+  // One round: every movable vertex of a feature with a deficit (non-zero) along its gradient,
+  // the held ones too when asked.
+  void round(const std::vector<double>& deficit, bool withHeld, int threads) {
     std::vector<Vec3> gradient(movable_.size());
     std::vector<double> sum(featureCount_, 0.0);
-    const auto active = [&](std::size_t i) { return deficit[static_cast<std::size_t>(featureOf_[i])] != 0; };
+    const auto active = [&](std::size_t i) {
+      return deficit[static_cast<std::size_t>(featureOf_[i])] != 0 && (withHeld || !held_[i]);
+    };
     parallelChunks(movable_.size(), threads, [&](int, std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i)
         if (active(i)) gradient[i] = alongCarrier(carrierOfKey(mesh_.keys[movable_[i]]), gradientOf(movable_[i]));
@@ -226,6 +233,7 @@ class Restorer {
   IncidentTriangles incident_;
   std::vector<std::uint32_t> movable_;
   std::vector<int> featureOf_;
+  std::vector<char> held_;   // per movable vertex: it moves only with the held ones (round)
   std::vector<char> moves_;  // per feature: it has movable vertices
 };
 
@@ -241,10 +249,10 @@ double worstError(const std::vector<double>& volumes, std::span<const double> ta
 VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting,
                                        std::span<const double> targets, const std::vector<bool>& onSheet,
                                        const std::vector<bool>& contourLayers, double minAngle, int threads,
-                                       const CubeDisks* disks) {
+                                       const CubeDisks* disks, std::span<const std::uint64_t> held) {
   VolumeRestorationReport report;
   if (mesh.keys.size() != mesh.vertexCount() || mesh.triangleCount() == 0) return report;
-  Restorer restorer(mesh, grid, nesting, onSheet, contourLayers);
+  Restorer restorer(mesh, grid, nesting, onSheet, contourLayers, held);
   std::vector<char> restored(nesting.parent.size(), 0);
   for (std::size_t f = 0; f < restored.size(); ++f) {
     restored[f] = f < targets.size() && targets[f] > 0 && restorer.movesFeature(f);
@@ -256,15 +264,18 @@ VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, c
   if (disks && disks->count() == 0) disks = nullptr;  // nothing to keep unfolded: no copy of the positions a round
   std::vector<double> volumes = restorer.volumes(threads);
   report.worstBefore = worstError(volumes, targets, restored);
-  for (int r = 0; r < kRounds && worstError(volumes, targets, restored) > kClose; ++r) {
-    std::vector<double> deficit(restored.size(), 0.0);
-    for (std::size_t f = 0; f < restored.size(); ++f)
-      if (restored[f] && std::abs(volumes[f] - targets[f]) > kClose * targets[f]) deficit[f] = targets[f] - volumes[f];
-    if (guard.enabled() || disks) before = mesh.positions;
-    restorer.round(deficit, threads);
-    guard.apply(before.data(), mesh.positions.data(), 3);
-    if (disks) report.heldBack += keepDisksEmbedded(*disks, mesh, before, threads);
-    volumes = restorer.volumes(threads);
+  for (const bool withHeld : {false, true}) {
+    if (!withHeld && !restorer.holdsAny()) continue;  // one pass, every vertex
+    for (int r = 0; r < kRounds && worstError(volumes, targets, restored) > kClose; ++r) {
+      std::vector<double> deficit(restored.size(), 0.0);
+      for (std::size_t f = 0; f < restored.size(); ++f)
+        if (restored[f] && std::abs(volumes[f] - targets[f]) > kClose * targets[f]) deficit[f] = targets[f] - volumes[f];
+      if (guard.enabled() || disks) before = mesh.positions;
+      restorer.round(deficit, withHeld, threads);
+      guard.apply(before.data(), mesh.positions.data(), 3);
+      if (disks) report.heldBack += keepDisksEmbedded(*disks, mesh, before, threads);
+      volumes = restorer.volumes(threads);
+    }
   }
   report.worstAfter = worstError(volumes, targets, restored);
   report.movedVertices = restorer.movableCount();

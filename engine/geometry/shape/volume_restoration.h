@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -36,10 +37,14 @@ struct CubeDisks;
 // a junction or a contour stays). A feature's region is its label's and its descendants'
 // (Nesting::parent), among the labels in the mesh. Moves that would leave a triangle sharper
 // than minAngle degrees (and than it was) are shortened (geometry/smoothing/angle_guard.h; 0: off); moves
-// that would fold one of `disks` (retriangulateCubeFans's; null: none) are undone.
+// that would fold one of `disks` (retriangulateCubeFans's; null: none) are undone. The vertices
+// whose keys are in `held` (sorted; SmoothingReport::betweenPlanes) move only in a second pass,
+// for the features that the others could not bring to their targets: the volume that the slab
+// rule and the blended shape disagree on goes to the caps and the junctions, where the contours
+// say least, rather than into ripples between every pair of planes.
 VolumeRestorationReport restoreVolumes(MultiLabelMesh& mesh, const Grid& grid, const Nesting& nesting,
                                        std::span<const double> targets, const std::vector<bool>& onSheet,
                                        const std::vector<bool>& contourLayers, double minAngle, int threads,
-                                       const CubeDisks* disks = nullptr);
+                                       const CubeDisks* disks = nullptr, std::span<const std::uint64_t> held = {});
 
 }  // namespace scansurf

@@ -71,6 +71,7 @@
 #include "geometry/smoothing/angle_guard.h"
 #include "geometry/smoothing/carrier_projection.h"
 #include "geometry/smoothing/contour_fit.h"
+#include "geometry/smoothing/plane_blend.h"
 
 namespace scansurf {
 namespace {
@@ -286,14 +287,25 @@ void placeOnMedialLines(const MultiLabelMesh& mesh, const Grid& grid, const Adja
   }
 }
 
-void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
-                         std::span<const std::uint16_t> clearance, Adjacency& adj, int threads, const MedialCrossings* medial) {
+// Returns the keys of the vertices the blend placed between two planes of their structure (sorted).
+std::vector<std::uint64_t> placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSet* contours,
+                                               std::span<const std::uint16_t> clearance, Adjacency& adj, int threads,
+                                               const MedialCrossings* medial) {
+  std::vector<std::uint64_t> heldKeys;
   std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, threads)
                                    : std::vector<double>(mesh.vertexCount(), -1.0);
   if (medial && !medial->empty()) placeOnMedialLines(mesh, grid, adj, *medial, t);
-  if (clearance.size() == grid.voxelCount())
+  if (clearance.size() == grid.voxelCount()) {
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
       if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]);
+  } else if (contours) {  // no layers: the blend across each pair of planes, at the vertices
+    const BlendedCrossings blended = blendedCrossings(grid, *contours, mesh.keys, adj.labels, threads);
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+      if (t[v] < 0 && blended.t[v] >= 0) {
+        t[v] = blended.t[v];
+        if (blended.interior[v]) heldKeys.push_back(mesh.keys[v]);
+      }
+  }
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
     if (t[v] < 0) continue;
     const Carrier c = carrierOfKey(mesh.keys[v]);
@@ -302,6 +314,7 @@ void placeFittedVertices(MultiLabelMesh& mesh, const Grid& grid, const ContourSe
     for (int k = 0; k < 3; ++k) mesh.positions[3 * v + k] = static_cast<float>(a[k] + tc * (b[k] - a[k]));
     adj.kind[v] = static_cast<std::uint8_t>(VertexRole::Plane);
   }
+  return heldKeys;  // keys are sorted, and so are their vertices
 }
 
 // Fixes the vertices whose carrier is a single grid point (nowhere to move), marks the sheet
@@ -626,9 +639,10 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
   if (!options.enabled || vertexCount == 0 || mesh.keys.size() != vertexCount) return {};
   Adjacency adj = buildAdjacency(mesh, options.junctions, threads);
   AngleGuard guard(mesh, options.minAngle, threads);
+  std::vector<std::uint64_t> heldKeys;
   if (options.contourFit && (contours || !clearance.empty())) {
     const std::vector<float> assembled = guard.enabled() ? mesh.positions : std::vector<float>();
-    placeFittedVertices(mesh, grid, contours, clearance, adj, threads, medial);
+    heldKeys = placeFittedVertices(mesh, grid, contours, clearance, adj, threads, medial);
     guard.apply(assembled.data(), mesh.positions.data(), 3);
   }
   std::vector<Label>().swap(adj.labels);  // only the contour fit needs them
@@ -640,6 +654,7 @@ SmoothingReport smoothMesh(MultiLabelMesh& mesh, const Grid& grid, const Contour
     relaxation.sweep(schedule[it], it % kNormalPeriod == 0);
   }
   report.sweeps = static_cast<int>(schedule.size());
+  report.betweenPlanes = std::move(heldKeys);
   report.onSheet.resize(vertexCount);
   for (std::size_t v = 0; v < vertexCount; ++v) {
     const VertexRole role = roleOf(adj.kind[v]);

@@ -23,6 +23,10 @@ struct SmoothingReport {
   // Per vertex: on one label pair's sheet (relaxed, or placed on a contour or an interpolated
   // crossing), not on a junction curve: volume_restoration.h may move it.
   std::vector<bool> onSheet;
+  // The keys (sorted) of the sheet vertices placed between two contour planes of their structure
+  // by the blend across them (grids with no layers; geometry/smoothing/plane_blend.h): the shape
+  // the contours give, which volume restoration moves only where the others cannot keep a volume.
+  std::vector<std::uint64_t> betweenPlanes;
 };
 
 // Smooths mesh.positions in place; triangles, labels and keys are unchanged. Requires
@@ -33,6 +37,9 @@ struct SmoothingReport {
 // of the grid (interpolated volumes, geometry/interpolation/interpolated_volume.h), every vertex on a grid
 // edge that no contour fixes goes where the interpolated labels change along that edge and
 // stays there, like a contour-fitted one (needs options.contourFit); the others relax.
+// Without one (no layers), such a vertex between two contour planes, or between a structure's
+// end plane and the next layer, goes where the structure's blended fields, or its round cap,
+// cross its edge (geometry/smoothing/plane_blend.h) and stays there.
 // With `medial`, the interface vertices of incidental pairs on contour planes go to the pair's
 // medial line instead (geometry/overlaps/overlap_split.h).
 class MedialCrossings;
