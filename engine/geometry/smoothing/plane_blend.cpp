@@ -342,6 +342,43 @@ double featureCrossing(const Grid& grid, FieldCache& cache, std::size_t f, const
   return 0.5 * (lo + hi);
 }
 
+// Whether a cap from feature f's end plane `end` may reach layer `beyond` (the next layer up or
+// down): a contour plane, the grid's padding, or a layer at least kCapLayerGap of the feature's
+// usual plane spacing away (a long gap's cap layer). A layer nearer is an interpolated layer or
+// a reference slice, which carries the nearer plane's labels: no cap ends there.
+constexpr double kCapLayerGap = 0.75;
+bool capReaches(const Grid& grid, const std::vector<bool>& planes, double usualGap, int end, int beyond) {
+  if (beyond == 0 || beyond == grid.nz - 1 || planes[static_cast<std::size_t>(beyond)]) return true;
+  return std::abs(grid.layerZ[static_cast<std::size_t>(beyond)] - grid.layerZ[static_cast<std::size_t>(end)]) >=
+         kCapLayerGap * usualGap;
+}
+
+// Each feature's usual plane spacing: the median gap between its consecutive planes, or the
+// grid's planes' for a feature drawn on one plane.
+std::vector<double> usualGaps(const Grid& grid, const LayerSlices& slices, const std::vector<bool>& planes) {
+  const auto median = [](std::vector<double> gaps) {
+    if (gaps.empty()) return 0.0;
+    std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+    return gaps[gaps.size() / 2];
+  };
+  std::vector<double> all;
+  for (int k = 0, last = -1; k < grid.nz; ++k)
+    if (planes[static_cast<std::size_t>(k)]) {
+      if (last >= 0) all.push_back(grid.layerZ[static_cast<std::size_t>(k)] - grid.layerZ[static_cast<std::size_t>(last)]);
+      last = k;
+    }
+  const double overall = median(all);
+  std::vector<double> out;
+  for (const auto& list : slices) {
+    std::vector<double> gaps;
+    for (std::size_t i = 1; i < list.size(); ++i)
+      gaps.push_back(grid.layerZ[static_cast<std::size_t>(list[i].first)] -
+                     grid.layerZ[static_cast<std::size_t>(list[i - 1].first)]);
+    out.push_back(gaps.empty() ? overall : median(gaps));
+  }
+  return out;
+}
+
 }  // namespace
 
 double hermiteBlend(double a, double b, double ta, double tb, double t) {
@@ -361,6 +398,10 @@ BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, 
   out.interior.assign(keys.size(), 0);
   std::vector<double>& t = out.t;
   const LayerSlices slices = slicesByLayer(grid, contours);
+  std::vector<bool> planes(static_cast<std::size_t>(std::max(grid.nz, 0)), false);
+  for (const auto& list : slices)
+    for (const auto& [k, slice] : list) planes[static_cast<std::size_t>(k)] = true;
+  const std::vector<double> usual = usualGaps(grid, slices, planes);
   // Keys are sorted by z first: the vertices between layers k and k + 1 on grid edges have z
   // key 12 k + 6, one run each.
   struct Run {
@@ -372,7 +413,8 @@ BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, 
     const std::uint64_t z = (keys[v] >> (2 * kKeyBits)) & kKeyMask;
     std::size_t e = v;
     while (e < keys.size() && ((keys[e] >> (2 * kKeyBits)) & kKeyMask) == z) ++e;
-    if (z % 12 == 6) runs.push_back({static_cast<int>(z / 12), v, e});
+    const int k = static_cast<int>(z / 12);
+    if (z % 12 == 6) runs.push_back({k, v, e});
     v = e;
   }
   parallelChunks(runs.size(), threads, [&](int, std::size_t begin, std::size_t end) {
@@ -394,7 +436,7 @@ BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, 
           double tf = -1;
           if (onLower && onUpper)
             tf = featureCrossing(grid, cache, f, c), interior = interior || tf >= 0;
-          else if (onLower || onUpper)
+          else if ((onLower || onUpper) && capReaches(grid, planes, usual[f], onLower ? k : k + 1, onLower ? k + 1 : k))
             tf = capCrossing(cache, f, c, onLower ? k : k + 1);
           if (tf >= 0) sum += tf, ++found;
         }

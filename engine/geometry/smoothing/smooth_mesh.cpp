@@ -295,10 +295,7 @@ std::vector<std::uint64_t> placeFittedVertices(MultiLabelMesh& mesh, const Grid&
   std::vector<double> t = contours ? fitContourCrossings(grid, *contours, mesh.keys, adj.labels, threads)
                                    : std::vector<double>(mesh.vertexCount(), -1.0);
   if (medial && !medial->empty()) placeOnMedialLines(mesh, grid, adj, *medial, t);
-  if (clearance.size() == grid.voxelCount()) {
-    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
-      if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]);
-  } else if (contours) {  // no layers: the blend across each pair of planes, at the vertices
+  if (contours) {  // where no layer separates two planes: the blend across them, at the vertices
     const BlendedCrossings blended = blendedCrossings(grid, *contours, mesh.keys, adj.labels, threads);
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
       if (t[v] < 0 && blended.t[v] >= 0) {
@@ -306,6 +303,9 @@ std::vector<std::uint64_t> placeFittedVertices(MultiLabelMesh& mesh, const Grid&
         if (blended.interior[v]) heldKeys.push_back(mesh.keys[v]);
       }
   }
+  if (clearance.size() == grid.voxelCount())
+    for (std::size_t v = 0; v < mesh.vertexCount(); ++v)
+      if (t[v] < 0) t[v] = clearanceCrossing(grid, clearance, mesh.keys[v]);
   for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
     if (t[v] < 0) continue;
     const Carrier c = carrierOfKey(mesh.keys[v]);
