@@ -247,7 +247,7 @@ void addInterpolation(CLI::App& app, CliOptions& o, Flags& f) {
       ->capture_default_str();
   app.add_option("--interpolate", f.interpolate,
                  "layers between contour planes, by shape-based interpolation: auto (about one per in-plane pixel in "
-                 "gaps of 4 pixels or more, the volume kept under 96 M voxels), off, or N (N-1 layers in every gap, "
+                 "gaps of 3 pixels or more, the volume kept under 96 M voxels), off, or N (N-1 layers in every gap, "
                  "N up to 16)")
       ->check(CLI::Validator(
           [](std::string& text) {

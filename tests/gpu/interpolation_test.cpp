@@ -715,7 +715,7 @@ TEST_F(InterpolatedShapesTest, SphereNormalsWithoutLayersStayWithinThreeDegrees)
   }
 }
 
-// Once interpolation is on (gaps of 4 pixels or more), finer pixels never make the sphere
+// Once interpolation is on (gaps of 3 pixels or more), finer pixels never make the sphere
 // worse (they did without interpolation); at 1 mm pixels (gaps of 2) it is off.
 TEST_F(InterpolatedShapesTest, FinerGridsNeverIncreaseTheSphereError) {
   const double r = 20;

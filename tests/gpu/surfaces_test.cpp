@@ -300,7 +300,7 @@ TEST_F(SurfacesTest, TheWholeRunIsTheSameOnOneTwoAndThreeThreads) {
   std::vector<BuildResult> runs;
   for (int threads : {1, 2, 3}) {
     BuildOptions options = BuildOptions::recommended();
-    options.grid.voxelSize = 0.6;  // 3 layers a gap of 2.5 mm
+    options.grid.voxelSize = 0.8;  // 3 layers a gap of 2.5 mm
     options.threads = threads;
     auto built = engine_->build(*set, options);
     ASSERT_TRUE(built) << built.error().message;

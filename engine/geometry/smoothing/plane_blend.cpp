@@ -342,6 +342,15 @@ double featureCrossing(const Grid& grid, FieldCache& cache, std::size_t f, const
   return 0.5 * (lo + hi);
 }
 
+// Whether the gap from layer k to k + 1 is at least a pixel: thinner slices already resolve the
+// surface between them better than the pixels do in the plane, and relaxation over that
+// lattice keeps thin structures' volumes, which the blend at one cell a gap did not (synthetic
+// EM cells 1.5 pixels wide on slices a third of a pixel apart came out up to 18 % short).
+bool spansAPixel(const Grid& grid, int k) {
+  return grid.layerZ[static_cast<std::size_t>(k) + 1] - grid.layerZ[static_cast<std::size_t>(k)] >=
+         std::min(grid.spacingX, grid.spacingY);
+}
+
 // Whether a cap from feature f's end plane `end` may reach layer `beyond` (the next layer up or
 // down): a contour plane, the grid's padding, or a layer at least kCapLayerGap of the feature's
 // usual plane spacing away (a long gap's cap layer). A layer nearer is an interpolated layer or
@@ -414,7 +423,7 @@ BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, 
     std::size_t e = v;
     while (e < keys.size() && ((keys[e] >> (2 * kKeyBits)) & kKeyMask) == z) ++e;
     const int k = static_cast<int>(z / 12);
-    if (z % 12 == 6) runs.push_back({k, v, e});
+    if (z % 12 == 6 && spansAPixel(grid, k)) runs.push_back({k, v, e});
     v = e;
   }
   parallelChunks(runs.size(), threads, [&](int, std::size_t begin, std::size_t end) {

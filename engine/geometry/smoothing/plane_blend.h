@@ -36,8 +36,9 @@ struct BlendedCrossings {
   std::vector<double> t;
   std::vector<char> interior;
 };
-// A cap reaches only a contour plane (of any structure), the grid's padding (layers 0 and
-// nz - 1), or a layer at least 3/4 of the structure's usual plane spacing away (a long gap's cap
+// Only gaps of at least a pixel are blended (thinner slices resolve the surface between them
+// better than the pixels do, and relaxation keeps thin structures there). A cap reaches only a contour plane (of any structure),
+// the grid's padding (layers 0 and nz - 1), or a layer at least 3/4 of the structure's usual plane spacing away (a long gap's cap
 // layer): an interpolated layer or a reference slice, which carries the nearer plane's labels,
 // lies nearer, and the cap spans several layers there (or none).
 BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,

@@ -25,13 +25,12 @@ struct InterpolationOptions {
   // kAuto: each gap of at least kAutoMinimum in-plane pixels gets about one layer per pixel
   // (factor = round(gap / pixel), at most kMaxFactor), as long as the volume stays within autoVoxelLimit
   // voxels (the largest factors are lowered until it does, down to kAutoMinimum; below that
-  // auto is off: in narrower gaps the surface meets the same blend at its vertices, which is
-  // closer than layers there, docs/method.md). 1: off (only the contour planes, as the seed).
+  // auto is off). 1: off (only the contour planes, as the seed).
   // Off by default in the library (Engine::build); the command-line tool uses kAuto.
   int factor = 1;
   static constexpr int kAuto = 0;
   static constexpr int kMaxFactor = 16;
-  static constexpr int kAutoMinimum = 4;
+  static constexpr int kAutoMinimum = 3;
   std::uint64_t autoVoxelLimit = std::uint64_t{96} << 20;
   // Round by default: rounder at the poles than a flat lid; both keep the slab rule's volume.
   CapShape caps = CapShape::Round;
