@@ -14,7 +14,8 @@
 namespace scansurf {
 
 // A structure's signed distance to its outline on one plane (positive inside, even-odd as scan
-// conversion fills it), exact within kBlendReach pixels of the outline and clamped beyond.
+// conversion fills it), exact within kBlendReach pixels of the outline, or twice the median gap
+// between a structure's planes where that is farther, and clamped beyond.
 inline constexpr double kBlendReach = 4;
 
 // For each vertex (keys: MultiLabelMesh::keys) on a grid edge from layer k to layer k + 1 where
