@@ -626,25 +626,10 @@ TEST_F(InterpolatedShapesTest, RoundCapsGoOnAtTheStructuresTaper) {
   expectTopology(b, 0, 1, 0);
   const MultiLabelMesh& m = b.surfaces.mesh;
   const std::vector<std::uint32_t>& tris = b.surfaces.features[0].triangles;
-  double error[2] = {0, 0}, area[2] = {0, 0}, bottom = 0;  // [0]: the whole sphere, [1]: below the first plane
-  for (std::size_t t = 0; t < tris.size(); t += 3) {
-    double p[3][3];
-    for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) p[c][k] = m.positions[3 * tris[t + static_cast<std::size_t>(c)] + static_cast<std::size_t>(k)];
-    double n[3], centre[3];
-    for (int k = 0; k < 3; ++k) {
-      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-      n[k] = (p[1][k1] - p[0][k1]) * (p[2][k2] - p[0][k2]) - (p[1][k2] - p[0][k2]) * (p[2][k1] - p[0][k1]);
-      centre[k] = (p[0][k] + p[1][k] + p[2][k]) / 3;
-    }
-    const double twice = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double cosine = (n[0] * centre[0] + n[1] * centre[1] + n[2] * centre[2]) /
-                          (twice * std::sqrt(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]));
-    const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / std::numbers::pi;
-    for (int part = 0; part < (centre[2] < -17 ? 2 : 1); ++part) error[part] += degrees * twice, area[part] += twice;
-    for (int c = 0; c < 3; ++c) bottom = std::min(bottom, p[c][2]);
-  }
-  const double mean = error[0] / area[0], capMean = error[1] / area[1];
+  const double mean = sphereNormalErrors(m.positions, tris).mean;
+  const double capMean = sphereNormalErrors(m.positions, tris, 1, -1e300, -17).mean;  // below the first plane
+  float bottom = 0;
+  for (const std::uint32_t v : tris) bottom = std::min(bottom, m.positions[3 * std::size_t{v} + 2]);
   std::printf(
       "[ figure   ] sphere r20, 1 mm pixels, 3 mm slices: face normals %.2f degrees off (mean), %.2f below the "
       "first plane; bottom at %.2f (true -20)\n",
@@ -657,40 +642,6 @@ TEST_F(InterpolatedShapesTest, RoundCapsGoOnAtTheStructuresTaper) {
   for (const FeatureSlice& slice : set.features[0].slices)
     batch += 3 * 128 * (r * r - slice.z * slice.z) * std::sin(2 * std::numbers::pi / 256);
   EXPECT_NEAR(stats(b, 0).volume, batch, 0.002 * batch);
-}
-
-// Area-weighted mean and 95th percentile of the angle between each face's normal and the
-// sphere's (centred at the origin) at its centroid, degrees, over the feature's faces.
-std::pair<double, double> sphereNormalErrors(const BuildResult& b) {
-  const MultiLabelMesh& m = b.surfaces.mesh;
-  const std::vector<std::uint32_t>& tris = b.surfaces.features[0].triangles;
-  std::vector<std::pair<double, double>> faces;  // (degrees, area)
-  double sum = 0, area = 0;
-  for (std::size_t t = 0; t < tris.size(); t += 3) {
-    double p[3][3];
-    for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) p[c][k] = m.positions[3 * tris[t + static_cast<std::size_t>(c)] + static_cast<std::size_t>(k)];
-    double n[3], centre[3];
-    for (int k = 0; k < 3; ++k) {
-      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-      n[k] = (p[1][k1] - p[0][k1]) * (p[2][k2] - p[0][k2]) - (p[1][k2] - p[0][k2]) * (p[2][k1] - p[0][k1]);
-      centre[k] = (p[0][k] + p[1][k] + p[2][k]) / 3;
-    }
-    const double twice = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double cosine = (n[0] * centre[0] + n[1] * centre[1] + n[2] * centre[2]) /
-                          (twice * std::sqrt(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]));
-    const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / std::numbers::pi;
-    faces.push_back({degrees, twice});
-    sum += degrees * twice, area += twice;
-  }
-  std::sort(faces.begin(), faces.end());
-  double below = 0, p95 = 0;
-  for (const auto& [degrees, a] : faces)
-    if ((below += a) >= 0.95 * area) {
-      p95 = degrees;
-      break;
-    }
-  return {sum / area, p95};
 }
 
 // The sphere of tests/bench/sphere_shape.py with the command line's defaults at pixels of 1.5,
@@ -706,7 +657,7 @@ TEST_F(InterpolatedShapesTest, SphereNormalsWithoutLayersStayWithinThreeDegrees)
     ASSERT_TRUE(built) << built.error().message;
     EXPECT_EQ(built->interpolation.maxFactor, 1) << pixel;
     expectTopology(built.value(), 0, 1, 0);
-    const auto [mean, p95] = sphereNormalErrors(built.value());
+    const auto [mean, p95] = sphereNormalErrors(built->surfaces.mesh.positions, built->surfaces.features[0].triangles);
     std::printf(
         "[ figure   ] sphere r20, %.1f mm pixels, 3 mm slices: face normals %.2f degrees off (mean), %.2f (95th percentile)\n",
         pixel, mean, p95);

@@ -88,6 +88,37 @@ Accuracy accuracy(const Built& b, const Distance& distance, double zLow, double 
   return {sum / area, worst, computeMeshStats(b.mesh.positions, tris).volume};
 }
 
+NormalErrors sphereNormalErrors(std::span<const float> positions, std::span<const std::uint32_t> triangles, double facing,
+                                double zLow, double zHigh) {
+  std::vector<std::pair<double, double>> angleArea;
+  double total = 0, sum = 0;
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    double p[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k)
+        p[c][k] = positions[3 * std::size_t{triangles[t + static_cast<std::size_t>(c)]} + static_cast<std::size_t>(k)];
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double c[3] = {(p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3, (p[0][2] + p[1][2] + p[2][2]) / 3};
+    if (c[2] < zLow || c[2] >= zHigh) continue;
+    const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), lc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    if (ln == 0 || lc == 0) continue;
+    const double cosine = std::clamp(facing * (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / (ln * lc), -1.0, 1.0);
+    const double angle = std::acos(cosine) * 180 / std::numbers::pi, area = ln / 2;
+    angleArea.push_back({angle, area});
+    total += area, sum += angle * area;
+  }
+  std::sort(angleArea.begin(), angleArea.end());
+  double seen = 0, p95 = 0;
+  for (const auto& [angle, area] : angleArea)
+    if ((seen += area) >= 0.95 * total) {
+      p95 = angle;
+      break;
+    }
+  return {total > 0 ? sum / total : 0, p95};
+}
+
 double distanceToContours(const FeatureSlice& slice, double x, double y) {
   double best = 1e300;
   for (const Contour& contour : slice.contours)

@@ -2,7 +2,9 @@
 // -> assembleMesh) and the measures the smoothing and remeshing tests share.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,16 @@ struct Accuracy {
 // Area-weighted mean and max distance of feature 0's surface to the analytic surface over 7
 // samples per triangle (those whose centroid lies in [zLow, zHigh]), and its whole volume.
 Accuracy accuracy(const Built& b, const Distance& distance, double zLow = -1e300, double zHigh = 1e300);
+
+// Area-weighted mean and 95th percentile of the angle, degrees, between each face's normal
+// (turned by `facing`: -1 where the faces' normals point inward) and the direction from the
+// origin to its centroid: how far the faces lie from a sphere's about the origin. Over the
+// faces whose centroid z lies in [zLow, zHigh); degenerate faces are left out.
+struct NormalErrors {
+  double mean = 0, p95 = 0;
+};
+NormalErrors sphereNormalErrors(std::span<const float> positions, std::span<const std::uint32_t> triangles, double facing = 1,
+                                double zLow = -1e300, double zHigh = 1e300);
 
 // Mean distance, in pixels, from feature 0's cross-sections at the contour planes (every mesh
 // edge with both ends at a slice's z, sampled at 5 points, weighted by length) to the

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/blend_rules.h"
 #include "geometry/extraction/assembly.h"
 #include "support/shapes.h"
 

@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "core/blend_rules.h"
 #include "core/parallel.h"
 
 namespace scansurf {
@@ -164,11 +165,8 @@ bool alikeGap(const Grid& g, int k, int j) {
   if (j < 0 || j + 1 >= g.nz) return false;
   const double gap = g.layerZ[static_cast<std::size_t>(k + 1)] - g.layerZ[static_cast<std::size_t>(k)];
   const double other = g.layerZ[static_cast<std::size_t>(j + 1)] - g.layerZ[static_cast<std::size_t>(j)];
-  return other >= 0.8 * gap && other <= 1.25 * gap;
+  return alikeGaps(gap, other);
 }
-
-// The monotone tangent of a sequence at a point between changes s0 and s1 (as bendTangent).
-double monotoneTangent(double s0, double s1) { return s0 * s1 > 0 ? 2 * s0 * s1 / (s0 + s1) : 0.0; }
 
 class BatchPlanner {
  public:
@@ -393,36 +391,26 @@ InterpolationBatch planInterpolationBatch(const LabelVolume& volume, const Plane
 
 namespace {
 
-// A round cap's profile (interpolation_plan.h, domeErosions): in u = s / H, the height over
-// the dome's, f = 1 - c u - (1 - c) u^2 with c = a H, which falls from 1 to 0 on [0, 1] for
-// any taper a in [0, 1]. Taper 0 is half an ellipsoid 3/4 of the gap high (2H/3 = 1/2); a
-// paraboloid (1 - m/n) holds the half slab too but must stand a whole gap high: a sphere's
-// pole, which lies less than half a gap beyond its last plane, was overshot twice as far, so
-// only a structure that tapered as fast toward its end plane gets it.
-struct DomeProfile {
-  double height = 0.75;  // H, in gaps
-  double slope = 0;      // c = a H
-};
-DomeProfile domeProfile(double taper) {
-  const double height = 6 / (4 + std::sqrt(16 - 12 * taper));
-  return {height, taper * height};
-}
-double domeFraction(const DomeProfile& dome, int m, int factor) {
+// The dome's layers follow the round cap's profile (core/blend_rules.h). A paraboloid holds the
+// half slab too but must stand a whole gap high: a sphere's pole, which lies less than half a
+// gap beyond its last plane, was overshot twice as far, so only a structure that tapered as fast
+// toward its end plane gets it.
+double domeFraction(const RoundCapProfile& dome, int m, int factor) {
   const double u = m / (dome.height * factor);
   return std::max(0.0, 1 - dome.slope * u - (1 - dome.slope) * u * u);
 }
 
 // The last layer a dome of n layers is open on, and how far beyond it its tip stands (in
 // layers, at most 1): at H, not on the next layer.
-int domeTop(const DomeProfile& dome, int factor) { return static_cast<int>(std::ceil(dome.height * factor)) - 1; }
-double domeTipHeight(const DomeProfile& dome, int factor) { return dome.height * factor - domeTop(dome, factor); }
+int domeTop(const RoundCapProfile& dome, int factor) { return static_cast<int>(std::ceil(dome.height * factor)) - 1; }
+double domeTipHeight(const RoundCapProfile& dome, int factor) { return dome.height * factor - domeTop(dome, factor); }
 
 // The surface between two layers of a dome is close to a frustum (its cross-sections are the
 // label's region eroded, alike in shape): h (a + sqrt(a b) + b) / 3, less than the trapezoid
 // h (a + b) / 2 that the fractions integrate. The areas of the dome's layers are scaled by the
 // factor that makes the frusta and the tip's cone hold half a gap, the flat half slab (a few
 // per cent).
-double domeAreaScale(const DomeProfile& dome, int factor) {
+double domeAreaScale(const RoundCapProfile& dome, int factor) {
   const int top = domeTop(dome, factor);
   const auto volume = [&](double scale) {
     double v = 0;
@@ -489,7 +477,7 @@ double blendedArea(const double (&area)[4], int m, int n) {
   const double tangentA = area[0] >= 0 ? monotoneTangent(area[1] - area[0], chord) : chord;
   const double tangentB = area[3] >= 0 ? monotoneTangent(chord, area[3] - area[2]) : chord;
   const double t = static_cast<double>(m) / n;
-  const double cubic = (1 - t) * area[1] + t * area[2] + t * (1 - t) * ((1 - t) * (tangentA - chord) - t * (tangentB - chord));
+  const double cubic = hermiteBlend(area[1], area[2], tangentA, tangentB, t);
   // The cubic holds (tangentA - tangentB) / 12 of an area over the gap beyond the trapezoid;
   // 30 t^2 (1 - t)^2 holds 1 and leaves the ends' values and slopes as they are.
   return cubic - 30 * t * t * (1 - t) * (1 - t) * (tangentA - tangentB) / 12;
@@ -572,11 +560,8 @@ double capTaper(const Grid& grid, const PlaneCensus& census, Label label, int en
     const LabelCensus* c = find(census[static_cast<std::size_t>(k)], label);
     return c ? static_cast<double>(c->count) : 0;
   };
-  const double atEnd = count(end), atBefore = count(before);
-  if (atEnd <= 0 || atBefore <= atEnd) return 0;
   const auto z = [&](int k) { return grid.layerZ[static_cast<std::size_t>(k)]; };
-  const double taper = (atBefore - atEnd) / atEnd * std::abs(z(next) - z(end)) / std::abs(z(end) - z(before));
-  return std::clamp(std::min(taper, 5 - 4 * taper), 0.0, 1.0);
+  return taperOfAreas(count(before), count(end), std::abs(z(next) - z(end)), std::abs(z(end) - z(before)));
 }
 
 void domeErosions(const std::int32_t* values, std::size_t count, int factor, double taper, std::int32_t* out) {
@@ -587,7 +572,7 @@ void domeErosions(const std::int32_t* values, std::size_t count, int factor, dou
   auto cover = [&](std::int32_t erosion) { return coveredArea(near.data(), near.size(), kFieldPixel, -erosion); };
   const double area = cover(0);
   out[0] = 0;
-  const DomeProfile dome = domeProfile(taper);
+  const RoundCapProfile dome = roundCapProfile(taper);
   const double scale = domeAreaScale(dome, factor);
   const int top = domeTop(dome, factor);
   for (int m = 1; m <= top; ++m) {

@@ -39,6 +39,18 @@ Carrier carrierOfKey(std::uint64_t key) {
   return out;
 }
 
+std::vector<ZKeyRun> runsOfZKey(std::span<const std::uint64_t> keys) {
+  std::vector<ZKeyRun> runs;
+  for (std::size_t v = 0; v < keys.size();) {
+    const std::uint64_t z = (keys[v] >> (2 * kKeyBits)) & kKeyMask;
+    std::size_t e = v;
+    while (e < keys.size() && ((keys[e] >> (2 * kKeyBits)) & kKeyMask) == z) ++e;
+    runs.push_back({z, v, e});
+    v = e;
+  }
+  return runs;
+}
+
 namespace {
 
 struct Segment {
@@ -65,19 +77,14 @@ bool crossing(double au, double av, double bu, double bv, const Segment& s, doub
 std::vector<double> fitContourCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,
                                         std::span<const Label> vertexLabels, int threads) {
   std::vector<double> t(keys.size(), -1.0);
-  // Keys are sorted by z first, so each plane's vertices are one run.
+  // Each plane's vertices are one run.
   struct Run {
     int layer;
     std::size_t begin, end;
   };
   std::vector<Run> runs;
-  for (std::size_t v = 0; v < keys.size();) {
-    const std::uint64_t z = (keys[v] >> (2 * kKeyBits)) & kKeyMask;
-    std::size_t e = v;
-    while (e < keys.size() && ((keys[e] >> (2 * kKeyBits)) & kKeyMask) == z) ++e;
-    if (z % 12 == 0) runs.push_back({static_cast<int>(z / 12), v, e});
-    v = e;
-  }
+  for (const ZKeyRun& r : runsOfZKey(keys))
+    if (r.z % 12 == 0) runs.push_back({static_cast<int>(r.z / 12), r.begin, r.end});
   // Slices by layer.
   std::vector<std::vector<std::pair<int, const FeatureSlice*>>> slicesOfLayer(static_cast<std::size_t>(grid.nz));
   for (std::size_t f = 0; f < contours.features.size(); ++f)

@@ -23,6 +23,14 @@ struct Carrier {
 };
 Carrier carrierOfKey(std::uint64_t key);
 
+// The runs of vertices with one z key (keys: MultiLabelMesh::keys, sorted by z first): z is in
+// twelfths of a layer, 12 k on layer k, 12 k + 6 on the grid edges from layer k to k + 1.
+struct ZKeyRun {
+  std::uint64_t z;
+  std::size_t begin, end;
+};
+std::vector<ZKeyRun> runsOfZKey(std::span<const std::uint64_t> keys);
+
 // For each vertex (keys: MultiLabelMesh::keys, sorted), the parameter t in [0, 1] from the
 // first corner of its carrier edge to the second where an original contour of one of the
 // vertex's two labels (vertexLabels: 2 per vertex; background has no contours) crosses that

@@ -16,6 +16,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "core/blend_rules.h"
 #include "core/parallel.h"
 #include "geometry/contours/polygon.h"
 #include "geometry/extraction/assembly.h"
@@ -24,7 +25,6 @@
 namespace scansurf {
 namespace {
 
-constexpr double kAlikeGaps = 0.25;  // gaps within this share of each other bend the blend (as the interpolation)
 constexpr int kBisections = 40;
 
 // One structure's signed distance on one plane at pixel centres: its outline's segments filed
@@ -175,8 +175,7 @@ class CapField {
         sorted_.push_back(d);
       }
     std::sort(sorted_.begin(), sorted_.end());
-    height_ = 6 / (4 + std::sqrt(16 - 12 * taper));
-    slope_ = taper * height_;
+    profile_ = roundCapProfile(taper);
   }
 
   // The dome's height over the centre of pixel (i, j), in cap gaps; 0 outside the region.
@@ -186,9 +185,9 @@ class CapField {
     if (d <= 0 || sorted_.empty()) return 0;
     const auto deeper = static_cast<double>(sorted_.end() - std::upper_bound(sorted_.begin(), sorted_.end(), d));
     const double kept = (deeper + 0.5) / static_cast<double>(sorted_.size());  // f at this pixel's height
-    const double c = slope_;
+    const double c = profile_.slope;
     const double u = c >= 1 - 1e-9 ? 1 - kept : (-c + std::sqrt(c * c + 4 * (1 - c) * (1 - kept))) / (2 * (1 - c));
-    return std::clamp(u, 0.0, 1.0) * height_;
+    return std::clamp(u, 0.0, 1.0) * profile_.height;
   }
 
  private:
@@ -199,7 +198,7 @@ class CapField {
   int i0_ = 0, j0_ = 0, w_ = 0, h_ = 0;
   std::vector<double> depth_;   // per pixel of the box, its depth (0 outside)
   std::vector<double> sorted_;  // the inside pixels' depths, ascending
-  double height_ = 0.75, slope_ = 0;
+  RoundCapProfile profile_;
 };
 
 // Each feature's slices by layer, sorted.
@@ -265,11 +264,9 @@ class FieldCache {
     const int before = end - direction, next = end + direction;
     const FeatureSlice* b = before >= 0 && before < grid_.nz ? sliceOn(slices_, f, before) : nullptr;
     if (!b || next < 0 || next >= grid_.nz) return 0;
-    const double atEnd = std::abs(regionArea(sliceOn(slices_, f, end)->contours)), atBefore = std::abs(regionArea(b->contours));
-    if (atEnd <= 0 || atBefore <= atEnd) return 0;
     const auto z = [&](int k) { return grid_.layerZ[static_cast<std::size_t>(k)]; };
-    const double taper = (atBefore - atEnd) / atEnd * std::abs(z(next) - z(end)) / std::abs(z(end) - z(before));
-    return std::clamp(std::min(taper, 5 - 4 * taper), 0.0, 1.0);
+    return taperOfAreas(std::abs(regionArea(b->contours)), std::abs(regionArea(sliceOn(slices_, f, end)->contours)),
+                        std::abs(z(next) - z(end)), std::abs(z(end) - z(before)));
   }
 
   const Grid& grid_;
@@ -294,8 +291,6 @@ double capCrossing(FieldCache& cache, std::size_t f, const Carrier& c, int end) 
   const double fromEnd = std::clamp(hEnd / (1 + hEnd - hBeyond), 0.0, 1.0);  // in cap gaps: the edge rises 1
   return end == k ? fromEnd : 1 - fromEnd;
 }
-
-bool alike(double gap, double other) { return std::abs(other - gap) <= kAlikeGaps * gap; }
 
 // The blend of one column's values on the planes k - 1 .. k + 2 (before and after: null when
 // not used) as a function of t between planes k and k + 1.
@@ -322,13 +317,13 @@ double featureCrossing(const Grid& grid, FieldCache& cache, std::size_t f, const
   if (!fb) return -1;
   const double gap = grid.layerZ[static_cast<std::size_t>(k) + 1] - grid.layerZ[static_cast<std::size_t>(k)];
   PlaneField* before =
-      k > 0 && alike(gap, grid.layerZ[static_cast<std::size_t>(k)] - grid.layerZ[static_cast<std::size_t>(k) - 1])
+      k > 0 && alikeGaps(gap, grid.layerZ[static_cast<std::size_t>(k)] - grid.layerZ[static_cast<std::size_t>(k) - 1])
           ? cache.field(f, k - 1)
           : nullptr;
-  PlaneField* after =
-      k + 2 < grid.nz && alike(gap, grid.layerZ[static_cast<std::size_t>(k) + 2] - grid.layerZ[static_cast<std::size_t>(k) + 1])
-          ? cache.field(f, k + 2)
-          : nullptr;
+  PlaneField* after = k + 2 < grid.nz && alikeGaps(gap, grid.layerZ[static_cast<std::size_t>(k) + 2] -
+                                                            grid.layerZ[static_cast<std::size_t>(k) + 1])
+                          ? cache.field(f, k + 2)
+                          : nullptr;
   const ColumnBlend p = columnBlend(before, *fa, *fb, after, c.corners[0][0], c.corners[0][1]);
   const bool slanted = c.corners[1][0] != c.corners[0][0] || c.corners[1][1] != c.corners[0][1];
   const ColumnBlend q = slanted ? columnBlend(before, *fa, *fb, after, c.corners[1][0], c.corners[1][1]) : p;
@@ -374,40 +369,25 @@ double medianOf(std::vector<double> values) {
 // Each feature's usual plane spacing: the median gap between its consecutive planes, or the
 // grid's planes' for a feature drawn on one plane.
 std::vector<double> usualGaps(const Grid& grid, const LayerSlices& slices, const std::vector<bool>& planes) {
-  const auto median = [](std::vector<double> gaps) {
-    if (gaps.empty()) return 0.0;
-    std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-    return gaps[gaps.size() / 2];
-  };
   std::vector<double> all;
   for (int k = 0, last = -1; k < grid.nz; ++k)
     if (planes[static_cast<std::size_t>(k)]) {
       if (last >= 0) all.push_back(grid.layerZ[static_cast<std::size_t>(k)] - grid.layerZ[static_cast<std::size_t>(last)]);
       last = k;
     }
-  const double overall = median(all);
+  const double overall = medianOf(all);
   std::vector<double> out;
   for (const auto& list : slices) {
     std::vector<double> gaps;
     for (std::size_t i = 1; i < list.size(); ++i)
       gaps.push_back(grid.layerZ[static_cast<std::size_t>(list[i].first)] -
                      grid.layerZ[static_cast<std::size_t>(list[i - 1].first)]);
-    out.push_back(gaps.empty() ? overall : median(gaps));
+    out.push_back(gaps.empty() ? overall : medianOf(std::move(gaps)));
   }
   return out;
 }
 
 }  // namespace
-
-double hermiteBlend(double a, double b, double ta, double tb, double t) {
-  const double chord = b - a;
-  return (1 - t) * a + t * b + t * (1 - t) * ((1 - t) * (ta - chord) - t * (tb - chord));
-}
-
-double monotoneTangent(double before, double after) {
-  if (before * after <= 0) return 0;
-  return 2 * before * after / (before + after);
-}
 
 BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,
                                   std::span<const Label> vertexLabels, int threads) {
@@ -424,20 +404,15 @@ BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, 
   // the median plane gap (where the fields were cut at 4 pixels, the sphere at 0.5 mm pixels,
   // 3 mm slices and no layers was 4.7 / 18.1 degrees off, 2.7 / 10.7 with 12).
   const double reachPixels = std::max(kBlendReach, std::ceil(2 * medianOf(usual) / std::min(grid.spacingX, grid.spacingY)));
-  // Keys are sorted by z first: the vertices between layers k and k + 1 on grid edges have z
-  // key 12 k + 6, one run each.
+  // The vertices on the grid edges from layer k to k + 1, one run each.
   struct Run {
     int layer;
     std::size_t begin, end;
   };
   std::vector<Run> runs;
-  for (std::size_t v = 0; v < keys.size();) {
-    const std::uint64_t z = (keys[v] >> (2 * kKeyBits)) & kKeyMask;
-    std::size_t e = v;
-    while (e < keys.size() && ((keys[e] >> (2 * kKeyBits)) & kKeyMask) == z) ++e;
-    const int k = static_cast<int>(z / 12);
-    if (z % 12 == 6 && spansAPixel(grid, k)) runs.push_back({k, v, e});
-    v = e;
+  for (const ZKeyRun& r : runsOfZKey(keys)) {
+    const int k = static_cast<int>(r.z / 12);
+    if (r.z % 12 == 6 && spansAPixel(grid, k)) runs.push_back({k, r.begin, r.end});
   }
   parallelChunks(runs.size(), threads, [&](int, std::size_t begin, std::size_t end) {
     FieldCache cache(grid, slices, reachPixels);

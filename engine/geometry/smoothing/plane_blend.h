@@ -26,9 +26,8 @@ inline constexpr double kBlendReach = 4;
 // - Contours on both layers: where the label's blended field is zero. The blend is the
 //   interpolation's (geometry/interpolation/interpolation_plan.h): the linear blend of the two
 //   planes' fields bent by the monotone cubic Hermite through the label's planes k - 1 and k + 2
-//   where it has them and the gaps are alike (Fritsch-Butland tangents: the harmonic mean of the
-//   changes on either side, 0 where they differ in sign), so the surface keeps its slope through
-//   a contour plane. Along a slanted edge each plane's field is taken linear between the edge's
+//   where it has them and the gaps are alike (core/blend_rules.h), so the surface keeps its
+//   slope through a contour plane. Along a slanted edge each plane's field is taken linear between the edge's
 //   two columns.
 // - Contours on one of them only (the label ends there): where the edge meets the label's round
 //   cap over that plane, the interpolation's dome (docs/method.md, "Caps").
@@ -38,19 +37,12 @@ struct BlendedCrossings {
   std::vector<char> interior;
 };
 // Only gaps of at least a pixel are blended (thinner slices resolve the surface between them
-// better than the pixels do, and relaxation keeps thin structures there). A cap reaches only a contour plane (of any structure),
-// the grid's padding (layers 0 and nz - 1), or a layer at least 3/4 of the structure's usual plane spacing away (a long gap's cap
-// layer): an interpolated layer or a reference slice, which carries the nearer plane's labels,
-// lies nearer, and the cap spans several layers there (or none).
+// better than the pixels do, and relaxation keeps thin structures there). A cap reaches only a
+// contour plane (of any structure), the grid's padding (layers 0 and nz - 1), or a layer at
+// least 3/4 of the structure's usual plane spacing away (a long gap's cap layer): an
+// interpolated layer or a reference slice, which carries the nearer plane's labels, lies
+// nearer, and the cap spans several layers there (or none).
 BlendedCrossings blendedCrossings(const Grid& grid, const ContourSet& contours, std::span<const std::uint64_t> keys,
                                   std::span<const Label> vertexLabels, int threads);
-
-// The Hermite blend at t in [0, 1] of the values a, b on two planes with tangents ta, tb (change
-// per gap): the linear blend plus t(1 - t)((1 - t)(ta - c) - t(tb - c)), c = b - a.
-double hermiteBlend(double a, double b, double ta, double tb, double t);
-
-// The monotone tangent at a plane between changes `before` and `after` (per gap): their
-// harmonic mean, 0 where they differ in sign or one is 0.
-double monotoneTangent(double before, double after);
 
 }  // namespace scansurf
