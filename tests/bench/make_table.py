@@ -1,5 +1,10 @@
 #!/usr/bin/env python3
-"""Turns run_benchmarks.sh's results (one JSON object per set) into docs/benchmarks.md."""
+"""Turns run_benchmarks.sh's results (one JSON object per set) into docs/benchmarks.md.
+
+  make_table.py RESULTS.jsonl COMMIT [SCALING.jsonl]
+
+SCALING.jsonl (optional): one object per run, {"set", "threads", "run", "ours"}, the whole run
+at each thread count, interleaved; it adds the section on threads."""
 import datetime
 import json
 import platform
@@ -45,6 +50,40 @@ def by_set(runs):
         row["our_totals"] = [r["ours"]["total"] for r in rs]
         rows.append(row)
     return rows
+
+
+AFTER_ASSEMBLY = ("feature surfaces", "smoothing", "triangle shape", "simplification", "audit", "write")
+SCALED_STAGES = ("scan conversion", "classification", "assembly", "smoothing", "triangle shape", "simplification")
+
+
+def scaling_section(runs):
+    """The whole run and its stages at each thread count (medians of the runs), the speed-up
+    over one thread, and the time after assembly per million output triangles per core."""
+    sets = {}
+    for r in runs:
+        sets.setdefault(r["set"], {}).setdefault(r["threads"], []).append(r["ours"])
+    if not sets:
+        return []
+    out = ["\n## Threads\n",
+           "The whole run at each thread count (`SCANSURF_THREADS` for scansurf's CPU stages, `LP_NUM_THREADS` "
+           "for lavapipe's), the thread counts interleaved run by run; medians of the runs. *after assembly*: "
+           "every stage after assembly (feature surfaces, smoothing, triangle shape, simplification, audit, "
+           "write), in seconds per million output triangles and per core (time × threads ÷ Mtriangles).\n"]
+    head = "| set | threads | runs | " + " | ".join(SCALED_STAGES) + " | **total** | speed-up | after assembly s / Mtri / core |"
+    out.append(head)
+    out.append("|" + "---|" * (len(SCALED_STAGES) + 6))
+    for name, by_threads in sets.items():
+        base = median([o["total"] for o in by_threads.get(1, [])]) if 1 in by_threads else None
+        for threads in sorted(by_threads):
+            rs = by_threads[threads]
+            total = median([o["total"] for o in rs])
+            cells = ["%.3f" % median([o.get(s, 0.0) for o in rs]) for s in SCALED_STAGES]
+            after = median([sum(o.get(s, 0.0) for s in AFTER_ASSEMBLY) * threads / (o["feature_triangles"] / 1e6)
+                            for o in rs])
+            speed = "%.2f×" % (base / total) if base else "–"
+            out.append("| %s | %d | %d | %s | **%.2f** | %s | %.2f |" % (name, threads, len(rs), " | ".join(cells), total,
+                                                                       speed, after))
+    return out
 
 
 def main():
@@ -123,6 +162,8 @@ def main():
 - The Slicer route rasterizes and surfaces each structure on its own, so it grows with the
   number of structures; scansurf renders all structures of a slice at once and extracts every
   surface in one pass, so it grows with the surface area.""")
+    if len(sys.argv) > 3:
+        out += scaling_section([json.loads(line) for line in open(sys.argv[3]) if line.strip()])
     print("\n".join(out))
 
 

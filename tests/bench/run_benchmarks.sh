@@ -50,7 +50,22 @@ for set in "${sets[@]}"; do
   done
 done
 
-"$py" tests/bench/make_table.py "$results" "$(git rev-parse --short HEAD)" > docs/benchmarks.md
+# Scaling: pelvis and head-neck whole at 1 and 2 threads (scansurf's CPU stages and lavapipe's),
+# the thread counts interleaved run by run.
+scaling="$work/scaling.jsonl"
+: > "$scaling"
+for set in pelvis head-neck; do
+  [ -f "$work/$set.json" ] && [[ " ${sets[*]} " == *" $set "* ]] || continue
+  for run in $(seq 1 "$runs"); do
+    for threads in 1 2; do
+      echo "== $set, run $run of $runs: scansurf on $threads thread(s)" >&2
+      ours=$(SCANSURF_THREADS=$threads LP_NUM_THREADS=$threads "$build/tests/scansurf_bench" run "$work/$set.json" 512)
+      "$py" -c 'import json,sys; print(json.dumps({"set": sys.argv[1], "threads": int(sys.argv[2]), "run": int(sys.argv[3]), "ours": json.loads(sys.argv[4])}))' "$set" "$threads" "$run" "$ours" >> "$scaling"
+    done
+  done
+done
+
+"$py" tests/bench/make_table.py "$results" "$(git rev-parse --short HEAD)" "$scaling" > docs/benchmarks.md
 
 # Where the time goes: a perf profile of scansurf on pelvis (when perf works on this machine).
 if command -v perf > /dev/null && [ -f "$work/pelvis.json" ] && perf stat -e task-clock true > /dev/null 2>&1; then
