@@ -25,7 +25,31 @@
 namespace scansurf {
 namespace {
 
-constexpr int kBisections = 40;
+// The root of g in [0, 1], given g(0) = g0 and g(1) = g1 of opposite signs, to within
+// kRootWidth: regula falsi with the Illinois modification (Dowell & Jarratt, "A modified regula
+// falsi method for computing the root of an equation", BIT 1971), which keeps the bracket like
+// bisection and converges superlinearly; g here is a polynomial of degree 4 at most.
+constexpr double kRootWidth = 1e-12;
+template <class F>
+double bracketedRoot(const F& g, double g0, double g1) {
+  double lo = 0, hi = 1, flo = g0, fhi = g1;
+  int kept = 0;  // which end the last step kept: -1 the upper, +1 the lower
+  for (int step = 0; step < 100 && hi - lo > kRootWidth; ++step) {
+    const double t = std::clamp((lo * fhi - hi * flo) / (fhi - flo), lo, hi);
+    const double ft = g(t);
+    if (ft == 0) return t;
+    if ((ft > 0) == (flo > 0)) {
+      lo = t, flo = ft;
+      if (kept == -1) fhi *= 0.5;
+      kept = -1;
+    } else {
+      hi = t, fhi = ft;
+      if (kept == 1) flo *= 0.5;
+      kept = 1;
+    }
+  }
+  return 0.5 * (lo + hi);
+}
 
 // One structure's signed distance on one plane at pixel centres: its outline's segments filed
 // in a dense grid of cells `reach` pixels wide, so that the nine cells around a pixel hold
@@ -59,12 +83,23 @@ class PlaneField {
     for (std::uint32_t s = 0; s < boxes.size(); ++s)
       for (int y = boxes[s][1]; y <= boxes[s][3]; ++y)
         for (int x = boxes[s][0]; x <= boxes[s][2]; ++x) filed_[fill[cellIndex(x, y)]++] = s;
+    // The pixels whose value depends on a segment: the cells' box and one cell around it.
+    const double cell = cellPixels_;
+    px0_ = static_cast<int>(std::floor((x0_ - 1) * cell)), py0_ = static_cast<int>(std::floor((y0_ - 1) * cell));
+    pw_ = static_cast<int>(std::ceil((w_ + 2) * cell)) + 1, ph_ = static_cast<int>(std::ceil((h_ + 2) * cell)) + 1;
+    near_.assign(static_cast<std::size_t>(pw_) * static_cast<std::size_t>(ph_), std::numeric_limits<double>::quiet_NaN());
   }
 
   double reach() const { return reach_; }  // input units
 
   // At the centre of pixel (i, j): positive inside, clamped to +-reach.
   double at(int i, int j) {
+    const int x = i - px0_, y = j - py0_;
+    if (x >= 0 && y >= 0 && x < pw_ && y < ph_) {  // near the outline: kept in the dense box
+      double& value = near_[static_cast<std::size_t>(x) + static_cast<std::size_t>(pw_) * static_cast<std::size_t>(y)];
+      if (std::isnan(value)) value = compute(i, j);
+      return value;
+    }
     const std::uint64_t key = static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32 | static_cast<std::uint32_t>(j);
     const auto [it, fresh] = known_.try_emplace(key, 0.0);
     if (fresh) it->second = compute(i, j);
@@ -107,7 +142,9 @@ class PlaneField {
   std::vector<Segment> segments_;
   int x0_ = 0, y0_ = 0, w_ = 0, h_ = 0;       // the cells that hold segments
   std::vector<std::uint32_t> start_, filed_;  // per cell, its segments (CSR)
-  std::unordered_map<std::uint64_t, double> known_;
+  int px0_ = 0, py0_ = 0, pw_ = 0, ph_ = 0;  // the pixels kept densely (NaN: not yet asked)
+  std::vector<double> near_;
+  std::unordered_map<std::uint64_t, double> known_;  // the others asked
 };
 
 // Squared Euclidean distance transform along one line (Felzenszwalb & Huttenlocher, "Distance
@@ -328,16 +365,11 @@ double featureCrossing(const Grid& grid, FieldCache& cache, std::size_t f, const
   const bool slanted = c.corners[1][0] != c.corners[0][0] || c.corners[1][1] != c.corners[0][1];
   const ColumnBlend q = slanted ? columnBlend(before, *fa, *fb, after, c.corners[1][0], c.corners[1][1]) : p;
   const auto g = [&](double t) { return (1 - t) * p.at(t) + t * q.at(t); };
-  double lo = 0, hi = 1;
-  const double g0 = g(lo), g1 = g(hi);
+  const double g0 = g(0), g1 = g(1);
   if (g0 == 0) return 0;
   if (g1 == 0) return 1;
   if ((g0 > 0) == (g1 > 0)) return -1;
-  for (int it = 0; it < kBisections; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    ((g(mid) > 0) == (g0 > 0) ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return bracketedRoot(g, g0, g1);
 }
 
 // Whether the gap from layer k to k + 1 is at least a pixel: thinner slices already resolve the
