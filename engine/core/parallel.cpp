@@ -2,6 +2,7 @@
 #include "core/parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
@@ -54,6 +55,16 @@ void parallelChunks(std::size_t count, int threads, const std::function<void(int
   run(0);
   for (std::thread& t : workers) t.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+void parallelBlocks(std::size_t count, int threads, std::size_t block,
+                    const std::function<void(int, std::size_t, std::size_t)>& body) {
+  block = std::max<std::size_t>(block, 1);
+  const std::size_t blocks = (count + block - 1) / block;
+  std::atomic<std::size_t> next{0};
+  parallelChunks(blocks, threads, [&](int worker, std::size_t, std::size_t) {
+    for (std::size_t b = next++; b < blocks; b = next++) body(worker, b * block, std::min(count, (b + 1) * block));
+  });
 }
 
 }  // namespace scansurf

@@ -19,4 +19,13 @@ void parallelChunks(std::size_t count, int threads,
 // The number of chunks parallelChunks will use for count and threads.
 int chunkCount(std::size_t count, int threads);
 
+// Runs body(worker, begin, end) over [0, count) in blocks of `block` items that up to `threads`
+// workers (0 = defaultThreadCount()) take in turn as each finishes its last: for work whose
+// cost per item varies, where equal chunks would leave a worker idle. Which worker takes a
+// block varies from run to run, so a body must write only what its items own (per-item
+// results); `worker` (below the thread count) indexes per-worker scratch. Exceptions in a body
+// are rethrown here.
+void parallelBlocks(std::size_t count, int threads, std::size_t block,
+                    const std::function<void(int worker, std::size_t begin, std::size_t end)>& body);
+
 }  // namespace scansurf

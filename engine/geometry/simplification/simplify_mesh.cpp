@@ -79,6 +79,9 @@ std::vector<int> planesOfVertices(const MultiLabelMesh& mesh, const Grid& grid, 
   return plane;
 }
 
+// How many patches a worker takes at a time.
+constexpr std::size_t kPatchesATurn = 16;
+
 // A patch key: tier << 48 | tile << 32 | label pair.
 constexpr std::uint64_t kField = 0xffff;
 
@@ -392,10 +395,12 @@ SimplificationReport simplifyMesh(MultiLabelMesh& mesh, const Grid& grid, const 
   const std::vector<char> shared = sharedVertices(mesh, order, patches);
   const PatchContext ctx{mesh, plane, shared, options.tolerance * voxel, options.edgeLength * voxel, options.minAngle};
   std::vector<PatchResult> results(patches.size());
-  parallelChunks(patches.size(), threads, [&](int, std::size_t begin, std::size_t end) {
-    LocalIds local;
+  // Patches differ in size by orders of magnitude: workers take a few at a time.
+  std::vector<LocalIds> local(static_cast<std::size_t>(chunkCount(patches.size(), threads)));
+  parallelBlocks(patches.size(), threads, kPatchesATurn, [&](int worker, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
-      results[i] = simplifyPatch(ctx, std::span(order).subspan(patches[i].first, patches[i].count), local);
+      results[i] = simplifyPatch(ctx, std::span(order).subspan(patches[i].first, patches[i].count),
+                                 local[static_cast<std::size_t>(worker)]);
   });
   std::vector<char> kept(patches.size());
   for (std::size_t i = 0; i < patches.size(); ++i) kept[i] = !results[i].triangles.empty(), report.refused += results[i].refused;
