@@ -89,7 +89,7 @@ class Collapser {
         if (length > 0) quadric_[v].addPlane(n / length, -glm::dot(n / length, pos_[tri[0]]));
       }
     }
-    starChangedAt_.assign(pos_.size(), 0), refusedAt_.assign(tris_.size(), 0);
+    starChangedAt_.assign(pos_.size(), 0), refusedAt_.assign(tris_.size(), 0), mark_.assign(pos_.size(), 0);
     leastCosine_ = std::cos(limits.minAngle * std::numbers::pi / 180);
     maxCost_ = limits.maxDistance * limits.maxDistance;
   }
@@ -209,15 +209,15 @@ class Collapser {
     cosine_[t] = sharpestCosine(pos_[a], pos_[d], pos_[c]), cosine_[u] = sharpestCosine(pos_[d], pos_[b], pos_[c]);
   }
 
-  // v's neighbours, sorted, into `out`.
-  void neighbours(std::uint32_t v, std::vector<std::uint32_t>& out) const {
+  // v's neighbours, each once, into `out`; until the next call, isMarked(w) says whether w is one.
+  void neighbours(std::uint32_t v, std::vector<std::uint32_t>& out) {
     out.clear();
+    if (++stamp_ == 0) std::fill(mark_.begin(), mark_.end(), 0), stamp_ = 1;
     for (std::uint32_t t : vtris_[v])
       for (std::uint32_t w : tris_[t])
-        if (w != v) out.push_back(w);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+        if (w != v && mark_[w] != stamp_) mark_[w] = stamp_, out.push_back(w);
   }
+  bool isMarked(std::uint32_t w) const { return mark_[w] == stamp_; }
 
   void push(std::uint32_t from, std::uint32_t to) {
     if (locked_[from]) return;
@@ -237,14 +237,14 @@ class Collapser {
 
   bool contains(std::uint32_t t, std::uint32_t v) const { return tris_[t][0] == v || tris_[t][1] == v || tris_[t][2] == v; }
 
-  // The link condition: u and v share exactly the two vertices opposite their edge.
-  bool keepsManifold(std::uint32_t v, std::uint32_t u, const std::vector<std::uint32_t>& nv,
-                     const std::vector<std::uint32_t>& nu) const {
+  // The link condition: u and v share exactly the two vertices opposite their edge. u's
+  // neighbours are the ones marked (neighbours(u, ...) was the last call).
+  bool keepsManifold(std::uint32_t v, std::uint32_t u, const std::vector<std::uint32_t>& nv) const {
     int shared = 0;
     for (std::uint32_t t : vtris_[v]) shared += contains(t, u);
     if (shared != 2) return false;
     std::size_t common = 0;
-    for (std::uint32_t w : nv) common += std::binary_search(nu.begin(), nu.end(), w);
+    for (std::uint32_t w : nv) common += isMarked(w);
     return common == 2;
   }
 
@@ -266,14 +266,14 @@ class Collapser {
   }
 
   // Whether triangle t's new edges (from u to its other corners) are allowed: none longer than
-  // the edge bound and none along a contour plane, unless u has that edge already.
-  bool keepsEdges(std::uint32_t t, std::uint32_t v, std::uint32_t u, const std::vector<std::uint32_t>& nu) const {
+  // the edge bound and none along a contour plane, unless u has that edge already (its
+  // neighbours marked).
+  bool keepsEdges(std::uint32_t t, std::uint32_t v, std::uint32_t u) const {
     int onPlane = 0;
     for (const std::uint32_t w : tris_[t]) {
       if (w == v) continue;
-      if (glm::length(pos_[w] - pos_[u]) > limits_.maxEdge && !std::binary_search(nu.begin(), nu.end(), w)) return false;
-      if (plane_[u] >= 0 && plane_[w] == plane_[u] && (++onPlane == 2 || !std::binary_search(nu.begin(), nu.end(), w)))
-        return false;
+      if (glm::length(pos_[w] - pos_[u]) > limits_.maxEdge && !isMarked(w)) return false;
+      if (plane_[u] >= 0 && plane_[w] == plane_[u] && (++onPlane == 2 || !isMarked(w))) return false;
     }
     return true;
   }
@@ -285,10 +285,10 @@ class Collapser {
     for (std::uint32_t t : vtris_[v]) worstBefore = std::max(worstBefore, cosine_[t]);
     for (std::uint32_t t : vtris_[v])
       if (!contains(t, u) && !keepsShape(t, v, u, worstBefore)) return false;
-    neighbours(v, nv_), neighbours(u, nu_);
-    if (!keepsManifold(v, u, nv_, nu_)) return false;
+    neighbours(v, nv_), neighbours(u, nu_);  // marks u's neighbours for the two checks below
+    if (!keepsManifold(v, u, nv_)) return false;
     for (std::uint32_t t : vtris_[v])
-      if (!contains(t, u) && !keepsEdges(t, v, u, nu_)) return false;
+      if (!contains(t, u) && !keepsEdges(t, v, u)) return false;
     return true;
   }
 
@@ -322,6 +322,8 @@ class Collapser {
   std::vector<char> alive_;
   std::vector<double> cosine_;                   // per triangle, its sharpest corner's cosine
   std::vector<std::uint32_t> nv_, nu_, around_;  // scratch neighbour lists
+  std::vector<std::uint32_t> mark_;              // per vertex, the stamp of the last list it was in
+  std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> flipped_;           // corners of this round's flips
   std::vector<std::vector<std::uint32_t>> vtris_;
   std::vector<Quadric> quadric_;
