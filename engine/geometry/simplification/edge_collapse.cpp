@@ -324,7 +324,7 @@ class Collapser {
   std::vector<std::uint32_t> nv_, nu_, around_;  // scratch neighbour lists
   std::vector<std::uint32_t> mark_;              // per vertex, the stamp of the last list it was in
   std::uint32_t stamp_ = 0;
-  std::vector<std::uint32_t> flipped_;           // corners of this round's flips
+  std::vector<std::uint32_t> flipped_;  // corners of this round's flips
   std::vector<std::vector<std::uint32_t>> vtris_;
   std::vector<Quadric> quadric_;
   std::vector<std::uint32_t> version_;

@@ -142,7 +142,7 @@ class PlaneField {
   std::vector<Segment> segments_;
   int x0_ = 0, y0_ = 0, w_ = 0, h_ = 0;       // the cells that hold segments
   std::vector<std::uint32_t> start_, filed_;  // per cell, its segments (CSR)
-  int px0_ = 0, py0_ = 0, pw_ = 0, ph_ = 0;  // the pixels kept densely (NaN: not yet asked)
+  int px0_ = 0, py0_ = 0, pw_ = 0, ph_ = 0;   // the pixels kept densely (NaN: not yet asked)
   std::vector<double> near_;
   std::unordered_map<std::uint64_t, double> known_;  // the others asked
 };
