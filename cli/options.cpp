@@ -268,7 +268,7 @@ void addSimplification(CLI::App& app, CliOptions& o) {
   app.add_flag("--simplify,!--no-simplify", s.enabled,
                "merge the smoothed surfaces' triangles into fewer, better-shaped ones, every contour-plane cross-section "
                "and junction curve kept (default: on; on the benchmark sets it leaves about 0.7 of the triangles, under "
-               "the 3D Slicer route's count, for about 2.6 times smoothing's time; --no-simplify skips it; see "
+               "the 3D Slicer route's count, for about 3 to 4 times smoothing's time; --no-simplify skips it; see "
                "docs/method.md \"Simplification\")");
   app.add_option("--simplify-tolerance", s.tolerance, "how far simplification may move the surface, in-plane voxels")
       ->check(numberIn(0, SimplificationOptions::kMostTolerance, true, "a number in (0, 0.5]"))
