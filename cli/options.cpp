@@ -187,7 +187,8 @@ void addGeneral(CLI::App& app, CliOptions& o, Flags& f) {
   app.add_option("--device", o.engine.device, "Vulkan device: index or part of its name (default: best; env SCANSURF_DEVICE)");
   app.add_flag("--validation", o.engine.validation, "enable the Vulkan validation layers");
   app.add_option("--threads", o.build.threads,
-                 "CPU threads for assembly, smoothing and statistics (default and at most: the machine's cores)")
+                 "CPU threads for the stages on the CPU, assembly to simplification, and statistics (default and "
+                 "at most: the machine's cores)")
       ->check(CLI::Range(0, BuildOptions::kMostThreads));
   app.add_option("--max-memory", f.maxMemory,
                  "host memory the run may use, e.g. 8G or 512M (default: what the machine has available); a run that "

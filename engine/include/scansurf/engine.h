@@ -60,7 +60,7 @@ struct BuildOptions {
   // the shared voxels split between them) rather than overlaps by design. build() refuses a
   // negative or non-finite depth and a percentage outside [0, 100] (Errc::InvalidArgument).
   OverlapTolerance overlapTolerance;
-  int threads = 0;                           // CPU threads for assembly and smoothing; 0 = all (or SCANSURF_THREADS)
+  int threads = 0;                           // CPU threads for the CPU stages; 0 = all (or SCANSURF_THREADS)
   static constexpr int kMostThreads = 1024;  // build() refuses more; more than the cores only costs
   // Host memory build() may use, in bytes; 0 = what the machine has available when the build
   // starts (MemAvailable, lowered by a cgroup limit and rlimits). Before anything large is
