@@ -1,4 +1,4 @@
-// scansurf: the fork-join loop of the CPU stages (see parallel.h).
+// scansurf: the fork-join loops of the CPU stages (see parallel.h).
 #include "core/parallel.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// scansurf: a minimal fork-join loop for the CPU stages (assembly, smoothing).
+// scansurf: minimal fork-join loops for the CPU stages: equal chunks, or blocks taken in turn.
 #pragma once
 
 #include <cstddef>
