@@ -14,7 +14,6 @@
 #include <map>
 #include <memory>
 #include <tuple>
-#include <unordered_map>
 
 #include "core/blend_rules.h"
 #include "core/parallel.h"
@@ -83,7 +82,8 @@ class PlaneField {
     for (std::uint32_t s = 0; s < boxes.size(); ++s)
       for (int y = boxes[s][1]; y <= boxes[s][3]; ++y)
         for (int x = boxes[s][0]; x <= boxes[s][2]; ++x) filed_[fill[cellIndex(x, y)]++] = s;
-    // The pixels whose value depends on a segment: the cells' box and one cell around it.
+    // The pixels whose value depends on a segment: the cells' box and one cell around it. Every
+    // pixel beyond lies outside the outlines' bounding box, so outside, at -reach.
     const double cell = cellPixels_;
     px0_ = static_cast<int>(std::floor((x0_ - 1) * cell)), py0_ = static_cast<int>(std::floor((y0_ - 1) * cell));
     pw_ = static_cast<int>(std::ceil((w_ + 2) * cell)) + 1, ph_ = static_cast<int>(std::ceil((h_ + 2) * cell)) + 1;
@@ -95,15 +95,10 @@ class PlaneField {
   // At the centre of pixel (i, j): positive inside, clamped to +-reach.
   double at(int i, int j) {
     const int x = i - px0_, y = j - py0_;
-    if (x >= 0 && y >= 0 && x < pw_ && y < ph_) {  // near the outline: kept in the dense box
-      double& value = near_[static_cast<std::size_t>(x) + static_cast<std::size_t>(pw_) * static_cast<std::size_t>(y)];
-      if (std::isnan(value)) value = compute(i, j);
-      return value;
-    }
-    const std::uint64_t key = static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32 | static_cast<std::uint32_t>(j);
-    const auto [it, fresh] = known_.try_emplace(key, 0.0);
-    if (fresh) it->second = compute(i, j);
-    return it->second;
+    if (x < 0 || y < 0 || x >= pw_ || y >= ph_) return -reach_;
+    double& value = near_[static_cast<std::size_t>(x) + static_cast<std::size_t>(pw_) * static_cast<std::size_t>(y)];
+    if (std::isnan(value)) value = compute(i, j);
+    return value;
   }
 
  private:
@@ -144,7 +139,6 @@ class PlaneField {
   std::vector<std::uint32_t> start_, filed_;  // per cell, its segments (CSR)
   int px0_ = 0, py0_ = 0, pw_ = 0, ph_ = 0;   // the pixels kept densely (NaN: not yet asked)
   std::vector<double> near_;
-  std::unordered_map<std::uint64_t, double> known_;  // the others asked
 };
 
 // Squared Euclidean distance transform along one line (Felzenszwalb & Huttenlocher, "Distance
